@@ -1,0 +1,55 @@
+#pragma once
+// Per-atom state as a structure of arrays (vectors stored xyz-interleaved per
+// quantity). Fixes may attach extra per-atom columns; every column follows the
+// atoms through sorting, deletion and growth.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sable {
+
+class Atoms {
+ public:
+  Atoms();
+  std::size_t n = 0;  // local atoms (one process: all atoms)
+  std::vector<long> id;
+  std::vector<int> type;
+  std::vector<std::uint32_t> mask;  // group bits
+  std::vector<double> x, v, f;      // 3 per atom
+  std::vector<double> omega, torque;
+  std::vector<double> radius, rmass, density;
+  std::vector<int> image;  // 3 per atom: periodic image counters
+
+  int ntypes = 1;
+  long max_id = 0;
+
+  // Append one atom, returns its index. Mass from density and radius (3D sphere).
+  std::size_t add(long id, int type, const double xyz[3], double radius, double density);
+  void remove_if(const std::vector<char>& doomed);
+  void permute(const std::vector<std::size_t>& order);  // new[i] = old[order[i]]
+  void set_radius_density(std::size_t i, double r, double rho);
+  std::size_t index_of(long atom_id) const;  // npos when absent (linear map rebuilt lazily)
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+  // Extra per-atom columns (history of walls, fix state): stride doubles per atom.
+  int add_column(const std::string& name, int stride, double init = 0.0);
+  std::vector<double>& column(int handle) { return extra_[handle].data; }
+  int column_stride(int handle) const { return extra_[handle].stride; }
+  void clear_forces();
+
+ private:
+  struct Column {
+    std::string name;
+    int stride;
+    double init;
+    std::vector<double> data;
+  };
+  std::vector<Column> extra_;
+  mutable std::vector<std::size_t> map_;  // id -> index
+  mutable bool map_valid_ = false;
+  void invalidate() { map_valid_ = false; }
+  template <class F>
+  void for_each_array(F&& f);
+};
+
+}  // namespace sable

@@ -1,0 +1,59 @@
+#pragma once
+// Base of computes (LIGGGHTS `compute ID group style args`). Evaluated lazily:
+// only when a thermo column, dump, variable or fix asks, and once per step.
+#include <string>
+#include <vector>
+
+#include "core/args.h"
+
+namespace sable {
+
+class Simulation;
+
+class Compute {
+ public:
+  Compute(Simulation& sim, const Args& args);
+  virtual ~Compute() = default;
+  Compute(const Compute&) = delete;
+  Compute& operator=(const Compute&) = delete;
+
+  Simulation& sim;
+  Args args;
+  std::string id, style;
+  int group = 0;
+  std::uint32_t groupbit = 1;
+
+  virtual void init() {}
+
+  // global scalar (c_ID)
+  bool scalar_flag = false;
+  virtual double compute_scalar() { return 0.0; }
+  // global vector (c_ID[i], 1-based)
+  int vector_size = 0;
+  virtual double compute_vector(int /*i*/) { return 0.0; }
+  // per-atom: ncols == 0 for a vector (one value per atom), else columns
+  bool peratom_flag = false;
+  int peratom_cols = 0;
+  virtual void compute_peratom() {}
+  std::vector<double> peratom;  // n * max(1, peratom_cols)
+  // local (per contact): rows x local_cols
+  bool local_flag = false;
+  int local_cols = 0;
+  std::vector<std::string> local_names;
+  virtual void compute_local() {}
+  std::vector<double> local;  // rows * local_cols
+  std::size_t local_rows() const { return local_cols ? local.size() / local_cols : 0; }
+
+  long invoked_step = -1;  // callers use these to avoid recomputing within a step
+  // Helpers that recompute only once per step.
+  double scalar();
+  double vector(int i);
+  void peratom_now();
+  void local_now();
+
+ private:
+  long scalar_step_ = -1, peratom_step_ = -1, local_step_ = -1;
+  double scalar_cache_ = 0.0;
+};
+
+}  // namespace sable

@@ -1,0 +1,59 @@
+#pragma once
+// Base of all fixes (LIGGGHTS `fix ID group style args`). A fix overrides the
+// hooks it needs and says so in `hooks`, so the step loop calls only those.
+#include <string>
+
+#include "core/args.h"
+
+namespace sable {
+
+class Simulation;
+
+enum FixHook : unsigned {
+  INITIAL_INTEGRATE = 1u << 0,
+  POST_INTEGRATE = 1u << 1,
+  PRE_FORCE = 1u << 2,
+  POST_FORCE = 1u << 3,
+  FINAL_INTEGRATE = 1u << 4,
+  END_OF_STEP = 1u << 5,
+};
+
+class Fix {
+ public:
+  Fix(Simulation& sim, const Args& args);  // args: ID group style ...
+  virtual ~Fix() = default;
+  Fix(const Fix&) = delete;
+  Fix& operator=(const Fix&) = delete;
+
+  Simulation& sim;
+  Args args;
+  std::string id, style;
+  int group = 0;           // group index
+  std::uint32_t groupbit = 1;
+  unsigned hooks = 0;
+  int nevery = 1;          // end_of_step period
+
+  virtual void init() {}        // before each run (after all commands are known)
+  virtual void setup() {}       // after the first force evaluation of a run
+  virtual void initial_integrate() {}
+  virtual void post_integrate() {}
+  virtual void pre_force() {}
+  virtual void post_force() {}
+  virtual void final_integrate() {}
+  virtual void end_of_step() {}
+  virtual void post_run() {}
+  // `fix_modify` keywords this fix understands; return false to reject.
+  virtual bool modify_param(const Args&, std::size_t&) { return false; }
+
+  // Global outputs referenced as f_ID and f_ID[i] (1-based).
+  int scalar_flag = 0, vector_size = 0;
+  virtual double compute_scalar() { return 0.0; }
+  virtual double compute_vector(int /*i*/) { return 0.0; }
+
+  // Fastest speed this fix imposes (moving walls), for the time-step check.
+  virtual double max_speed() const { return 0.0; }
+  // Acceleration this fix imposes on free grains (gravity), for the speed estimate.
+  virtual double acceleration() const { return 0.0; }
+};
+
+}  // namespace sable

@@ -1,0 +1,297 @@
+#include "core/input.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/expression.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+#include "core/variable.h"
+
+namespace sable {
+
+Input::Input(Simulation& sim) : sim_(sim) { sim.input = this; }
+
+static std::vector<std::string> read_lines(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail("cannot open deck file '" + path + "' (does it exist and is it readable?)");
+  std::vector<std::string> lines;
+  std::string s;
+  while (std::getline(in, s)) lines.push_back(s);
+  return lines;
+}
+
+void Input::file(const std::string& path) {
+  stack_.push_back({path, read_lines(path), 0});
+  run_frame();
+  stack_.pop_back();
+}
+
+void Input::run_frame() {
+  Frame& fr = stack_.back();
+  const std::size_t depth = stack_.size();
+  while (stack_.size() == depth && stack_.back().next < stack_.back().lines.size()) {
+    Frame& f = stack_.back();
+    DeckLocation where{f.path, static_cast<int>(f.next) + 1};
+    std::string line = f.lines[f.next++];
+    // '&' at the end joins the next physical line.
+    while (true) {
+      std::size_t e = line.find_last_not_of(" \t\r");
+      if (e == std::string::npos || line[e] != '&' || f.next >= f.lines.size()) break;
+      line = line.substr(0, e) + " " + f.lines[f.next++];
+    }
+    one(line, where);
+  }
+  (void)fr;
+}
+
+// Drop a '#' comment that is not inside quotes.
+static std::string strip_comment(const std::string& s) {
+  char q = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (q) {
+      if (s[i] == q) q = 0;
+    } else if (s[i] == '"' || s[i] == '\'') {
+      q = s[i];
+    } else if (s[i] == '#') {
+      return s.substr(0, i);
+    }
+  }
+  return s;
+}
+
+static std::string format_number(double v, const std::string& fmt) {
+  char buf[64];
+  if (!fmt.empty()) {
+    std::snprintf(buf, sizeof buf, fmt.c_str(), v);
+  } else if (v == std::floor(v) && std::fabs(v) < 1e15) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.15g", v);
+  }
+  return buf;
+}
+
+std::string Input::substitute(const std::string& line, const DeckLocation& where) {
+  std::string out;
+  char q = 0;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    // Single quotes protect from substitution (LAMMPS rule); double quotes do not.
+    if (q == '\'') {
+      if (c == '\'') q = 0;
+      out += c;
+      continue;
+    }
+    if (c == '\'') {
+      q = '\'';
+      out += c;
+      continue;
+    }
+    if (c != '$' || i + 1 >= line.size()) {
+      out += c;
+      continue;
+    }
+    const char d = line[i + 1];
+    Args here({line}, where);
+    if (d == '{') {
+      const std::size_t close = line.find('}', i + 2);
+      if (close == std::string::npos) here.fail(0, "a closing '}' after '${'");
+      const std::string name = line.substr(i + 2, close - i - 2);
+      out += sim_.variables->string_value(name, here);
+      i = close;
+    } else if (d == '(') {
+      int depth = 0;
+      std::size_t k = i + 1;
+      for (; k < line.size(); ++k) {
+        if (line[k] == '(') ++depth;
+        if (line[k] == ')' && --depth == 0) break;
+      }
+      if (k >= line.size()) here.fail(0, "a closing ')' after '$('");
+      std::string expr = line.substr(i + 2, k - i - 2), fmt;
+      const std::size_t colon = expr.rfind(':');
+      if (colon != std::string::npos && colon + 1 < expr.size() && expr[colon + 1] == '%') {
+        fmt = expr.substr(colon + 1);
+        expr = expr.substr(0, colon);
+      }
+      out += format_number(sim_.variables->evaluate(expr, here), fmt);
+      i = k;
+    } else if (std::isalpha(static_cast<unsigned char>(d))) {
+      out += sim_.variables->string_value(std::string(1, d), here);
+      ++i;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> Input::parse(const std::string& raw, const DeckLocation& where) {
+  const std::string line = substitute(strip_comment(raw), where);
+  std::vector<std::string> words;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i >= line.size()) break;
+    std::string w;
+    if (line.compare(i, 3, "\"\"\"") == 0) {
+      const std::size_t e = line.find("\"\"\"", i + 3);
+      if (e == std::string::npos) Args({line}, where).fail(0, "closing \"\"\"");
+      w = line.substr(i + 3, e - i - 3);
+      i = e + 3;
+    } else if (line[i] == '"' || line[i] == '\'') {
+      const char q = line[i];
+      const std::size_t e = line.find(q, i + 1);
+      if (e == std::string::npos) Args({line}, where).fail(0, std::string("a closing ") + q + " quote");
+      w = line.substr(i + 1, e - i - 1);
+      i = e + 1;
+    } else {
+      while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) w += line[i++];
+    }
+    words.push_back(w);
+  }
+  return words;
+}
+
+void Input::one(const std::string& line, const DeckLocation& where) {
+  where_ = where;
+  // While jumping to a label, only the label line matters (and it needs no substitution).
+  if (!jump_label_.empty()) {
+    std::istringstream ss(strip_comment(line));
+    std::string a, b;
+    ss >> a >> b;
+    if (a == "label" && b == jump_label_) jump_label_.clear();
+    return;
+  }
+  std::vector<std::string> words = parse(line, where);
+  if (words.empty()) return;
+  if (echo_screen) sim_.print(line);
+  execute(Args(std::move(words), where));
+}
+
+void Input::execute(const Args& a) {
+  const std::string& c = a.command();
+  if (c == "label") return;
+  if (c == "include") return cmd_include(a);
+  if (c == "jump") return cmd_jump(a);
+  if (c == "if") return cmd_if(a);
+  if (c == "print") return cmd_print(a);
+  if (c == "variable") return sim_.variables->define(a);
+  if (c == "next") {
+    // When a variable is exhausted, LAMMPS deletes it and skips the next jump.
+    for (std::size_t i = 1; i < a.size(); ++i)
+      if (!sim_.variables->next(a[i], a)) skip_jump_ = true;
+    return;
+  }
+  if (c == "log") {
+    sim_.open_log(a.word(1, "a log file name or none"));
+    return;
+  }
+  if (c == "echo") {
+    const std::string& m = a.word(1, "none, screen, log or both");
+    if (m != "none" && m != "screen" && m != "log" && m != "both") a.fail(1, "none, screen, log or both");
+    echo_screen = (m == "screen" || m == "both");
+    return;
+  }
+  const auto* cmd = CommandRegistry::find(c);
+  if (!cmd) a.fail(0, "a known command (see the README's command list; e.g. " + CommandRegistry::names().substr(0, 200) + " ...)");
+  (*cmd)(sim_, a);
+}
+
+void Input::cmd_include(const Args& a) {
+  const std::string& path = a.word(1, "a file name to include");
+  std::ifstream test(path);
+  if (!test) a.fail(1, "a readable file to include");
+  stack_.push_back({path, read_lines(path), 0});
+  run_frame();
+  stack_.pop_back();
+}
+
+void Input::cmd_jump(const Args& a) {
+  if (skip_jump_) {
+    skip_jump_ = false;
+    return;
+  }
+  const std::string& target = a.word(1, "SELF or a deck file name");
+  Frame& f = stack_.back();
+  if (target == "SELF" || target == f.path) {
+    f.next = 0;
+  } else {
+    std::ifstream test(target);
+    if (!test) a.fail(1, "SELF or a readable deck file");
+    f = Frame{target, read_lines(target), 0};
+  }
+  if (a.size() > 2) {
+    jump_label_ = a[2];
+    // Make sure the label exists so a typo does not silently skip the rest.
+    bool found = false;
+    for (auto& l : f.lines) {
+      std::istringstream ss(strip_comment(l));
+      std::string x, y;
+      ss >> x >> y;
+      if (x == "label" && y == jump_label_) found = true;
+    }
+    if (!found) a.fail(2, "a label defined in " + f.path);
+  }
+}
+
+void Input::cmd_if(const Args& a) {
+  // if "cond" then "cmd" ... [elif "cond" "cmd" ...] [else "cmd" ...]
+  std::size_t i = 1;
+  bool done = false;
+  auto run_block = [&](std::size_t from) {
+    std::size_t k = from;
+    for (; k < a.size() && a[k] != "elif" && a[k] != "else"; ++k) {
+      if (!done) one(a[k], a.where());
+    }
+    return k;
+  };
+  const std::string& cond = a.word(i, "a condition in quotes");
+  if (a.word(i + 1, "'then'") != "then") a.fail(i + 1, "'then'");
+  bool truth = sim_.variables->evaluate(cond, a) != 0.0;
+  if (truth) {
+    run_block(i + 2);
+    return;
+  }
+  std::size_t k = i + 2;
+  while (k < a.size() && a[k] != "elif" && a[k] != "else") ++k;
+  while (k < a.size()) {
+    if (a[k] == "elif") {
+      const std::string& c2 = a.word(k + 1, "a condition after elif");
+      if (sim_.variables->evaluate(c2, a) != 0.0) {
+        run_block(k + 2);
+        return;
+      }
+      k += 2;
+      while (k < a.size() && a[k] != "elif" && a[k] != "else") ++k;
+    } else {  // else
+      run_block(k + 1);
+      return;
+    }
+  }
+}
+
+void Input::cmd_print(const Args& a) {
+  const std::string& text = a.word(1, "the text to print");
+  bool to_screen = true;
+  for (std::size_t i = 2; i < a.size(); i += 2) {
+    const std::string& k = a[i];
+    if (k == "file" || k == "append") {
+      const std::string& path = a.word(i + 1, "a file name");
+      FILE* fp = std::fopen(path.c_str(), k == "file" ? "w" : "a");
+      if (!fp) a.fail(i + 1, "a writable file");
+      std::fprintf(fp, "%s\n", text.c_str());
+      std::fclose(fp);
+    } else if (k == "screen") {
+      to_screen = a.yes_no(i + 1, "yes or no");
+    } else {
+      a.fail(i, "file, append or screen");
+    }
+  }
+  if (to_screen) sim_.print(text);
+}
+
+}  // namespace sable

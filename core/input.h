@@ -1,0 +1,45 @@
+#pragma once
+// Reads decks line by line as LIGGGHTS does: comments, '&' continuation,
+// quotes, ${name}/$x substitution, immediate $(expr), then dispatches the
+// command. Flow commands (include, label, jump, next, if, print, variable,
+// log, echo) live here; every other command is a registered style/command.
+#include <string>
+#include <vector>
+
+#include "core/args.h"
+
+namespace sable {
+
+class Simulation;
+
+class Input {
+ public:
+  explicit Input(Simulation& sim);
+  void file(const std::string& path);          // run a whole deck file
+  void one(const std::string& line, const DeckLocation& where);  // run one command line
+  // Split a line into words after substitution (exposed for tests).
+  std::vector<std::string> parse(const std::string& line, const DeckLocation& where);
+  const DeckLocation& where() const { return where_; }
+  bool echo_screen = false;
+
+ private:
+  Simulation& sim_;
+  DeckLocation where_;
+  struct Frame {
+    std::string path;
+    std::vector<std::string> lines;  // physical lines
+    std::size_t next = 0;            // index of next physical line
+  };
+  std::vector<Frame> stack_;
+  std::string jump_label_;  // skip commands until this label
+  bool skip_jump_ = false;  // set when `next` exhausts a variable
+  void run_frame();
+  std::string substitute(const std::string& line, const DeckLocation& where);
+  void execute(const Args& args);
+  void cmd_jump(const Args& a);
+  void cmd_if(const Args& a);
+  void cmd_print(const Args& a);
+  void cmd_include(const Args& a);
+};
+
+}  // namespace sable

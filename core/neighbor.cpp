@@ -1,0 +1,185 @@
+#include "core/neighbor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/atoms.h"
+#include "core/domain.h"
+
+namespace sable {
+
+void ContactStore::configure(const std::vector<HistorySlot>& s) {
+  slots = s;
+  size = static_cast<int>(s.size());
+}
+
+void ContactStore::resize(std::size_t entries) {
+  hist.assign(entries * size, 0.0);
+  touch.assign(entries, 0);
+}
+
+void ContactStore::save(const NeighborList& list, const Atoms& atoms) {
+  saved_.clear();
+  saved_hist_.clear();
+  if (touch.empty()) return;
+  const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
+      if (!touch[k]) continue;
+      saved_.push_back({atoms.id[i], atoms.id[list.j[k]], saved_hist_.size()});
+      saved_hist_.insert(saved_hist_.end(), hist.begin() + k * size, hist.begin() + (k + 1) * size);
+    }
+}
+
+void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
+  resize(list.size());
+  if (saved_.empty()) return;
+  auto key = [](long a, long b) { return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b); };
+  std::unordered_map<std::uint64_t, std::size_t> where;
+  where.reserve(saved_.size() * 2);
+  for (std::size_t s = 0; s < saved_.size(); ++s) where[key(saved_[s].idi, saved_[s].idj)] = s;
+  const std::size_t n = list.first.size() - 1;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
+      const long a = atoms.id[i], b = atoms.id[list.j[k]];
+      bool swapped = false;
+      auto it = where.find(key(a, b));
+      if (it == where.end()) {
+        it = where.find(key(b, a));
+        swapped = true;
+      }
+      if (it == where.end()) continue;
+      const Saved& s = saved_[it->second];
+      touch[k] = 1;
+      for (int m = 0; m < size; ++m) {
+        const double h = saved_hist_[s.at + m];
+        hist[k * size + m] = (swapped && slots[m].flip) ? -h : h;
+      }
+    }
+  saved_.clear();
+  saved_hist_.clear();
+}
+
+bool Neighbor::decide(const Atoms& atoms, long step) const {
+  if (last_build_step < 0 || xhold_.size() != 3 * atoms.n) return true;
+  const long since = step - last_build_step;
+  if (since < delay || (every > 0 && since % every != 0)) return false;
+  if (!check) return true;
+  return max_displacement_sq(atoms) > 0.25 * skin * skin;
+}
+
+double Neighbor::max_displacement_sq(const Atoms& atoms) const {
+  double m = 0.0;
+  const double* x = atoms.x.data();
+  for (std::size_t i = 0; i < 3 * atoms.n; i += 3) {
+    const double dx = x[i] - xhold_[i], dy = x[i + 1] - xhold_[i + 1], dz = x[i + 2] - xhold_[i + 2];
+    m = std::max(m, dx * dx + dy * dy + dz * dz);
+  }
+  return m;
+}
+
+void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {
+  if (store) store->save(list, atoms);
+  const std::size_t n = atoms.n;
+  for (std::size_t i = 0; i < n; ++i) domain.remap(&atoms.x[3 * i], &atoms.image[3 * i]);
+
+  double rmax = 0.0;
+  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, atoms.radius[i]);
+  cutoff_ = 2.0 * rmax + skin;
+
+  // Bins at least one cutoff wide: the 27 (9 in 2D) surrounding bins hold every partner.
+  int nb[3] = {1, 1, 1};
+  double inv[3] = {0, 0, 0};
+  for (int k = 0; k < domain.dimension; ++k) {
+    const double L = domain.length(k);
+    nb[k] = std::max(1, static_cast<int>(L / std::max(cutoff_, 1e-300)));
+    nb[k] = std::min(nb[k], 1 << 20);
+    inv[k] = nb[k] / L;
+  }
+  const int nbins = nb[0] * nb[1] * nb[2];
+  bin_of_.resize(n);
+  auto coord = [&](double x, int k) {
+    int c = static_cast<int>(std::floor((x - domain.lo[k]) * inv[k]));
+    return std::clamp(c, 0, nb[k] - 1);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* xi = &atoms.x[3 * i];
+    bin_of_[i] = coord(xi[0], 0) + nb[0] * (coord(xi[1], 1) + nb[1] * coord(xi[2], 2));
+  }
+  // Counting sort by bin.
+  bin_start_.assign(nbins + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++bin_start_[bin_of_[i] + 1];
+  std::partial_sum(bin_start_.begin(), bin_start_.end(), bin_start_.begin());
+  bin_atoms_.resize(n);
+  {
+    std::vector<int> fill(bin_start_.begin(), bin_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) bin_atoms_[fill[bin_of_[i]]++] = static_cast<int>(i);
+  }
+  if (sort && n > 0) {
+    std::vector<std::size_t> order(bin_atoms_.begin(), bin_atoms_.end());
+    atoms.permute(order);
+    for (std::size_t i = 0; i < n; ++i) bin_atoms_[i] = static_cast<int>(i);
+    for (int b = 0; b < nbins; ++b)
+      for (int s = bin_start_[b]; s < bin_start_[b + 1]; ++s) bin_of_[s] = b;
+  }
+
+  for (int c = 0; c < 27; ++c) {
+    const int s[3] = {c % 3 - 1, (c / 3) % 3 - 1, c / 9 - 1};
+    for (int k = 0; k < 3; ++k) list.shift_vec[c][k] = s[k] * domain.length(k);
+  }
+
+  list.first.assign(n + 1, 0);
+  list.j.clear();
+  list.shift.clear();
+  const int zr = domain.dimension == 3 ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int b = bin_of_[i];
+    const int bc[3] = {b % nb[0], (b / nb[0]) % nb[1], b / (nb[0] * nb[1])};
+    const double* xi = &atoms.x[3 * i];
+    const double ri = atoms.radius[i];
+    for (int oz = -zr; oz <= zr; ++oz)
+      for (int oy = -1; oy <= 1; ++oy)
+        for (int ox = -1; ox <= 1; ++ox) {
+          const int o[3] = {ox, oy, oz};
+          int nbc[3], sh[3];
+          bool ok = true;
+          for (int k = 0; k < 3 && ok; ++k) {
+            nbc[k] = bc[k] + o[k];
+            sh[k] = 0;
+            if (nbc[k] < 0 || nbc[k] >= nb[k]) {
+              if (!domain.wraps(k)) {
+                ok = false;
+              } else {
+                sh[k] = nbc[k] < 0 ? -1 : 1;
+                nbc[k] -= sh[k] * nb[k];
+              }
+            }
+          }
+          // Without wrap, a neighbouring offset outside a single-bin axis is not a new cell.
+          if (!ok) continue;
+          const int code = (sh[0] + 1) + 3 * (sh[1] + 1) + 9 * (sh[2] + 1);
+          const double* sv = list.shift_vec[code];
+          const int nbin = nbc[0] + nb[0] * (nbc[1] + nb[1] * nbc[2]);
+          for (int s = bin_start_[nbin]; s < bin_start_[nbin + 1]; ++s) {
+            const int j = bin_atoms_[s];
+            if (j <= static_cast<int>(i)) continue;
+            const double* xj = &atoms.x[3 * j];
+            const double dx = xj[0] + sv[0] - xi[0], dy = xj[1] + sv[1] - xi[1], dz = xj[2] + sv[2] - xi[2];
+            const double cut = ri + atoms.radius[j] + skin;
+            if (dx * dx + dy * dy + dz * dz < cut * cut) {
+              list.j.push_back(j);
+              list.shift.push_back(static_cast<std::uint8_t>(code));
+            }
+          }
+        }
+    list.first[i + 1] = static_cast<int>(list.j.size());
+  }
+  if (store) store->restore(list, atoms);
+  xhold_.assign(atoms.x.begin(), atoms.x.begin() + 3 * n);
+  last_build_step = step;
+  ++builds;
+}
+
+}  // namespace sable

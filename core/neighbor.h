@@ -1,0 +1,76 @@
+#pragma once
+// Cell binning + half Verlet list with skin (LIGGGHTS `neighbor SKIN bin`,
+// `neigh_modify delay/every/check`). Periodic images are not ghost atoms: each
+// list entry carries a shift code, so forces land directly on the owners.
+// ContactStore keeps per-contact history parallel to the list and carries it
+// across rebuilds by (id_i, id_j).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sable {
+
+class Atoms;
+class Domain;
+
+struct NeighborList {
+  std::vector<int> first;            // n+1 offsets
+  std::vector<int> j;                // partner index
+  std::vector<std::uint8_t> shift;   // image code, kNoShift when none
+  double shift_vec[27][3] = {};      // j's image = x[j] + shift_vec[code]
+  static constexpr std::uint8_t kNoShift = 13;
+  std::size_t size() const { return j.size(); }
+};
+
+struct HistorySlot {
+  std::string name;
+  bool flip;  // negate when the pair is seen as (j, i)
+};
+
+class ContactStore {
+ public:
+  int size = 0;                       // doubles per contact
+  std::vector<HistorySlot> slots;
+  std::vector<double> hist;           // size * list entries
+  std::vector<std::uint8_t> touch;    // 1 while in contact
+  void configure(const std::vector<HistorySlot>& s);
+  void resize(std::size_t entries);
+  // Keep history of touching pairs across a rebuild.
+  void save(const NeighborList& list, const Atoms& atoms);
+  void restore(const NeighborList& list, const Atoms& atoms);
+
+ private:
+  struct Saved {
+    long idi, idj;
+    std::size_t at;
+  };
+  std::vector<Saved> saved_;
+  std::vector<double> saved_hist_;
+};
+
+class Neighbor {
+ public:
+  double skin = 0.0;
+  bool skin_set = false;
+  int delay = 0, every = 1;
+  bool check = true;
+  bool sort = true;  // reorder atoms by bin at every build (cache locality)
+  long builds = 0;
+  long last_build_step = -1;
+
+  NeighborList list;
+
+  // Rebuild now: wrap periodic atoms, bin, (sort), list, carry history.
+  void build(Atoms& atoms, const Domain& domain, ContactStore* store, long step);
+  // True when a rebuild is due at this step (LIGGGHTS rules).
+  bool decide(const Atoms& atoms, long step) const;
+  double max_displacement_sq(const Atoms& atoms) const;
+  double cutoff() const { return cutoff_; }
+
+ private:
+  std::vector<double> xhold_;
+  double cutoff_ = 0.0;
+  std::vector<int> bin_of_, bin_start_, bin_atoms_;
+};
+
+}  // namespace sable

@@ -1,0 +1,290 @@
+#include "core/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <limits>
+
+#include "core/error.h"
+#include "core/input.h"
+#include "core/thermo.h"
+#include "core/variable.h"
+
+namespace sable {
+
+Simulation::Simulation()
+    : variables(std::make_unique<Variables>(*this)), thermo(std::make_unique<Thermo>(*this)),
+      t0_(std::chrono::steady_clock::now()) {}
+
+Simulation::~Simulation() {
+  if (logfile) std::fclose(logfile);
+}
+
+double Simulation::wall_seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+}
+
+void Simulation::print(const std::string& line) {
+  if (screen) {
+    std::fprintf(screen, "%s\n", line.c_str());
+    std::fflush(screen);
+  }
+  if (logfile) {
+    std::fprintf(logfile, "%s\n", line.c_str());
+    std::fflush(logfile);
+  }
+}
+
+void Simulation::warn(const std::string& line) { print("WARNING: " + line); }
+
+void Simulation::open_log(const std::string& path) {
+  if (logfile) std::fclose(logfile);
+  logfile = nullptr;
+  if (path == "none") return;
+  logfile = std::fopen(path.c_str(), "w");
+  if (!logfile) fail("cannot open log file '" + path + "' for writing");
+}
+
+Fix* Simulation::find_fix(const std::string& id) const {
+  for (auto& f : fixes)
+    if (f->id == id) return f.get();
+  return nullptr;
+}
+
+Compute* Simulation::find_compute(const std::string& id) const {
+  for (auto& c : computes)
+    if (c->id == id) return c.get();
+  return nullptr;
+}
+
+Region* Simulation::find_region(const std::string& id) const {
+  auto it = regions.find(id);
+  return it == regions.end() ? nullptr : it->second.get();
+}
+
+void Simulation::add_fix(std::unique_ptr<Fix> f) {
+  // A fix with an existing ID replaces it in place (LAMMPS semantics).
+  for (auto& old : fixes)
+    if (old->id == f->id) {
+      old = std::move(f);
+      return;
+    }
+  fixes.push_back(std::move(f));
+}
+
+void Simulation::remove_fix(const std::string& id) {
+  fixes.erase(std::remove_if(fixes.begin(), fixes.end(), [&](auto& f) { return f->id == id; }), fixes.end());
+}
+
+void Simulation::add_compute(std::unique_ptr<Compute> c) {
+  for (auto& old : computes)
+    if (old->id == c->id) fail("compute ID '" + c->id + "' already exists (uncompute it first)");
+  computes.push_back(std::move(c));
+}
+
+void Simulation::remove_compute(const std::string& id) {
+  computes.erase(std::remove_if(computes.begin(), computes.end(), [&](auto& c) { return c->id == id; }),
+                 computes.end());
+}
+
+void Simulation::flush_outputs() {
+  if (screen) std::fflush(screen);
+  if (logfile) std::fflush(logfile);
+  for (auto& d : dumps) d->flush();
+}
+
+void Simulation::check_atoms() {
+  const Atoms& a = atoms;
+  for (std::size_t i = 0; i < a.n; ++i) {
+    const double* x = &a.x[3 * i];
+    const double* v = &a.v[3 * i];
+    if (std::isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2])) continue;
+    flush_outputs();
+    const double* f = &a.f[3 * i];
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "step %ld: atom %ld has a non-finite state (x = %g %g %g, v = %g %g %g, f = %g %g %g); "
+                  "usually the time step is too large for the stiffness or two grains overlap deeply",
+                  step, a.id[i], x[0], x[1], x[2], v[0], v[1], v[2], f[0], f[1], f[2]);
+    fail(buf);
+  }
+}
+
+// Atoms beyond a fixed boundary are lost: stop (or delete them with thermo_modify lost ignore).
+static void handle_lost(Simulation& sim) {
+  Atoms& a = sim.atoms;
+  const Domain& d = sim.domain;
+  std::vector<char> lost(a.n, 0);
+  bool any = false;
+  for (std::size_t i = 0; i < a.n; ++i)
+    for (int k = 0; k < d.dimension; ++k) {
+      if (d.periodic[k]) continue;
+      const double xk = a.x[3 * i + k];
+      if (xk < d.lo[k] || xk > d.hi[k]) {
+        if (!sim.lost_ignore) {
+          sim.flush_outputs();
+          char buf[256];
+          std::snprintf(buf, sizeof buf,
+                        "step %ld: atom %ld left the box through the fixed boundary on axis %c (%c = %g, box %g .. %g); "
+                        "lost atoms (use 'thermo_modify lost ignore' to delete such atoms instead)",
+                        sim.step, a.id[i], 'x' + k, 'x' + k, xk, d.lo[k], d.hi[k]);
+          fail(buf);
+        }
+        lost[i] = 1;
+        any = true;
+      }
+    }
+  if (any) a.remove_if(lost);
+}
+
+void Simulation::rebuild_if_due() {
+  if (!neighbor.decide(atoms, step)) return;
+  handle_lost(*this);
+  neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
+}
+
+void Simulation::force_and_history() {
+  atoms.clear_forces();
+  if (pair) pair->compute();
+}
+
+void Simulation::stability_check() {
+  if (!pair || atoms.n == 0) return;
+  const Atoms& a = atoms;
+  // Speed scale: fastest grain, fastest moving wall, free fall across the box.
+  double vmax = 0.0, g = 0.0;
+  for (std::size_t i = 0; i < a.n; ++i) {
+    const double* v = &a.v[3 * i];
+    vmax = std::max(vmax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  }
+  for (auto& f : fixes) {
+    vmax = std::max(vmax, f->max_speed());
+    g = std::max(g, f->acceleration());
+  }
+  double hmax = 0.0;
+  for (int k = 0; k < domain.dimension; ++k) hmax = std::max(hmax, domain.length(k));
+  const double vfall = std::sqrt(2.0 * g * hmax);
+  const double vuse = std::max({vmax, vfall, 1e-3});
+
+  std::size_t ismall = 0;
+  double t_r = std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < a.n; ++i) {
+    if (a.rmass[i] < a.rmass[ismall]) ismall = i;
+    t_r = std::min(t_r, pair->rayleigh_time(i));
+  }
+  const double t_h = pair->contact_time(ismall, ismall, vuse);
+  const double skin_ratio = neighbor.skin / (2.0 * vuse * dt);
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "Time-step check: dt = %g s is %.1f%% of the Rayleigh time %g s (limit 20%%) and %.1f%% of the "
+                "contact time %g s at v = %g m/s (limit 10%%); skin / (2 v dt) = %.3g (limit > 1)",
+                dt, 100 * dt / t_r, t_r, 100 * dt / t_h, t_h, vuse, skin_ratio);
+  print(buf);
+  std::string why;
+  if (dt > 0.2 * t_r) why = "exceeds 20% of the Rayleigh time";
+  else if (dt > 0.1 * t_h) why = "exceeds 10% of the contact (Hertz) time";
+  else if (skin_ratio < 1.0) why = "lets grains travel more than the skin between list checks";
+  if (why.empty()) return;
+  std::string msg = dt_where.file + ":" + std::to_string(dt_where.line) + ": 'timestep " + std::to_string(dt) +
+                    "' " + why + " (" + buf + ")";
+  if (step_policy == StepPolicy::Accept) {
+    warn(msg + "; accepted because of 'timestep_check accept'");
+    return;
+  }
+  fail(msg + ". Reduce the time step, or add 'timestep_check accept' to run anyway.");
+}
+
+void Simulation::setup() {
+  if (!domain.box_exists) fail("run: no simulation box yet (use create_box or read_data before run)");
+  if (!neighbor.skin_set) neighbor.skin = 0.001;  // LIGGGHTS default for SI units
+  for (auto& f : fixes) f->init();
+  for (auto& c : computes) c->init();
+  for (auto& d : dumps) d->init();
+  if (pair) pair->init();
+  handle_lost(*this);
+  neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
+  check_atoms();
+  stability_check();
+  force_and_history();
+  for (auto& f : fixes)
+    if (f->hooks & POST_FORCE) f->post_force();
+  for (auto& f : fixes) f->setup();
+}
+
+void Simulation::run(long nsteps) {
+  run_first = step;
+  run_last = step + nsteps;
+  setup();
+  thermo->header();
+  thermo->line(step);
+  for (auto& d : dumps)
+    if (step % d->every == 0) d->write(step);
+
+  std::vector<Fix*> hook[6];
+  for (auto& f : fixes)
+    for (int h = 0; h < 6; ++h)
+      if (f->hooks & (1u << h)) hook[h].push_back(f.get());
+
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+  auto t_last_progress = t_start;
+  auto tic = t_start;
+  auto lap = [&](double& acc) {
+    const auto now = clock::now();
+    acc += std::chrono::duration<double>(now - tic).count();
+    tic = now;
+  };
+  timers = Timers{};
+
+  while (step < run_last) {
+    ++step;
+    time += dt;
+    tic = clock::now();
+    for (Fix* f : hook[0]) f->initial_integrate();
+    for (Fix* f : hook[1]) f->post_integrate();
+    lap(timers.integrate);
+    rebuild_if_due();
+    lap(timers.neigh);
+    for (Fix* f : hook[2]) f->pre_force();
+    atoms.clear_forces();
+    if (pair) pair->compute();
+    lap(timers.pair);
+    for (Fix* f : hook[3]) f->post_force();
+    lap(timers.fixes);
+    for (Fix* f : hook[4]) f->final_integrate();
+    lap(timers.integrate);
+    for (Fix* f : hook[5])
+      if (step % f->nevery == 0) f->end_of_step();
+    lap(timers.fixes);
+    check_atoms();
+    if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last) thermo->line(step);
+    for (auto& d : dumps)
+      if (step % d->every == 0) d->write(step);
+    lap(timers.output);
+
+    const auto now = clock::now();
+    if (std::chrono::duration<double>(now - t_last_progress).count() >= progress_every_s && step < run_last) {
+      t_last_progress = now;
+      const double el = std::chrono::duration<double>(now - t_start).count();
+      const double done = static_cast<double>(step - run_first) / nsteps;
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "Progress: step %ld, %.1f%% done, %.3g particle-steps/s, %.0f s left", step,
+                    100 * done, atoms.n * (step - run_first) / el, el / done * (1 - done));
+      print(buf);
+    }
+  }
+  timers.total = std::chrono::duration<double>(clock::now() - t_start).count();
+  for (auto& f : fixes) f->post_run();
+  const double tot = std::max(timers.total, 1e-12);
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "Loop time of %g s on 1 process for %ld steps with %zu atoms: %.3g particle-steps/s, %ld neighbor "
+                "builds\nTime split: pair %.1f%%, neigh %.1f%%, integrate %.1f%%, fixes %.1f%%, output %.1f%%",
+                timers.total, nsteps, atoms.n, atoms.n * nsteps / tot, neighbor.builds, 100 * timers.pair / tot,
+                100 * timers.neigh / tot, 100 * timers.integrate / tot, 100 * timers.fixes / tot,
+                100 * timers.output / tot);
+  print(buf);
+  flush_outputs();
+}
+
+}  // namespace sable

@@ -1,0 +1,112 @@
+#pragma once
+// The whole engine state (LAMMPS' `LAMMPS` object): atoms, box, neighbour
+// list, styles, variables, output. Every style holds a reference to it.
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/atoms.h"
+#include "core/compute.h"
+#include "core/domain.h"
+#include "core/dump.h"
+#include "core/fix.h"
+#include "core/group.h"
+#include "core/neighbor.h"
+#include "core/pair.h"
+#include "core/region.h"
+
+namespace sable {
+
+class Input;
+class Variables;
+class Thermo;
+
+// What the time-step check does when dt exceeds a bound.
+enum class StepPolicy { Stop, Accept };
+
+struct Lattice {
+  std::string style = "none";
+  double a[3] = {1, 1, 1};  // spacings
+  std::vector<std::array<double, 3>> basis;  // fractional
+};
+
+class Simulation {
+ public:
+  Simulation();
+  ~Simulation();
+
+  Atoms atoms;
+  Domain domain;
+  Neighbor neighbor;
+  Groups groups;
+  Lattice lattice;
+  std::unique_ptr<Pair> pair;
+  std::vector<std::unique_ptr<Fix>> fixes;
+  std::vector<std::unique_ptr<Compute>> computes;
+  std::vector<std::unique_ptr<Dump>> dumps;
+  std::map<std::string, std::unique_ptr<Region>> regions;
+  std::unique_ptr<Variables> variables;
+  std::unique_ptr<Thermo> thermo;
+  Input* input = nullptr;
+
+  double dt = 1e-5;
+  bool dt_set = false;
+  DeckLocation dt_where;  // the `timestep` line, for stability messages
+  StepPolicy step_policy = StepPolicy::Stop;
+  long step = 0;          // current time step
+  double time = 0.0;      // simulated time
+  long run_first = 0, run_last = 0;  // bounds of the current/last run
+  bool newton = false;
+  std::string units = "si";
+  bool lost_ignore = false;
+  double progress_every_s = 10.0;  // wall seconds between progress lines
+
+  // Output to screen and log.
+  void print(const std::string& line);
+  void warn(const std::string& line);
+  FILE* screen = stdout;
+  FILE* logfile = nullptr;
+  bool echo_screen = false, echo_log = true;
+  void open_log(const std::string& path);  // "none" closes
+
+  // Lookups whose errors say what was expected.
+  Fix* find_fix(const std::string& id) const;
+  Compute* find_compute(const std::string& id) const;
+  Region* find_region(const std::string& id) const;
+  template <class T>
+  T* find_fix_style() const {
+    for (auto& f : fixes)
+      if (auto* p = dynamic_cast<T*>(f.get())) return p;
+    return nullptr;
+  }
+  void add_fix(std::unique_ptr<Fix> f);
+  void remove_fix(const std::string& id);
+  void add_compute(std::unique_ptr<Compute> c);
+  void remove_compute(const std::string& id);
+
+  // Run N steps (the `run` command).
+  void run(long nsteps);
+  // Set up for a run without stepping (forces, lists); used by write_dump etc.
+  void setup();
+  // Flush every output (before an error stops the run).
+  void flush_outputs();
+  double wall_seconds() const;
+
+  // Time split of the last run (seconds).
+  struct Timers {
+    double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;
+  } timers;
+
+ private:
+  void stability_check();
+  void check_atoms();  // NaN / lost atoms: stop with step, atom, cause
+  void force_and_history();
+  void rebuild_if_due();
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace sable

@@ -1,0 +1,170 @@
+#include "core/thermo.h"
+
+#include <cstdio>
+#include <ctime>
+
+#include "core/error.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+#include "core/variable.h"
+
+namespace sable {
+
+bool parse_reference(const std::string& w, char& kind, std::string& id, int& index) {
+  if (w.size() < 3 || w[1] != '_' || (w[0] != 'c' && w[0] != 'f' && w[0] != 'v')) return false;
+  kind = w[0];
+  id = w.substr(2);
+  index = 0;
+  const std::size_t b = id.find('[');
+  if (b != std::string::npos) {
+    if (id.back() != ']') return false;
+    index = std::atoi(id.substr(b + 1, id.size() - b - 2).c_str());
+    if (index < 1) return false;
+    id = id.substr(0, b);
+  }
+  return !id.empty();
+}
+
+Thermo::Thermo(Simulation& sim) : sim_(sim) {}
+
+double Thermo::kinetic_energy() const {
+  const Atoms& a = sim_.atoms;
+  double ke = 0.0;
+  for (std::size_t i = 0; i < a.n; ++i) {
+    const double* v = &a.v[3 * i];
+    ke += 0.5 * a.rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  return ke;
+}
+
+bool Thermo::keyword(const std::string& k, double& out) {
+  const Domain& d = sim_.domain;
+  if (k == "step") out = static_cast<double>(sim_.step);
+  else if (k == "elapsed") out = static_cast<double>(sim_.step - sim_.run_first);
+  else if (k == "elaplong") out = static_cast<double>(sim_.step - sim_.run_first);
+  else if (k == "dt") out = sim_.dt;
+  else if (k == "time") out = sim_.time;
+  else if (k == "cpu") out = sim_.wall_seconds();
+  else if (k == "atoms") out = static_cast<double>(sim_.atoms.n);
+  else if (k == "ke") out = kinetic_energy() / ((norm_ && sim_.atoms.n) ? sim_.atoms.n : 1);
+  else if (k == "xlo") out = d.lo[0];
+  else if (k == "xhi") out = d.hi[0];
+  else if (k == "ylo") out = d.lo[1];
+  else if (k == "yhi") out = d.hi[1];
+  else if (k == "zlo") out = d.lo[2];
+  else if (k == "zhi") out = d.hi[2];
+  else if (k == "lx") out = d.length(0);
+  else if (k == "ly") out = d.length(1);
+  else if (k == "lz") out = d.length(2);
+  else if (k == "vol") out = d.volume();
+  else return false;
+  return true;
+}
+
+double Thermo::column(const std::string& w, const Args& where) {
+  double v;
+  if (keyword(w, v)) return v;
+  char kind;
+  std::string id;
+  int index;
+  if (!parse_reference(w, kind, id, index))
+    where.fail_line("thermo column '" + w + "' is not a keyword (step, atoms, ke, time, dt, cpu, xlo..zhi, lx, ly, lz, vol) nor c_ID, f_ID, v_name");
+  if (kind == 'v') {
+    if (!sim_.variables->numeric(id, v)) where.fail_line("thermo column '" + w + "': variable '" + id + "' is not defined or not equal-style");
+    return v;
+  }
+  if (kind == 'c') {
+    Compute* c = sim_.find_compute(id);
+    if (!c) where.fail_line("thermo column '" + w + "': no compute with ID '" + id + "'");
+    return index == 0 ? c->scalar() : c->vector(index);
+  }
+  Fix* f = sim_.find_fix(id);
+  if (!f) where.fail_line("thermo column '" + w + "': no fix with ID '" + id + "'");
+  return index == 0 ? f->compute_scalar() : f->compute_vector(index);
+}
+
+void Thermo::set_style(const Args& a) {
+  const std::string& s = a.word(1, "a thermo style (custom, one)");
+  if (s == "one") {
+    columns = {"step", "atoms", "ke"};
+  } else if (s == "custom") {
+    a.need(3, "at least one thermo keyword after 'custom'");
+    columns.assign(a.words().begin() + 2, a.words().end());
+  } else {
+    a.fail(1, "'custom' or 'one'");
+  }
+  columns_where = a;
+  // Validate references now so a typo fails at its line, not mid-run.
+  for (std::size_t i = 2; i < a.size() && s == "custom"; ++i) {
+    double v;
+    char kind;
+    std::string id;
+    int index;
+    if (keyword(a[i], v)) continue;
+    if (!parse_reference(a[i], kind, id, index))
+      a.fail(i, "a thermo keyword (step, atoms, ke, time, dt, cpu, xlo, ..., vol) or c_ID, f_ID, v_name");
+    if (kind == 'c' && !sim_.find_compute(id)) a.fail(i, "an existing compute ID");
+    if (kind == 'f' && !sim_.find_fix(id)) a.fail(i, "an existing fix ID");
+    if (kind == 'v' && !sim_.variables->exists(id)) a.fail(i, "a defined variable");
+  }
+}
+
+void Thermo::modify(const Args& a) {
+  for (std::size_t i = 1; i < a.size(); i += 2) {
+    const std::string& k = a[i];
+    const std::string& val = a.word(i + 1, "a value for thermo_modify " + k);
+    if (k == "lost") {
+      if (val != "ignore" && val != "error" && val != "warn") a.fail(i + 1, "ignore, warn or error");
+      sim_.lost_ignore = val != "error";
+    } else if (k == "norm") {
+      norm_ = a.yes_no(i + 1, "yes or no");
+    } else if (k == "format") {
+      if (val == "float") float_fmt_ = a.word(i + 2, "a printf format");
+      else if (val == "int") int_fmt_ = a.word(i + 2, "a printf format");
+      ++i;
+    } else if (k == "flush" || k == "line" || k == "every") {
+      // accepted for LIGGGHTS compatibility; output is flushed every line anyway
+    } else {
+      a.fail(i, "a thermo_modify keyword: lost, norm, format, flush, line");
+    }
+  }
+}
+
+void Thermo::header() {
+  std::string s;
+  char buf[64];
+  for (auto& c : columns) {
+    std::snprintf(buf, sizeof buf, "%14s ", c.c_str());
+    s += buf;
+  }
+  sim_.print(s);
+}
+
+void Thermo::line(long) {
+  std::string s;
+  char buf[64];
+  for (auto& c : columns) {
+    const double v = column(c, columns_where);
+    if ((c == "step" || c == "atoms" || c == "elapsed") && v == static_cast<long>(v))
+      std::snprintf(buf, sizeof buf, "%14ld ", static_cast<long>(v));
+    else {
+      char tmp[48];
+      std::snprintf(tmp, sizeof tmp, float_fmt_.c_str(), v);
+      std::snprintf(buf, sizeof buf, "%14s ", tmp);
+    }
+    s += buf;
+  }
+  sim_.print(s);
+}
+
+static void cmd_thermo(Simulation& sim, const Args& a) {
+  sim.thermo->every = a.integer(1, "the thermo output period N (steps)");
+  if (sim.thermo->every < 0) a.fail(1, "a period >= 0");
+}
+static void cmd_thermo_style(Simulation& sim, const Args& a) { sim.thermo->set_style(a); }
+static void cmd_thermo_modify(Simulation& sim, const Args& a) { sim.thermo->modify(a); }
+SABLE_COMMAND("thermo", cmd_thermo);
+SABLE_COMMAND("thermo_style", cmd_thermo_style);
+SABLE_COMMAND("thermo_modify", cmd_thermo_modify);
+
+}  // namespace sable

@@ -1,0 +1,292 @@
+#include "core/variable.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/error.h"
+#include "core/expression.h"
+#include "core/simulation.h"
+#include "core/thermo.h"
+
+namespace sable {
+
+// What an expression can see of the simulation.
+class SimContext : public ExprContext {
+ public:
+  SimContext(Simulation& sim, const Args& where) : sim(sim), where(where) {}
+  Simulation& sim;
+  const Args& where;
+  std::size_t atom = Atoms::npos;  // atom index for atom-style formulas
+
+  bool thermo_keyword(const std::string& name, double& out) override { return sim.thermo->keyword(name, out); }
+  bool variable(const std::string& name, double& out) override {
+    if (atom != Atoms::npos && sim.variables->is_atom_style(name)) {
+      std::vector<double> vals;
+      sim.variables->atom_values(name, vals);
+      out = vals[atom];
+      return true;
+    }
+    return sim.variables->numeric(name, out);
+  }
+  bool compute_or_fix(char kind, const std::string& id, int index, double& out) override {
+    if (kind == 'c') {
+      Compute* c = sim.find_compute(id);
+      if (!c) return false;
+      if (atom != Atoms::npos && c->peratom_flag) {
+        c->peratom_now();
+        const int nc = std::max(1, c->peratom_cols);
+        out = c->peratom[atom * nc + std::max(0, index - 1)];
+        return true;
+      }
+      out = index == 0 ? c->scalar() : c->vector(index);
+      return true;
+    }
+    Fix* f = sim.find_fix(id);
+    if (!f) return false;
+    out = index == 0 ? f->compute_scalar() : f->compute_vector(index);
+    return true;
+  }
+  static bool atom_field(const Atoms& a, const std::string& name, std::size_t i, double& out) {
+    static const char* vec3[] = {"x", "v", "f", "omega", "tq"};
+    const std::vector<double>* arrays[] = {&a.x, &a.v, &a.f, &a.omega, &a.torque};
+    for (int q = 0; q < 5; ++q) {
+      const std::string base = vec3[q];
+      if (name.size() == base.size() + 1 && name.compare(0, base.size(), base) == 0) {
+        const char c = name.back();
+        if (c < 'x' || c > 'z') continue;
+        out = (*arrays[q])[3 * i + (c - 'x')];
+        return true;
+      }
+    }
+    if (name == "radius") out = a.radius[i];
+    else if (name == "mass") out = a.rmass[i];
+    else if (name == "density") out = a.density[i];
+    else if (name == "type") out = a.type[i];
+    else if (name == "id") out = static_cast<double>(a.id[i]);
+    else return false;
+    return true;
+  }
+  bool atom_value_by_id(const std::string& name, long id, double& out) override {
+    const std::size_t i = sim.atoms.index_of(id);
+    if (i == Atoms::npos) where.fail_line("atom ID " + std::to_string(id) + " in '" + name + "[" +
+                                          std::to_string(id) + "]' does not exist");
+    return atom_field(sim.atoms, name, i, out);
+  }
+  bool atom_value_local(const std::string& name, std::size_t i, double& out) override {
+    return atom_field(sim.atoms, name, i, out);
+  }
+  bool group_function(const std::string& func, const std::vector<std::string>& args, double& out) override;
+};
+
+bool SimContext::group_function(const std::string& func, const std::vector<std::string>& args, double& out) {
+  if (args.empty()) return false;
+  const int g = sim.groups.find(args[0]);
+  if (g < 0) where.fail_line("group '" + args[0] + "' in " + func + "() does not exist");
+  const std::uint32_t bit = sim.groups.bit(g);
+  const Atoms& a = sim.atoms;
+  auto axis = [&](std::size_t k) {
+    if (args.size() <= k || args[k].size() != 1 || args[k][0] < 'x' || args[k][0] > 'z')
+      where.fail_line(func + "(" + args[0] + ", ...) needs x, y or z as argument " + std::to_string(k + 1));
+    return args[k][0] - 'x';
+  };
+  double count = 0, mass = 0, s[3] = {0, 0, 0};
+  if (func == "count" || func == "mass") {
+    for (std::size_t i = 0; i < a.n; ++i)
+      if (a.mask[i] & bit) {
+        count += 1;
+        mass += a.rmass[i];
+      }
+    out = func == "count" ? count : mass;
+    return true;
+  }
+  if (func == "xcm" || func == "vcm" || func == "fcm") {
+    const int k = axis(1);
+    for (std::size_t i = 0; i < a.n; ++i) {
+      if (!(a.mask[i] & bit)) continue;
+      if (func == "fcm") {
+        s[k] += a.f[3 * i + k];
+        continue;
+      }
+      double val = func == "vcm" ? a.v[3 * i + k] : 0.0;
+      if (func == "xcm") {
+        double u[3];
+        sim.domain.unmap(&a.x[3 * i], &a.image[3 * i], u);
+        val = u[k];
+      }
+      s[k] += a.rmass[i] * val;
+      mass += a.rmass[i];
+    }
+    out = func == "fcm" ? s[k] : (mass > 0 ? s[k] / mass : 0.0);
+    return true;
+  }
+  if (func == "bound") {
+    if (args.size() < 2) where.fail_line("bound(group, xmin|xmax|ymin|...) needs two arguments");
+    const std::string& w = args[1];
+    if (w.size() != 4 || w[0] < 'x' || w[0] > 'z' || (w.substr(1) != "min" && w.substr(1) != "max"))
+      where.fail_line("bound() second argument '" + w + "': expected xmin, xmax, ymin, ymax, zmin or zmax");
+    const int k = w[0] - 'x';
+    const bool mx = w.substr(1) == "max";
+    double b = mx ? -std::numeric_limits<double>::max() : std::numeric_limits<double>::max();
+    for (std::size_t i = 0; i < a.n; ++i)
+      if (a.mask[i] & bit) b = mx ? std::max(b, a.x[3 * i + k]) : std::min(b, a.x[3 * i + k]);
+    out = b;
+    return true;
+  }
+  return false;
+}
+
+Variables::Variables(Simulation& sim) : sim_(sim) {}
+Variables::~Variables() = default;
+
+void Variables::define_index(const std::string& name, const std::vector<std::string>& values) {
+  vars_[name] = Var{"index", values, 0, nullptr};
+}
+
+void Variables::define(const Args& a) {
+  const std::string& name = a.word(1, "a variable name");
+  const std::string& style = a.word(2, "a variable style (index, loop, string, equal, atom, delete)");
+  if (style == "delete") {
+    vars_.erase(name);
+    return;
+  }
+  Var v;
+  v.style = style;
+  if (style == "index") {
+    if (vars_.count(name)) return;  // LAMMPS: an index variable (e.g. from -var) is not redefined
+    a.need(4, "at least one value for the index variable");
+    for (std::size_t i = 3; i < a.size(); ++i) v.values.push_back(a[i]);
+  } else if (style == "loop") {
+    if (vars_.count(name)) return;
+    long lo = 1, hi = a.integer(3, "the loop count N (or N1 N2)");
+    bool pad = false;
+    std::size_t k = 4;
+    if (a.size() > 4 && a[4] != "pad") {
+      lo = hi;
+      hi = a.integer(4, "the loop end N2");
+      k = 5;
+    }
+    if (a.size() > k) {
+      if (a[k] != "pad") a.fail(k, "'pad' or nothing");
+      pad = true;
+    }
+    const int width = static_cast<int>(std::to_string(hi).size());
+    for (long i = lo; i <= hi; ++i) {
+      std::string s = std::to_string(i);
+      if (pad) s = std::string(width - s.size(), '0') + s;
+      v.values.push_back(s);
+    }
+  } else if (style == "string") {
+    a.need(4, "the string value");
+    v.values.push_back(a.joined(3));
+  } else if (style == "equal" || style == "atom") {
+    a.need(4, "a formula");
+    v.values.push_back(a.joined(3));
+    try {
+      v.expr = std::make_shared<Expression>(v.values[0]);
+    } catch (const ExpressionError& e) {
+      a.fail(3, std::string("a valid formula: ") + e.what());
+    }
+  } else {
+    a.fail(2, "a variable style: index, loop, string, equal, atom or delete");
+  }
+  vars_[name] = std::move(v);
+}
+
+bool Variables::next(const std::string& name, const Args& where) {
+  auto it = vars_.find(name);
+  if (it == vars_.end()) where.fail(1, "a defined variable for 'next' ('" + name + "' is not defined)");
+  Var& v = it->second;
+  if (v.style != "index" && v.style != "loop") where.fail(1, "an index or loop variable for 'next'");
+  if (++v.which >= v.values.size()) {
+    vars_.erase(it);
+    return false;
+  }
+  return true;
+}
+
+double Variables::evaluate(const std::string& expr, const Args& where) {
+  SimContext ctx(sim_, where);
+  try {
+    return Expression(expr).eval(ctx);
+  } catch (const ExpressionError& e) {
+    where.fail_line(std::string("in formula '") + expr + "': " + e.what());
+  }
+}
+
+std::string Variables::string_value(const std::string& name, const Args& where) {
+  auto it = vars_.find(name);
+  if (it == vars_.end()) where.fail_line("variable '" + name + "' is not defined (use 'variable " + name + " ...' first)");
+  Var& v = it->second;
+  if (v.style == "atom") where.fail_line("atom-style variable '" + name + "' cannot be used as ${" + name + "}");
+  if (v.style != "equal") return v.values[v.which];
+  if (++depth_ > 50) {
+    depth_ = 0;
+    where.fail_line("variable '" + name + "' refers to itself");
+  }
+  SimContext ctx(sim_, where);
+  double val;
+  try {
+    val = v.expr->eval(ctx);
+  } catch (const ExpressionError& e) {
+    --depth_;
+    where.fail_line("in variable '" + name + "' = '" + v.values[0] + "': " + e.what());
+  }
+  --depth_;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.15g", val);
+  return buf;
+}
+
+bool Variables::numeric(const std::string& name, double& out) {
+  auto it = vars_.find(name);
+  if (it == vars_.end()) return false;
+  Var& v = it->second;
+  if (v.style == "atom") return false;
+  if (v.style == "equal") {
+    if (++depth_ > 50) {
+      depth_ = 0;
+      throw ExpressionError("variable '" + name + "' refers to itself");
+    }
+    Args none;
+    SimContext ctx(sim_, none);
+    struct Guard {
+      int& d;
+      ~Guard() { --d; }
+    } g{depth_};
+    out = v.expr->eval(ctx);
+    return true;
+  }
+  const std::string& s = v.values[v.which];
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  if (!end || *end) throw ExpressionError("variable '" + name + "' = '" + s + "' is not a number");
+  return true;
+}
+
+bool Variables::is_atom_style(const std::string& name) const {
+  auto it = vars_.find(name);
+  return it != vars_.end() && it->second.style == "atom";
+}
+
+bool Variables::atom_values(const std::string& name, std::vector<double>& out) {
+  auto it = vars_.find(name);
+  if (it == vars_.end()) return false;
+  Var& v = it->second;
+  out.assign(sim_.atoms.n, 0.0);
+  Args none;
+  SimContext ctx(sim_, none);
+  if (v.style != "atom") {
+    double val;
+    numeric(name, val);
+    std::fill(out.begin(), out.end(), val);
+    return true;
+  }
+  for (std::size_t i = 0; i < sim_.atoms.n; ++i) {
+    ctx.atom = i;
+    out[i] = v.expr->eval_atom(ctx, i);
+  }
+  return true;
+}
+
+}  // namespace sable

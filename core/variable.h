@@ -1,0 +1,46 @@
+#pragma once
+// Deck variables (LAMMPS `variable NAME style args`): index, loop, string,
+// equal, atom. Equal/atom formulas are parsed once and evaluated on demand.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/args.h"
+
+namespace sable {
+
+class Simulation;
+class Expression;
+
+class Variables {
+ public:
+  explicit Variables(Simulation& sim);
+  ~Variables();
+  void define(const Args& a);                       // the `variable` command
+  void define_index(const std::string& name, const std::vector<std::string>& values);  // -var
+  bool next(const std::string& name, const Args& where);  // false when exhausted (then deleted)
+  bool exists(const std::string& name) const { return vars_.count(name) > 0; }
+  // ${name}: current string, or an equal formula evaluated and printed.
+  std::string string_value(const std::string& name, const Args& where);
+  // v_name as a number (equal style, or a numeric index/string value).
+  bool numeric(const std::string& name, double& out);
+  // atom-style variable: one value per atom.
+  bool atom_values(const std::string& name, std::vector<double>& out);
+  bool is_atom_style(const std::string& name) const;
+  // Evaluate a formula now; errors name the deck line.
+  double evaluate(const std::string& expr, const Args& where);
+
+ private:
+  struct Var {
+    std::string style;
+    std::vector<std::string> values;
+    std::size_t which = 0;
+    std::shared_ptr<Expression> expr;  // equal/atom
+  };
+  Simulation& sim_;
+  std::map<std::string, Var> vars_;
+  int depth_ = 0;  // recursion guard for self-referencing formulas
+};
+
+}  // namespace sable

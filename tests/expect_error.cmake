@@ -1,0 +1,12 @@
+# Runs a bad deck and checks that sable fails with the message its first line promises.
+file(STRINGS ${DECK} first LIMIT_COUNT 1)
+string(REGEX REPLACE "^# *expect: *" "" expected "${first}")
+execute_process(COMMAND ${SABLE} -in ${DECK} -log none RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "deck ${DECK} should have failed but exited 0\n${out}")
+endif()
+string(FIND "${err}" "${expected}" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "deck ${DECK}: expected an error containing '${expected}', got:\n${err}")
+endif()
+message(STATUS "failed as expected: ${err}")

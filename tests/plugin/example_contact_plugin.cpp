@@ -1,0 +1,1 @@
+// placeholder until the contact-model plugin example lands
