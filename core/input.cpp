@@ -251,7 +251,14 @@ void Input::cmd_if(const Args& a) {
   };
   const std::string& cond = a.word(i, "a condition in quotes");
   if (a.word(i + 1, "'then'") != "then") a.fail(i + 1, "'then'");
-  bool truth = sim_.variables->evaluate(cond, a) != 0.0;
+  auto test = [&](const std::string& c) {
+    try {
+      return evaluate_boolean(c) != 0.0;
+    } catch (const ExpressionError& e) {
+      a.fail_line(std::string("in if condition '") + c + "': " + e.what());
+    }
+  };
+  const bool truth = test(cond);
   if (truth) {
     run_block(i + 2);
     return;
@@ -261,7 +268,7 @@ void Input::cmd_if(const Args& a) {
   while (k < a.size()) {
     if (a[k] == "elif") {
       const std::string& c2 = a.word(k + 1, "a condition after elif");
-      if (sim_.variables->evaluate(c2, a) != 0.0) {
+      if (test(c2)) {
         run_block(k + 2);
         return;
       }

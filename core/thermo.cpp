@@ -43,6 +43,8 @@ bool Thermo::keyword(const std::string& k, double& out) {
   else if (k == "elapsed") out = static_cast<double>(sim_.step - sim_.run_first);
   else if (k == "elaplong") out = static_cast<double>(sim_.step - sim_.run_first);
   else if (k == "dt") out = sim_.dt;
+  else if (k == "beginstep") out = static_cast<double>(sim_.run_first);
+  else if (k == "endstep") out = static_cast<double>(sim_.run_last);
   else if (k == "time") out = sim_.time;
   else if (k == "cpu") out = sim_.wall_seconds();
   else if (k == "atoms") out = static_cast<double>(sim_.atoms.n);
