@@ -1,5 +1,7 @@
 #include "core/domain.h"
 
+#include <cmath>
+
 namespace sable {
 
 bool Domain::inside(const double* x) const {
@@ -10,16 +12,12 @@ bool Domain::inside(const double* x) const {
 
 void Domain::remap(double* x, int* image) const {
   for (int k = 0; k < 3; ++k) {
-    if (!wraps(k)) continue;
+    if (!wraps(k) || (x[k] >= lo[k] && x[k] < hi[k])) continue;
     const double L = length(k);
-    while (x[k] < lo[k]) {
-      x[k] += L;
-      --image[k];
-    }
-    while (x[k] >= hi[k]) {
-      x[k] -= L;
-      ++image[k];
-    }
+    const double n = std::floor((x[k] - lo[k]) / L);  // whole periods to shift (callers check finiteness)
+    x[k] -= n * L;
+    if (x[k] >= hi[k]) x[k] = lo[k];  // round-off at the upper edge
+    image[k] += static_cast<int>(n);
   }
 }
 

@@ -98,7 +98,9 @@ void Simulation::check_atoms() {
   for (std::size_t i = 0; i < a.n; ++i) {
     const double* x = &a.x[3 * i];
     const double* v = &a.v[3 * i];
-    if (std::isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2])) continue;
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) ok = ok && std::isfinite(x[k]) && std::isfinite(v[k]);
+    if (ok) continue;
     flush_outputs();
     const double* f = &a.f[3 * i];
     char buf[512];
@@ -139,6 +141,7 @@ static void handle_lost(Simulation& sim) {
 
 void Simulation::rebuild_if_due() {
   if (!neighbor.decide(atoms, step)) return;
+  check_atoms();
   handle_lost(*this);
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
 }
