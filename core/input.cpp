@@ -30,8 +30,16 @@ void Input::file(const std::string& path) {
   stack_.pop_back();
 }
 
+void Input::text(const std::string& name, const std::string& deck) {
+  std::vector<std::string> lines;
+  std::istringstream ss(deck);
+  for (std::string l; std::getline(ss, l);) lines.push_back(l);
+  stack_.push_back({name, std::move(lines), 0});
+  run_frame();
+  stack_.pop_back();
+}
+
 void Input::run_frame() {
-  Frame& fr = stack_.back();
   const std::size_t depth = stack_.size();
   while (stack_.size() == depth && stack_.back().next < stack_.back().lines.size()) {
     Frame& f = stack_.back();
@@ -45,7 +53,6 @@ void Input::run_frame() {
     }
     one(line, where);
   }
-  (void)fr;
 }
 
 // Drop a '#' comment that is not inside quotes.
@@ -63,15 +70,10 @@ static std::string strip_comment(const std::string& s) {
   return s;
 }
 
+// Immediate $(expr) prints like LAMMPS/LIGGGHTS: %.20g unless a format is given.
 static std::string format_number(double v, const std::string& fmt) {
   char buf[64];
-  if (!fmt.empty()) {
-    std::snprintf(buf, sizeof buf, fmt.c_str(), v);
-  } else if (v == std::floor(v) && std::fabs(v) < 1e15) {
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-  } else {
-    std::snprintf(buf, sizeof buf, "%.15g", v);
-  }
+  std::snprintf(buf, sizeof buf, fmt.empty() ? "%.20g" : fmt.c_str(), v);
   return buf;
 }
 
@@ -216,6 +218,7 @@ void Input::cmd_jump(const Args& a) {
     return;
   }
   const std::string& target = a.word(1, "SELF or a deck file name");
+  if (stack_.empty()) a.fail_line("jump works only inside a deck file");
   Frame& f = stack_.back();
   if (target == "SELF" || target == f.path) {
     f.next = 0;

@@ -16,6 +16,8 @@ class Input {
  public:
   explicit Input(Simulation& sim);
   void file(const std::string& path);          // run a whole deck file
+  // Run deck text held in memory, located as `name` in messages (tests, -in -).
+  void text(const std::string& name, const std::string& deck);
   void one(const std::string& line, const DeckLocation& where);  // run one command line
   // Split a line into words after substitution (exposed for tests).
   std::vector<std::string> parse(const std::string& line, const DeckLocation& where);

@@ -48,9 +48,13 @@ class SimContext : public ExprContext {
     return true;
   }
   static bool atom_field(const Atoms& a, const std::string& name, std::size_t i, double& out) {
-    static const char* vec3[] = {"x", "v", "f", "omega", "tq"};
-    const std::vector<double>* arrays[] = {&a.x, &a.v, &a.f, &a.omega, &a.torque};
-    for (int q = 0; q < 5; ++q) {
+    if (name.size() == 1 && name[0] >= 'x' && name[0] <= 'z') {
+      out = a.x[3 * i + (name[0] - 'x')];
+      return true;
+    }
+    static const char* vec3[] = {"v", "f", "omega", "tq"};
+    const std::vector<double>* arrays[] = {&a.v, &a.f, &a.omega, &a.torque};
+    for (int q = 0; q < 4; ++q) {
       const std::string base = vec3[q];
       if (name.size() == base.size() + 1 && name.compare(0, base.size(), base) == 0) {
         const char c = name.back();

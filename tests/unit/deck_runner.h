@@ -17,14 +17,29 @@ struct Deck {
   }
   // Runs each line as a deck command; locations read "test:N".
   Deck& operator()(const std::string& text) {
-    std::istringstream ss(text);
-    std::string line;
-    int n = 0;
-    while (std::getline(ss, line)) in->one(line, DeckLocation{"test", ++n});
+    in->text("test", text);
     return *this;
   }
   Simulation& operator*() { return *sim; }
   Simulation* operator->() { return sim.get(); }
 };
+
+}  // namespace sable::test
+
+namespace sable::test {
+
+// Runs deck text and returns what it printed to the screen.
+inline std::string printed(const std::string& text, Deck& d) {
+  FILE* out = std::tmpfile();
+  d->screen = out;
+  d(text);
+  std::rewind(out);
+  std::string s;
+  char buf[1024];
+  while (std::fgets(buf, sizeof buf, out)) s += buf;
+  std::fclose(out);
+  d->screen = nullptr;
+  return s;
+}
 
 }  // namespace sable::test

@@ -1,0 +1,112 @@
+// The deck language: variables, substitution, loops, conditionals, include.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+#include "core/variable.h"
+#include "tests/unit/deck_runner.h"
+
+using sable::test::Deck;
+using sable::test::printed;
+
+TEST(Input, SubstitutionAndImmediateFormulas) {
+  Deck d;
+  const std::string out = printed(R"D(variable a equal 2
+variable s string hello
+variable x index 7.5
+print "a=${a} s=${s} x=$x imm=$(v_a*3+1) fmt=$(1/3:%.3f)"
+print 'single quotes keep ${a}'
+variable b equal v_a^3+sqrt(16)   # comment after a formula
+print "b=${b}")D",
+                                  d);
+  EXPECT_NE(out.find("a=2 s=hello x=7.5 imm=7 fmt=0.333"), std::string::npos) << out;
+  EXPECT_NE(out.find("single quotes keep ${a}"), std::string::npos) << out;
+  EXPECT_NE(out.find("b=12"), std::string::npos) << out;
+}
+
+TEST(Input, LoopWithNextJumpAndLabel) {
+  Deck d;
+  const std::string out = printed(R"D(variable i loop 3
+variable total equal 0
+label top
+print "iteration ${i}"
+next i
+jump SELF top
+print "after loop")D",
+                                  d);
+  EXPECT_NE(out.find("iteration 1\niteration 2\niteration 3\nafter loop"), std::string::npos) << out;
+}
+
+TEST(Input, LoopOverIndexValuesFromFile) {
+  // jump SELF restarts the file from the top and skips to the label, as in LAMMPS.
+  const char* path = "input_test_loop.in";
+  {
+    std::ofstream f(path);
+    f << "variable r index 0.1 0.2 0.3\nlabel again\nprint \"r=${r}\" append input_test_loop.out screen no\nnext r\njump SELF again\n";
+  }
+  std::remove("input_test_loop.out");
+  Deck d;
+  d->input->file(path);
+  std::ifstream in("input_test_loop.out");
+  std::string all((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(all, "r=0.1\nr=0.2\nr=0.3\n");
+}
+
+TEST(Input, IfThenElifElse) {
+  Deck d;
+  const std::string out = printed(R"D(variable n equal 5
+variable style string granular
+if "${n} > 10" then "print big" elif "${n} > 3" "print medium" "print twice" else "print small"
+if "${style} == granular" then "print is-granular"
+if "${n} < 0" then "print negative" else "print non-negative")D",
+                                  d);
+  EXPECT_NE(out.find("medium\ntwice\nis-granular\nnon-negative"), std::string::npos) << out;
+  EXPECT_EQ(out.find("big"), std::string::npos);
+}
+
+TEST(Input, IncludeAndContinuationLines) {
+  {
+    std::ofstream f("input_test_include.in");
+    f << "variable inc equal 40+&\n  2\n";
+  }
+  Deck d;
+  const std::string out = printed("include input_test_include.in\nprint \"inc=${inc}\"", d);
+  EXPECT_NE(out.find("inc=42"), std::string::npos) << out;
+}
+
+TEST(Input, ThermoKeywordsAtomValuesAndGroupFunctions) {
+  Deck d;
+  const std::string out = printed(R"D(units si
+atom_style granular
+region box block 0 1 0 1 0 1 units box
+create_box 1 box
+create_atoms 1 single 0.25 0.5 0.5 units box
+create_atoms 1 single 0.75 0.5 0.5 units box
+variable cnt equal count(all)
+variable xc equal xcm(all,x)
+variable hi equal bound(all,xmax)
+print "atoms=$(atoms) count=${cnt} xcm=${xc} xmax=${hi} x2=$(x[2]) step=$(step)")D",
+                                  d);
+  EXPECT_NE(out.find("atoms=2 count=2 xcm=0.5 xmax=0.75 x2=0.75 step=0"), std::string::npos) << out;
+}
+
+TEST(Input, CommandLineIndexVariableWins) {
+  // -var NAME VALUE defines an index variable that the deck's own definition does not override.
+  Deck d;
+  d->variables->define_index("seed", {"12345"});
+  const std::string out = printed("variable seed index 999\nprint \"seed=${seed}\"", d);
+  EXPECT_NE(out.find("seed=12345"), std::string::npos) << out;
+}
+
+TEST(Input, ErrorsNameFileLineAndWord) {
+  Deck d;
+  try {
+    d("units si\nvariable a equal 1\nprint \"${b}\"");
+    FAIL() << "expected an error";
+  } catch (const sable::SableError& e) {
+    EXPECT_NE(std::string(e.what()).find("test:3:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("variable 'b' is not defined"), std::string::npos) << e.what();
+  }
+}
