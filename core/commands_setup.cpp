@@ -117,6 +117,7 @@ void cmd_timestep(Simulation& sim, const Args& a) {
   if (!(sim.dt > 0)) a.fail(1, "a time step > 0");
   sim.dt_set = true;
   sim.dt_where = a.where();
+  sim.dt_line = a.joined();
 }
 
 // sable addition: what the setup-time stability check does when dt is unsafe.

@@ -129,4 +129,60 @@ inline void gather_atom_column(Simulation& sim, const AtomColumn& c, const std::
   }
 }
 
+// `dump_modify region ID|none` and `thresh attr op value|none`: which of the
+// dump's atoms are written (shared by dump custom and custom/vtk).
+struct DumpFilter {
+  std::string region;  // empty: no region filter
+  struct Thresh {
+    AtomColumn col;
+    std::string op;
+    double value;
+  };
+  std::vector<Thresh> thresh;
+
+  // Consumes a region/thresh keyword at a[i]; false if a[i] is neither.
+  bool parse(Simulation& sim, const Args& a, std::size_t& i) {
+    if (a[i] == "region") {
+      const std::string& r = a.word(i + 1, "a region ID or none");
+      if (r != "none" && !sim.find_region(r)) a.fail(i + 1, "an existing region ID or none");
+      region = r == "none" ? "" : r;
+      i += 2;
+      return true;
+    }
+    if (a[i] != "thresh") return false;
+    if (a.word(i + 1, "an attribute or none") == "none") {
+      thresh.clear();
+      i += 2;
+      return true;
+    }
+    Thresh t{parse_atom_column(sim, a, i + 1), a.word(i + 2, "<, <=, >, >=, == or !="), a.num(i + 3, "a threshold")};
+    static const char* ops[] = {"<", "<=", ">", ">=", "==", "!="};
+    if (std::find_if(std::begin(ops), std::end(ops), [&](const char* o) { return t.op == o; }) == std::end(ops))
+      a.fail(i + 2, "<, <=, >, >=, == or !=");
+    thresh.push_back(std::move(t));
+    i += 4;
+    return true;
+  }
+
+  void apply(Simulation& sim, std::vector<std::size_t>& sel) const {
+    if (!region.empty()) {
+      const Region* r = sim.find_region(region);
+      if (!r) fail("dump_modify region '" + region + "' no longer exists");
+      std::erase_if(sel, [&](std::size_t i) { return !r->match(&sim.atoms.x[3 * i]); });
+    }
+    std::vector<double> v;
+    for (const Thresh& t : thresh) {
+      gather_atom_column(sim, t.col, sel, v);
+      std::size_t m = 0;
+      for (std::size_t j = 0; j < sel.size(); ++j) {
+        const double x = v[j], y = t.value;
+        const bool keep = t.op == "<" ? x < y : t.op == "<=" ? x <= y : t.op == ">" ? x > y : t.op == ">=" ? x >= y
+                        : t.op == "==" ? x == y : x != y;
+        if (keep) sel[m++] = sel[j];
+      }
+      sel.resize(m);
+    }
+  }
+};
+
 }  // namespace sable

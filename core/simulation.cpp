@@ -188,8 +188,7 @@ void Simulation::stability_check() {
   else if (dt > 0.1 * t_h) why = "exceeds 10% of the contact (Hertz) time";
   else if (skin_ratio < 1.0) why = "lets grains travel more than the skin between list checks";
   if (why.empty()) return;
-  std::string msg = dt_where.file + ":" + std::to_string(dt_where.line) + ": 'timestep " + std::to_string(dt) +
-                    "' " + why + " (" + buf + ")";
+  std::string msg = dt_where.file + ":" + std::to_string(dt_where.line) + ": '" + dt_line + "' " + why + " (" + buf + ")";
   if (step_policy == StepPolicy::Accept) {
     warn(msg + "; accepted because of 'timestep_check accept'");
     return;

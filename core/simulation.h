@@ -56,6 +56,7 @@ class Simulation {
   double dt = 1e-5;
   bool dt_set = false;
   DeckLocation dt_where;  // the `timestep` line, for stability messages
+  std::string dt_line = "(default time step)";
   StepPolicy step_policy = StepPolicy::Stop;
   long step = 0;          // current time step
   double time = 0.0;      // simulated time
