@@ -151,11 +151,12 @@ void Simulation::force_and_history() {
   if (pair) pair->compute();
 }
 
-void Simulation::stability_check() {
-  if (!pair || atoms.n == 0) return;
+Simulation::StepBounds Simulation::step_bounds(double vmin) const {
+  StepBounds b;
+  if (!pair || atoms.n == 0) return b;
   const Atoms& a = atoms;
   // Speed scale: fastest grain, fastest moving wall, free fall across the box.
-  double vmax = 0.0, g = 0.0;
+  double vmax = vmin, g = 0.0;
   for (std::size_t i = 0; i < a.n; ++i) {
     const double* v = &a.v[3 * i];
     vmax = std::max(vmax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
@@ -166,27 +167,33 @@ void Simulation::stability_check() {
   }
   double hmax = 0.0;
   for (int k = 0; k < domain.dimension; ++k) hmax = std::max(hmax, domain.length(k));
-  const double vfall = std::sqrt(2.0 * g * hmax);
-  const double vuse = std::max({vmax, vfall, 1e-3});
-
+  b.speed = std::max({vmax, std::sqrt(2.0 * g * hmax), 1e-3});
+  // Rayleigh time per grain; Hertz time of the lightest grain hitting itself (LIGGGHTS' recipe).
   std::size_t ismall = 0;
-  double t_r = std::numeric_limits<double>::max();
+  b.rayleigh = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < a.n; ++i) {
     if (a.rmass[i] < a.rmass[ismall]) ismall = i;
-    t_r = std::min(t_r, pair->rayleigh_time(i));
+    b.rayleigh = std::min(b.rayleigh, pair->rayleigh_time(i));
   }
-  const double t_h = pair->contact_time(ismall, ismall, vuse);
-  const double skin_ratio = neighbor.skin / (2.0 * vuse * dt);
+  b.hertz = pair->contact_time(ismall, ismall, b.speed);
+  b.skin_ratio = neighbor.skin / (2.0 * b.speed * dt);
+  b.valid = true;
+  return b;
+}
+
+void Simulation::stability_check() {
+  const StepBounds b = step_bounds();
+  if (!b.valid) return;
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "Time-step check: dt = %g s is %.1f%% of the Rayleigh time %g s (limit 20%%) and %.1f%% of the "
                 "contact time %g s at v = %g m/s (limit 10%%); skin / (2 v dt) = %.3g (limit > 1)",
-                dt, 100 * dt / t_r, t_r, 100 * dt / t_h, t_h, vuse, skin_ratio);
+                dt, 100 * dt / b.rayleigh, b.rayleigh, 100 * dt / b.hertz, b.hertz, b.speed, b.skin_ratio);
   print(buf);
   std::string why;
-  if (dt > 0.2 * t_r) why = "exceeds 20% of the Rayleigh time";
-  else if (dt > 0.1 * t_h) why = "exceeds 10% of the contact (Hertz) time";
-  else if (skin_ratio < 1.0) why = "lets grains travel more than the skin between list checks";
+  if (dt > 0.2 * b.rayleigh) why = "exceeds 20% of the Rayleigh time";
+  else if (dt > 0.1 * b.hertz) why = "exceeds 10% of the contact (Hertz) time";
+  else if (b.skin_ratio < 1.0) why = "lets grains travel more than the skin between list checks";
   if (why.empty()) return;
   std::string msg = dt_where.file + ":" + std::to_string(dt_where.line) + ": '" + dt_line + "' " + why + " (" + buf + ")";
   if (step_policy == StepPolicy::Accept) {

@@ -97,6 +97,13 @@ class Simulation {
   void flush_outputs();
   double wall_seconds() const;
 
+  // Time-step bounds now (what LIGGGHTS' fix check/timestep/gran reports).
+  struct StepBounds {
+    double rayleigh = 0, hertz = 0, speed = 0, skin_ratio = 0;
+    bool valid = false;
+  };
+  StepBounds step_bounds(double vmin = 0.0) const;
+
   // Time split of the last run (seconds).
   struct Timers {
     double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;
