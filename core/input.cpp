@@ -79,17 +79,19 @@ static std::string format_number(double v, const std::string& fmt) {
 
 std::string Input::substitute(const std::string& line, const DeckLocation& where) {
   std::string out;
-  char q = 0;
+  // LAMMPS rule: no substitution inside single or triple quotes; double quotes do not protect.
+  bool in_single = false, in_double = false, in_triple = false;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
-    // Single quotes protect from substitution (LAMMPS rule); double quotes do not.
-    if (q == '\'') {
-      if (c == '\'') q = 0;
-      out += c;
+    if (!in_single && line.compare(i, 3, "\"\"\"") == 0) {
+      in_triple = !in_triple;
+      out += "\"\"\"";
+      i += 2;
       continue;
     }
-    if (c == '\'') {
-      q = '\'';
+    if (!in_triple && !in_double && c == '\'') in_single = !in_single;
+    if (!in_triple && !in_single && c == '"') in_double = !in_double;
+    if (in_single || in_triple) {
       out += c;
       continue;
     }
