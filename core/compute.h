@@ -45,6 +45,8 @@ class Compute {
   std::size_t local_rows() const { return local_cols ? local.size() / local_cols : 0; }
 
   long invoked_step = -1;  // callers use these to avoid recomputing within a step
+  // Forget cached values (atoms may have changed between runs at the same step).
+  void reset_cache() { invoked_step = scalar_step_ = peratom_step_ = local_step_ = -1; }
   // Helpers that recompute only once per step.
   double scalar();
   double vector(int i);

@@ -207,7 +207,10 @@ void Simulation::setup() {
   if (!domain.box_exists) fail("run: no simulation box yet (use create_box or read_data before run)");
   if (!neighbor.skin_set) neighbor.skin = 0.001;  // LIGGGHTS default for SI units
   for (auto& f : fixes) f->init();
-  for (auto& c : computes) c->init();
+  for (auto& c : computes) {
+    c->reset_cache();
+    c->init();
+  }
   for (auto& d : dumps) d->init();
   if (pair) pair->init();
   handle_lost(*this);

@@ -1,0 +1,234 @@
+// dump ID group custom N file col ...: the LIGGGHTS/LAMMPS text dump, byte for
+// byte (ITEM: lines, %g values, a trailing space after every value, as LIGGGHTS 3.8 writes).
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <numeric>
+
+#include "core/dump_columns.h"
+#include "core/style_registry.h"
+
+namespace sable {
+namespace {
+
+// One printf conversion for one value, checked when the deck gives it so a bad
+// format fails at its line instead of crashing snprintf mid-run.
+struct ValueFormat {
+  std::string spec;    // with an `l` length modifier for integer conversions
+  bool integer = false;
+};
+
+bool parse_value_format(const std::string& s, ValueFormat& out) {
+  std::string r;
+  int conversions = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    r += s[i];
+    if (s[i] != '%') continue;
+    if (i + 1 < s.size() && s[i + 1] == '%') {  // literal %
+      r += s[++i];
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < s.size() && std::strchr("-+ #0123456789.", s[j])) r += s[j++];
+    while (j < s.size() && std::strchr("hlLqjzt", s[j])) ++j;  // drop length modifiers; we choose our own
+    if (j >= s.size()) return false;
+    const char c = s[j];
+    if (std::strchr("diouxX", c)) {
+      out.integer = true;
+      r += 'l';
+    } else if (!std::strchr("eEfFgGaA", c)) {
+      return false;  // %s, %n, %p ... cannot print a number safely
+    }
+    r += c;
+    i = j;
+    ++conversions;
+  }
+  out.spec = r;
+  return conversions == 1;
+}
+
+class DumpCustom : public Dump {
+ public:
+  DumpCustom(Simulation& s, const Args& a) : Dump(s, a) {
+    a.need(7, "at least one per-atom attribute after the file name");
+    for (std::size_t i = 6; i < a.size(); ++i) {
+      cols_.push_back(parse_atom_column(s, a, i));
+      header_ += a[i] + " ";
+    }
+    fmt_.resize(cols_.size());
+  }
+  ~DumpCustom() override {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+  bool modify_param(const Args& a, std::size_t& i) override {
+    const std::string& k = a[i];
+    if (k == "sort" && i + 1 < a.size() && a[i + 1] != "id" && a[i + 1] != "off") {
+      // sort N / -N: by the Nth column, ascending / descending
+      const long n = a.integer(i + 1, "id, off, N or -N (a column number)");
+      if (n == 0 || std::labs(n) > static_cast<long>(cols_.size()))
+        a.fail(i + 1, "a column number in 1.." + std::to_string(cols_.size()) + " (or its negative)");
+      sort_col_ = static_cast<int>(n);
+      sort_by_id = false;
+      i += 2;
+      return true;
+    }
+    if (k == "sort") sort_col_ = 0;
+    if (Dump::modify_param(a, i) || filter_.parse(sim, a, i)) return true;
+    if (k == "format") {
+      parse_format(a, i);
+      return true;
+    }
+    if (k == "append") {
+      append_file_ = a.yes_no(i + 1, "yes or no");
+    } else if (k == "flush" || k == "buffer") {
+      a.yes_no(i + 1, "yes or no");  // every snapshot is written and flushed in one write() anyway
+    } else if (k == "every") {
+      every = a.integer(i + 1, "the dump period N (v_name is not supported)");
+      if (every <= 0) a.fail(i + 1, "a period > 0");
+    } else if (k == "first") {
+      if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (first yes is not supported)");
+    } else {
+      return false;
+    }
+    i += 2;
+    return true;
+  }
+
+ protected:
+  void write_snapshot(long step, const std::string& path, bool append) override {
+    // A new run starting where the last one ended would repeat that snapshot; LAMMPS writes it once.
+    if (!multifile && append && step == last_step_) return;
+    last_step_ = step;
+    std::vector<std::size_t> sel = selected_atoms();
+    filter_.apply(sim, sel);
+    const std::size_t n = sel.size(), nc = cols_.size();
+    std::vector<std::vector<double>> vals(nc);
+    for (std::size_t c = 0; c < nc; ++c) gather_atom_column(sim, cols_[c], sel, vals[c]);
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    if (sort_col_) {
+      const auto& key = vals[std::labs(sort_col_) - 1];
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
+        return sort_col_ > 0 ? key[p] < key[q] : key[p] > key[q];
+      });
+    }
+
+    // The whole snapshot goes out in one write(): a killed run leaves only complete snapshots.
+    std::string out;
+    out.reserve(200 + n * nc * 14);
+    char buf[256];
+    const Domain& d = sim.domain;
+    // Domain keeps only periodic flags, so LIGGGHTS' m/s letters print as f.
+    std::snprintf(buf, sizeof buf, "ITEM: TIMESTEP\n%ld\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS %s %s %s\n", step,
+                  n, d.periodic[0] ? "pp" : "ff", d.periodic[1] ? "pp" : "ff", d.periodic[2] ? "pp" : "ff");
+    out += buf;
+    for (int k = 0; k < 3; ++k) {
+      std::snprintf(buf, sizeof buf, "%g %g\n", d.lo[k], d.hi[k]);
+      out += buf;
+    }
+    out += "ITEM: ATOMS " + header_ + "\n";
+    for (std::size_t r : order) {
+      for (std::size_t c = 0; c < nc; ++c) {
+        const double v = vals[c][r];
+        const ValueFormat& f = fmt_[c];
+        int len;
+        if (f.spec.empty())
+          len = cols_[c].integer() ? std::snprintf(buf, sizeof buf, "%ld ", static_cast<long>(v))
+                                   : std::snprintf(buf, sizeof buf, "%g ", v);
+        else
+          len = f.integer ? std::snprintf(buf, sizeof buf, f.spec.c_str(), static_cast<long>(v))
+                          : std::snprintf(buf, sizeof buf, f.spec.c_str(), v);
+        out.append(buf, std::min<std::size_t>(std::max(len, 0), sizeof buf - 1));
+        if (!f.spec.empty()) out += ' ';
+      }
+      out += '\n';
+    }
+
+    if (multifile || fd_ < 0 || path != open_path_) {
+      if (fd_ >= 0) ::close(fd_);
+      const bool keep = !multifile && (append || append_file_);
+      fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | (keep ? 0 : O_TRUNC), 0644);
+      if (fd_ < 0) fail("dump " + id + ": cannot open '" + path + "' for writing: " + std::strerror(errno));
+      open_path_ = path;
+    }
+    for (std::size_t done = 0; done < out.size();) {
+      const ssize_t w = ::write(fd_, out.data() + done, out.size() - done);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) fail("dump " + id + ": writing '" + path + "' failed: " + std::strerror(errno));
+      done += static_cast<std::size_t>(w);
+    }
+    if (multifile) {  // the base renames the finished temporary file
+      ::close(fd_);
+      fd_ = -1;
+    }
+  }
+
+ private:
+  // format "STR" (LIGGGHTS: one conversion per column), or the LAMMPS forms
+  // format line "STR" | int FMT | float FMT | N FMT | none.
+  void parse_format(const Args& a, std::size_t& i) {
+    const std::string& w = a.word(i + 1, "a format string, or line/int/float/N FMT, or none");
+    auto one = [&](std::size_t at) {
+      ValueFormat f;
+      if (!parse_value_format(a.word(at, "a printf format"), f))
+        a.fail(at, "a printf format with exactly one numeric conversion (%d, %g, %e, %f, ...)");
+      return f;
+    };
+    long col;
+    if (w == "none") {
+      std::fill(fmt_.begin(), fmt_.end(), ValueFormat{});
+      i += 2;
+    } else if (w == "int" || w == "float") {
+      const ValueFormat f = one(i + 2);
+      for (std::size_t c = 0; c < cols_.size(); ++c)
+        if (cols_[c].integer() == (w == "int")) fmt_[c] = f;
+      i += 3;
+    } else if (parse_long(w, col)) {
+      if (col < 1 || col > static_cast<long>(cols_.size()))
+        a.fail(i + 1, "a column number in 1.." + std::to_string(cols_.size()));
+      fmt_[col - 1] = one(i + 2);
+      i += 3;
+    } else {
+      const std::size_t at = w == "line" ? i + 2 : i + 1;
+      Args words(split(a.word(at, "a format string")), a.where());
+      if (words.size() < cols_.size())
+        a.fail(at, "a format string with one conversion per column (" + std::to_string(cols_.size()) + " columns)");
+      for (std::size_t c = 0; c < cols_.size(); ++c) {
+        ValueFormat f;
+        if (!parse_value_format(words[c], f))
+          a.fail(at, "one printf conversion per column ('" + words[c] + "' is not one numeric conversion)");
+        fmt_[c] = f;
+      }
+      i = at + 1;
+    }
+  }
+  static std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> w;
+    std::size_t p = 0;
+    while ((p = s.find_first_not_of(" \t", p)) != std::string::npos) {
+      const std::size_t e = s.find_first_of(" \t", p);
+      w.push_back(s.substr(p, e - p));
+      p = e;
+    }
+    return w;
+  }
+
+  std::vector<AtomColumn> cols_;
+  std::vector<ValueFormat> fmt_;  // empty spec: LIGGGHTS default (%d / %g)
+  std::string header_;            // "id type x ... " with LIGGGHTS' trailing space
+  DumpFilter filter_;
+  int sort_col_ = 0;              // dump_modify sort N (>0 ascending, <0 descending)
+  bool append_file_ = false;      // dump_modify append yes: keep an existing file
+  int fd_ = -1;                   // single-file mode keeps the file open between snapshots
+  std::string open_path_;
+  long last_step_ = -1;
+};
+
+}  // namespace
+
+SABLE_DUMP("custom", DumpCustom);
+
+}  // namespace sable
