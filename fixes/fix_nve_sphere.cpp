@@ -19,7 +19,7 @@ class FixNveSphere : public Fix {
     const double dt = sim.dt;
     double* x = at.x.data();
     const double* v = at.v.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (at.n > 20000)
     for (std::size_t i = 0; i < at.n; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       for (int k = 0; k < 3; ++k) x[3 * i + k] += dt * v[3 * i + k];
@@ -36,7 +36,7 @@ class FixNveSphere : public Fix {
     double* w = at.omega.data();
     const double* f = at.f.data();
     const double* t = at.torque.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (at.n > 20000)
     for (std::size_t i = 0; i < at.n; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       const double m = at.rmass[i], r = at.radius[i];

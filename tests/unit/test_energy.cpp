@@ -1,9 +1,10 @@
 // Energy conservation: an elastic (e = 1), frictionless gas of Hertz spheres
-// in a periodic box. Between collisions the energy is purely kinetic, so the
+// (216 grains, 6 % solid fraction) in a periodic box. Between collisions the energy is purely kinetic, so the
 // kinetic energy sampled when no contact is active must equal the initial one.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "core/thermo.h"
@@ -32,19 +33,19 @@ bool any_contact(const sable::Atoms& a, double L) {
 }  // namespace
 
 TEST(Energy, ElasticHertzGasConservesKineticEnergyBetweenCollisions) {
-  const double r = 1e-3, rho = 2500, E = 5e6, nu = 0.3, L = 0.028;
+  const double r = 1e-3, rho = 2500, E = 1e8, nu = 0.3, L = 0.036;
   Deck d;
   d(R"D(units si
 atom_style granular
 boundary p p p
-region box block 0 0.028 0 0.028 0 0.028 units box
+region box block 0 0.036 0 0.036 0 0.036 units box
 create_box 1 box
-lattice sc 0.004
+lattice sc 0.006
 create_atoms 1 box
 set group all diameter 0.002 density 2500
 neighbor 0.0004 bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype 5e6
+fix m1 all property/global youngsModulus peratomtype 1e8
 fix m2 all property/global poissonsRatio peratomtype 0.3
 fix m3 all property/global coefficientRestitution peratomtypepair 1 1.0
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.0
@@ -52,7 +53,7 @@ pair_style gran model hertz tangential no_history
 pair_coeff * *
 fix i all nve/sphere)D");
   sable::Atoms& a = d->atoms;
-  ASSERT_EQ(a.n, 343u);
+  ASSERT_EQ(a.n, 216u);
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (std::size_t i = 0; i < 3 * a.n; ++i) a.v[i] = u(rng);
@@ -76,5 +77,5 @@ fix i all nve/sphere)D");
   EXPECT_GT(samples, 100) << "too few contact-free samples to judge";
   EXPECT_GT(1000 - samples, 50) << "too few chunks ended in a collision: the gas barely collided";
   EXPECT_LT(worst, 1e-4) << "largest relative kinetic-energy change over " << samples << " samples";
-  RecordProperty("worst_relative_energy_change", std::to_string(worst));
+  std::printf("energy test: %d contact-free samples of 1000, worst relative change %.3g\n", samples, worst);
 }
