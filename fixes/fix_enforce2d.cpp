@@ -1,0 +1,42 @@
+// fix ID group enforce2d: zero v_z and f_z, and the x/y components of omega
+// and torque, so grains stay in their plane (LIGGGHTS post_force). It must
+// act after every other force: like LIGGGHTS, it runs in definition order, so
+// it should be the last fix defined; a post-force fix defined after it is warned about.
+#include "core/simulation.h"
+#include "core/style_registry.h"
+
+namespace sable {
+
+class FixEnforce2d : public Fix {
+ public:
+  FixEnforce2d(Simulation& s, const Args& a) : Fix(s, a) {
+    hooks = POST_FORCE;
+    if (a.size() > 4) a.fail(4, "nothing after 'enforce2d'");
+    if (s.domain.dimension != 2) a.fail(3, "a 2D simulation for fix enforce2d ('dimension 2' before create_box)");
+  }
+  void init() override {
+    bool after = false;
+    for (auto& f : sim.fixes) {
+      // freeze and viscous (-gamma v, v_z already 0) cannot put force back out of the plane
+      const bool harmless = f->style == "freeze" || f->style == "viscous";
+      if (after && (f->hooks & POST_FORCE) && !harmless)
+        sim.warn("fix enforce2d " + id + ": fix " + f->style + " '" + f->id +
+                 "' is defined after it and may add out-of-plane force after enforce2d has run; "
+                 "define fix enforce2d last (as LIGGGHTS requires)");
+      if (f.get() == this) after = true;
+    }
+  }
+  void post_force() override {
+    Atoms& at = sim.atoms;
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (!(at.mask[i] & groupbit)) continue;
+      at.v[3 * i + 2] = at.f[3 * i + 2] = 0;
+      at.omega[3 * i] = at.omega[3 * i + 1] = 0;
+      at.torque[3 * i] = at.torque[3 * i + 1] = 0;
+    }
+  }
+};
+
+SABLE_FIX("enforce2d", FixEnforce2d);
+
+}  // namespace sable

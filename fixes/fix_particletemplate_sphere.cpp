@@ -1,0 +1,194 @@
+#include "fixes/fix_particletemplate_sphere.h"
+
+#include <climits>
+#include <cmath>
+#include <numbers>
+
+#include "core/simulation.h"
+#include "core/style_registry.h"
+
+namespace sable {
+
+static std::uint64_t splitmix64(std::uint64_t& x) {
+  std::uint64_t z = (x += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+void Rng::reseed(std::uint64_t seed) {
+  for (auto& s : s_) s = splitmix64(seed);
+  has_spare_ = false;
+}
+
+std::uint64_t Rng::next() {
+  auto rotl = [](std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); };
+  const std::uint64_t result = rotl(s_[1] * 5, 7) * 9, t = s_[1] << 17;
+  s_[2] ^= s_[0];
+  s_[3] ^= s_[1];
+  s_[1] ^= s_[2];
+  s_[0] ^= s_[3];
+  s_[2] ^= t;
+  s_[3] = rotl(s_[3], 45);
+  return result;
+}
+
+double Rng::gaussian() {
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_;
+  }
+  double u, v, s;
+  do {
+    u = 2.0 * uniform() - 1.0;
+    v = 2.0 * uniform() - 1.0;
+    s = u * u + v * v;
+  } while (s >= 1.0 || s == 0.0);
+  const double f = std::sqrt(-2.0 * std::log(s) / s);
+  spare_ = v * f;
+  has_spare_ = true;
+  return u * f;
+}
+
+double hashed_uniform(long seed, long key) {
+  std::uint64_t x = static_cast<std::uint64_t>(seed) * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint64_t>(key);
+  splitmix64(x);
+  return static_cast<double>(splitmix64(x) >> 11) * 0x1.0p-53;
+}
+
+long parse_prime_seed(const Args& a, std::size_t i) {
+  static const char* hint =
+      "a random seed that is a prime number > 10000 (LIGGGHTS requires it; e.g. 15485863, 15485867, "
+      "32452843, 32452867, 49979687, 49979693)";
+  const long s = a.integer(i, hint);
+  bool prime = s > 10000 && s <= INT_MAX;
+  for (long d = 2; prime && d * d <= s; ++d)
+    if (s % d == 0) prime = false;
+  if (!prime) a.fail(i, hint);
+  return s;
+}
+
+double Pdf::min() const { return style == Constant ? a : style == Uniform ? a : a - 3 * b; }
+double Pdf::max() const { return style == Constant ? a : style == Uniform ? b : a + 3 * b; }
+double Pdf::mean() const { return style == Uniform ? 0.5 * (a + b) : a; }
+
+// Raw moments of the untruncated law, as LIGGGHTS uses for its expectancies
+// (the +-3 sigma truncation changes E[r^3] by < 0.1 %).
+double Pdf::moment(int k) const {
+  switch (style) {
+    case Constant:
+      return std::pow(a, k);
+    case Uniform:
+      return (std::pow(b, k + 1) - std::pow(a, k + 1)) / ((k + 1) * (b - a));
+    case Gaussian:
+      return k == 2 ? a * a + b * b : a * (a * a + 3 * b * b);
+  }
+  return 0.0;
+}
+
+double Pdf::draw(Rng& rng) const {
+  switch (style) {
+    case Constant:
+      return a;
+    case Uniform:
+      return a + rng.uniform() * (b - a);
+    case Gaussian: {
+      double v;
+      do v = a + b * rng.gaussian();
+      while (v < min() || v > max());
+      return v;
+    }
+  }
+  return a;
+}
+
+double grain_mass(const Simulation& sim, double r, double rho) {
+  return sim.domain.dimension == 2 ? std::numbers::pi * r * r * rho : 4.0 / 3.0 * std::numbers::pi * r * r * r * rho;
+}
+
+// Parses `constant V | uniform [number] MIN MAX | gaussian [number] MU SIGMA` at word i
+// (the `number` word is required for radius, as in LIGGGHTS-PUBLIC, and absent for density).
+static Pdf parse_pdf(const Args& a, std::size_t& i, const char* what, bool number_word) {
+  Pdf p;
+  const std::string expect =
+      std::string("a ") + what + " style: constant" +
+      (number_word ? ", uniform number MIN MAX or gaussian number MU SIGMA" : ", uniform MIN MAX or gaussian MU SIGMA");
+  const std::string& s = a.word(i, expect);
+  if (s == "constant") {
+    p.a = a.num(i + 1, std::string("the ") + what);
+    if (!(p.a > 0)) a.fail(i + 1, std::string("a ") + what + " > 0");
+    i += 2;
+    return p;
+  }
+  if (s != "uniform" && s != "gaussian") a.fail(i, expect);
+  p.style = s == "uniform" ? Pdf::Uniform : Pdf::Gaussian;
+  ++i;
+  if (number_word) {
+    const std::string& nm = a.word(i, "'number' (number-based distribution)");
+    if (nm == "mass") a.fail(i, "'number' (mass-based radius distributions are not implemented in LIGGGHTS)");
+    if (nm != "number") a.fail(i, "'number' or 'mass'");
+    ++i;
+  }
+  p.a = a.num(i, p.style == Pdf::Uniform ? "the minimum" : "the mean mu");
+  p.b = a.num(i + 1, p.style == Pdf::Uniform ? "the maximum" : "the standard deviation sigma");
+  if (p.style == Pdf::Uniform && !(p.a > 0 && p.b > p.a)) a.fail(i + 1, "0 < min < max");
+  if (p.style == Pdf::Gaussian) {
+    if (!(p.a > 0)) a.fail(i, "mu > 0");
+    if (!(p.b > 0)) a.fail(i + 1, "sigma > 0");
+    if (p.a - 3 * p.b < 0) a.fail(i + 1, "mu - 3 sigma >= 0 (values are drawn within +-3 sigma)");
+  }
+  i += 2;
+  return p;
+}
+
+FixParticletemplateSphere::FixParticletemplateSphere(Simulation& s, const Args& a) : Fix(s, a) {
+  seed = parse_prime_seed(a, 4);
+  bool have_radius = false, have_density = false;
+  for (std::size_t i = 5; i < a.size();) {
+    const std::string& k = a[i];
+    if (k == "atom_type") {
+      const long t = a.integer(i + 1, "an atom type");
+      if (t < 1 || (s.domain.box_exists && t > s.atoms.ntypes))
+        a.fail(i + 1, "an atom type between 1 and " + std::to_string(s.atoms.ntypes));
+      atom_type = static_cast<int>(t);
+      i += 2;
+    } else if (k == "radius") {
+      ++i;
+      radius = parse_pdf(a, i, "radius", true);
+      have_radius = true;
+    } else if (k == "density") {
+      ++i;
+      density = parse_pdf(a, i, "density", false);
+      have_density = true;
+    } else if (k == "volume_limit") {
+      volume_limit = a.num(i + 1, "the smallest allowed particle volume");
+      if (!(volume_limit > 0)) a.fail(i + 1, "volume_limit > 0");
+      i += 2;
+    } else if (k == "relative") {
+      if (a.yes_no(i + 1, "yes or no")) a.fail(i + 1, "'no' (relative radii are not supported)");
+      i += 2;
+    } else {
+      a.fail(i, "a particletemplate/sphere keyword: atom_type, density, radius, volume_limit, relative");
+    }
+  }
+  // LIGGGHTS defaults are radius 1 and density 1, but it requires both to be given.
+  if (!have_density) a.fail(a.size(), "'density constant RHO' (LIGGGHTS requires a density)");
+  if (!have_radius) a.fail(a.size(), "'radius constant R' (LIGGGHTS requires a radius)");
+  rng_.reseed(static_cast<std::uint64_t>(seed));
+}
+
+double FixParticletemplateSphere::volume_expect() const {
+  return sim.domain.dimension == 2 ? std::numbers::pi * radius.moment(2)
+                                   : 4.0 / 3.0 * std::numbers::pi * radius.moment(3);
+}
+
+double FixParticletemplateSphere::mass_expect() const { return density.mean() * volume_expect(); }
+
+FixParticletemplateSphere::Grain FixParticletemplateSphere::draw() {
+  const double r = radius.draw(rng_), rho = density.draw(rng_);
+  return {r, rho, grain_mass(sim, r, rho), atom_type};
+}
+
+SABLE_FIX("particletemplate/sphere", FixParticletemplateSphere);
+
+}  // namespace sable
