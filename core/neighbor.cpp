@@ -20,7 +20,7 @@ void ContactStore::resize(std::size_t entries) {
   touch.assign(entries, 0);
 }
 
-void ContactStore::save(const NeighborList& list, const Atoms& atoms) {
+void ContactStore::save(const NeighborList& list, const std::vector<long>& ids) {
   saved_.clear();
   saved_hist_.clear();
   if (touch.empty()) return;
@@ -28,7 +28,7 @@ void ContactStore::save(const NeighborList& list, const Atoms& atoms) {
   for (std::size_t i = 0; i < n; ++i)
     for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
       if (!touch[k]) continue;
-      saved_.push_back({atoms.id[i], atoms.id[list.j[k]], saved_hist_.size()});
+      saved_.push_back({ids[i], ids[list.j[k]], saved_hist_.size()});
       saved_hist_.insert(saved_hist_.end(), hist.begin() + k * size, hist.begin() + (k + 1) * size);
     }
 }
@@ -81,7 +81,7 @@ double Neighbor::max_displacement_sq(const Atoms& atoms) const {
 }
 
 void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {
-  if (store) store->save(list, atoms);
+  if (store) store->save(list, ids_);
   const std::size_t n = atoms.n;
   for (std::size_t i = 0; i < n; ++i) domain.remap(&atoms.x[3 * i], &atoms.image[3 * i]);
 
@@ -90,12 +90,17 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   cutoff_ = 2.0 * rmax + skin;
 
   // Bins at least one cutoff wide: the 27 (9 in 2D) surrounding bins hold every partner.
+  // In a sparse scene bins grow so that there are at most ~8 per atom.
+  double binsize = std::max(cutoff_, 1e-300);
+  double cells = 1.0;
+  for (int k = 0; k < domain.dimension; ++k) cells *= domain.length(k) / binsize;
+  const double cap = 8.0 * std::max<std::size_t>(n, 128);
+  if (cells > cap) binsize *= std::pow(cells / cap, 1.0 / domain.dimension);
   int nb[3] = {1, 1, 1};
   double inv[3] = {0, 0, 0};
   for (int k = 0; k < domain.dimension; ++k) {
     const double L = domain.length(k);
-    nb[k] = std::max(1, static_cast<int>(L / std::max(cutoff_, 1e-300)));
-    nb[k] = std::min(nb[k], 1 << 20);
+    nb[k] = std::max(1, static_cast<int>(L / binsize));
     inv[k] = nb[k] / L;
   }
   const int nbins = nb[0] * nb[1] * nb[2];
@@ -177,6 +182,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     list.first[i + 1] = static_cast<int>(list.j.size());
   }
   if (store) store->restore(list, atoms);
+  ids_.assign(atoms.id.begin(), atoms.id.begin() + n);
   xhold_.assign(atoms.x.begin(), atoms.x.begin() + 3 * n);
   last_build_step = step;
   ++builds;

@@ -36,7 +36,9 @@ class ContactStore {
   void configure(const std::vector<HistorySlot>& s);
   void resize(std::size_t entries);
   // Keep history of touching pairs across a rebuild.
-  void save(const NeighborList& list, const Atoms& atoms);
+  // ids[i] is the id of the atom at index i when the list was built (atoms may
+  // have been deleted, inserted or sorted since).
+  void save(const NeighborList& list, const std::vector<long>& ids);
   void restore(const NeighborList& list, const Atoms& atoms);
 
  private:
@@ -69,6 +71,7 @@ class Neighbor {
 
  private:
   std::vector<double> xhold_;
+  std::vector<long> ids_;  // atom ids at the last build, to read the old list
   double cutoff_ = 0.0;
   std::vector<int> bin_of_, bin_start_, bin_atoms_;
 };
