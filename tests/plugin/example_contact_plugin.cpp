@@ -1,1 +1,1 @@
-// placeholder until the contact-model plugin example lands
+// placeholder (being replaced)
