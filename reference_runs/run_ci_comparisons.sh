@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# CI hook: the collision and incline comparisons, sable against real LIGGGHTS
+# when `liggghts` is on PATH, else against the stored LIGGGHTS results in
+# reference_runs/reference/. Exits non-zero if any observable fails.
+# Usage: bash reference_runs/run_ci_comparisons.sh [SABLE_BINARY]  (default build/sable)
+set -u
+cd "$(dirname "$0")/.."
+sable=${1:-build/sable}
+py=/usr/bin/python3; [ -x "$py" ] || py=python3
+if command -v liggghts >/dev/null; then ref=liggghts; else
+  ref=liggghts-stored
+  echo "liggghts not found (apt-get install liggghts); comparing against the stored references"
+fi
+status=0
+for deck in collisions_hertz collisions_hooke incline; do
+  "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
+    --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
+  rc=$?
+  echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) (build-compare/$deck/comparison.md)"
+  [ $rc = 0 ] || { status=1; grep -E "FAIL|failed|^no |Error" "/tmp/compare_$deck.$$.txt" | head -n 30; }
+  rm -f "/tmp/compare_$deck.$$.txt"
+done
+exit $status
