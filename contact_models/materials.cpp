@@ -1,0 +1,159 @@
+#include "contact_models/materials.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/args.h"
+#include "core/simulation.h"
+#include "fixes/fix_property_global.h"
+
+namespace sable {
+
+namespace {
+// One cache entry per live Simulation; weak so a finished simulation frees its tables.
+std::map<const Simulation*, std::weak_ptr<Materials>>& cache() {
+  static std::map<const Simulation*, std::weak_ptr<Materials>> c;
+  return c;
+}
+}  // namespace
+
+std::shared_ptr<Materials> Materials::of(Simulation& sim) {
+  auto& c = cache();
+  if (auto p = c[&sim].lock())
+    if (p->generation_ == FixPropertyGlobal::generation() && p->ntypes_ == sim.atoms.ntypes) return p;
+  auto p = std::make_shared<Materials>(sim);
+  c[&sim] = p;
+  return p;
+}
+
+Materials::Materials(Simulation& sim)
+    : sim_(sim), ntypes_(sim.atoms.ntypes), generation_(FixPropertyGlobal::generation()) {}
+
+bool Materials::has(const std::string& property) const { return FixPropertyGlobal::find(sim_, property) != nullptr; }
+
+std::string Materials::example_line(const std::string& name, const char* style) const {
+  std::string s = "fix ID all property/global " + name + " " + style;
+  const std::string st = style;
+  if (st == "scalar") return s + " VALUE";
+  if (st == "peratomtype") {
+    for (int i = 1; i <= ntypes_; ++i) s.append(" v").append(std::to_string(i));
+    return s + "' (one value per atom type, " + std::to_string(ntypes_) + " types)";
+  }
+  s.append(" ").append(std::to_string(ntypes_));
+  for (int i = 1; i <= ntypes_; ++i)
+    for (int j = 1; j <= ntypes_; ++j) s.append(" v").append(std::to_string(i)).append(std::to_string(j));
+  return s + "' (N = " + std::to_string(ntypes_) + " atom types, then N*N symmetric values)";
+}
+
+const FixPropertyGlobal& Materials::require(const std::string& name, const char* style, const std::string& who,
+                                           const Args& line) const {
+  const FixPropertyGlobal* f = FixPropertyGlobal::find(sim_, name);
+  std::string ex = example_line(name, style);
+  if (ex.back() != ')') ex += "'";
+  if (!f) line.fail_line(who + " needs material property '" + name + "', which no fix defines: add '" + ex);
+  using K = FixPropertyGlobal::Kind;
+  const std::string st = style;
+  const K want = st == "scalar" ? K::Scalar : st == "peratomtype" ? K::Vector : K::Matrix;
+  if (f->kind != want)
+    f->args.fail_line("property " + name + " is given as '" + f->style_word + "' but " + who + " (" +
+                      line.where().file + ":" + std::to_string(line.where().line) + ") needs " + style + ": '" + ex);
+  if (want == K::Vector && static_cast<int>(f->values.size()) < ntypes_)
+    f->args.fail_line(name + " has " + std::to_string(f->values.size()) + " value(s) but the box has " +
+                      std::to_string(ntypes_) + " atom types: '" + ex);
+  if (want == K::Matrix && f->ncols < ntypes_)
+    f->args.fail_line(name + " is given for " + std::to_string(f->ncols) + " atom type(s) but the box has " +
+                      std::to_string(ntypes_) + ": '" + ex);
+  return *f;
+}
+
+std::vector<double> Materials::raw_pair(const std::string& name, const std::string& who, const Args& line) const {
+  const FixPropertyGlobal& f = require(name, "peratomtypepair", who, line);
+  const int s = stride();
+  std::vector<double> t(s * s, 0.0);
+  for (int i = 1; i <= ntypes_; ++i)
+    for (int j = 1; j <= ntypes_; ++j) t[i * s + j] = f.at(i - 1, j - 1);
+  return t;
+}
+
+std::vector<double> Materials::raw_type(const std::string& name, const std::string& who, const Args& line) const {
+  const FixPropertyGlobal& f = require(name, "peratomtype", who, line);
+  std::vector<double> t(stride(), 0.0);
+  for (int i = 1; i <= ntypes_; ++i) t[i] = f.values[i - 1];
+  return t;
+}
+
+const double* Materials::type_vector(const std::string& name, const std::string& who, const Args& line) {
+  const std::string key = name + "/type";  // per-type vectors share the map with per-type-pair tables
+  if (auto it = tables_.find(key); it != tables_.end()) return it->second.data();
+  std::vector<double> t = raw_type(name, who, line);
+  // LIGGGHTS' sanity checks (global_properties.cpp), so a deck LIGGGHTS refuses is refused here too.
+  const FixPropertyGlobal* f = FixPropertyGlobal::find(sim_, name);
+  for (int i = 1; i <= ntypes_; ++i) {
+    if (name == "youngsModulus" && sim_.units == "si" && t[i] < 5e6)
+      f->args.fail_line("youngsModulus >= 5e6 required for SI units (as in LIGGGHTS); type " + std::to_string(i) +
+                        " has " + std::to_string(t[i]));
+    if (name == "poissonsRatio" && (t[i] < 0.0 || t[i] > 0.5))
+      f->args.fail_line("0 <= poissonsRatio <= 0.5 required (as in LIGGGHTS); type " + std::to_string(i) + " has " +
+                        std::to_string(t[i]));
+  }
+  auto& stored = tables_[key];
+  stored = std::move(t);
+  return stored.data();
+}
+
+const double* Materials::pair_table(const std::string& name, const std::string& who, const Args& line) {
+  if (auto it = tables_.find(name); it != tables_.end()) return it->second.data();
+  const int s = stride();
+  std::vector<double> t(s * s, 0.0);
+  auto each = [&](auto fn) {
+    for (int i = 1; i <= ntypes_; ++i)
+      for (int j = 1; j <= ntypes_; ++j) t[i * s + j] = fn(i, j);
+  };
+  // Derived tables: formulas of LIGGGHTS 3.8 global_properties.cpp (createYeff, createGeff, createBetaEff, ...).
+  if (name == "Yeff") {
+    const double* Y = type_vector("youngsModulus", who, line);
+    const double* nu = type_vector("poissonsRatio", who, line);
+    each([&](int i, int j) { return 1.0 / ((1.0 - nu[i] * nu[i]) / Y[i] + (1.0 - nu[j] * nu[j]) / Y[j]); });
+  } else if (name == "Geff") {
+    const double* Y = type_vector("youngsModulus", who, line);
+    const double* nu = type_vector("poissonsRatio", who, line);
+    each([&](int i, int j) {
+      return 1.0 / (2.0 * (2.0 - nu[i]) * (1.0 + nu[i]) / Y[i] + 2.0 * (2.0 - nu[j]) * (1.0 + nu[j]) / Y[j]);
+    });
+  } else if (name == "coeffRestLog") {
+    const double* e = pair_table("coefficientRestitution", who, line);
+    each([&](int i, int j) { return std::log(e[i * s + j]); });
+  } else if (name == "betaeff") {
+    const double* le = pair_table("coeffRestLog", who, line);
+    each([&](int i, int j) {
+      const double l = le[i * s + j];
+      return l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+    });
+  } else {
+    t = raw_pair(name, who, line);
+    if (name == "coefficientRestitution") {
+      const FixPropertyGlobal* f = FixPropertyGlobal::find(sim_, name);
+      each([&](int i, int j) {
+        const double e = t[i * s + j];
+        if (!(e > 0.05 && e <= 1.0))
+          f->args.fail_line("0.05 < coefficientRestitution <= 1 required (as in LIGGGHTS); types " + std::to_string(i) +
+                            "," + std::to_string(j) + " have " + std::to_string(e));
+        return e;
+      });
+    }
+  }
+  auto& stored = tables_[name];
+  stored = std::move(t);
+  return stored.data();
+}
+
+double Materials::scalar(const std::string& name, const std::string& who, const Args& line) {
+  if (auto it = scalars_.find(name); it != scalars_.end()) return it->second;
+  const FixPropertyGlobal& f = require(name, "scalar", who, line);
+  const double v = f.values[0];
+  if (name == "characteristicVelocity" && sim_.units == "si" && v < 1e-2)
+    f.args.fail_line("characteristicVelocity >= 1e-2 required for SI units (as in LIGGGHTS)");
+  return scalars_[name] = v;
+}
+
+}  // namespace sable

@@ -1,0 +1,72 @@
+#pragma once
+// model hooke — reproduces LIGGGHTS 3.8 NormalModel<HOOKE> (normal_model_hooke.h):
+//   kn = 16/15 sqrt(R*) Y* (15 m* V^2 / (16 sqrt(R*) Y*))^(1/5),  V = characteristicVelocity
+//   kt = kn  (ktToKnUser on: kt = 0.285714286 kn, LIGGGHTS' literal for 2/7)
+//   gamman = sqrt(4 m* kn / (1 + (pi / ln e)^2)),  gammat = gamman (0 with tangential_damping off)
+//   Fn = kn dn - gamman vn   (clipped at 0 with limitForce on)
+// The damping gives exactly restitution e for the linear spring.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "contact_models/contact.h"
+#include "contact_models/materials.h"
+
+namespace sable {
+
+struct NormalHooke {
+  static constexpr const char* kName = "hooke";
+  static constexpr int kHistory = 0;
+  static void history_slots(std::vector<HistorySlot>&) {}
+
+  bool tangential_damping = true, limit_force = false, kt_to_kn = false, viscous = false;
+  const double *Y = nullptr, *logE = nullptr;
+  double char_vel = 0;
+
+  void settings(ModelSettings& s) {
+    s.on_off("tangential_damping", tangential_damping);
+    s.on_off("limitForce", limit_force);
+    s.on_off("ktToKnUser", kt_to_kn);
+    s.off_only("viscous");
+    s.off_only("heating_normal_hooke");
+    s.off_only("disableNormalWhenBonded");
+    s.off_only("computeDissipatedEnergy");
+    s.off_only("computeElasticPotential");
+  }
+  void connect(PropertyRequest& p) {
+    Y = p.pair_table("Yeff");
+    p.pair_table("Geff");  // LIGGGHTS connects Geff too, so a deck without poissonsRatio fails there as well
+    logE = p.pair_table("coeffRestLog");
+    char_vel = p.scalar("characteristicVelocity");
+  }
+
+  double stiffness(const Contact& c) const { return kn_of(c.meff, c.reff, c.tp); }
+  double kn_of(double meff, double reff, int tp) const {
+    const double sq = std::sqrt(reff);
+    return 16.0 / 15.0 * sq * Y[tp] * std::pow(15.0 * meff * char_vel * char_vel / (16.0 * sq * Y[tp]), 0.2);
+  }
+  double gamman_of(double meff, double kn, int tp) const {
+    const double q = std::numbers::pi / logE[tp];  // e = 1: ln e = 0, q = inf, gamman = 0 (undamped)
+    return std::sqrt(4.0 * meff * kn / (1.0 + q * q));
+  }
+
+  NormalForce force(const Contact& c, double*, const StepContext&) const {
+    NormalForce n;
+    n.kn = kn_of(c.meff, c.reff, c.tp);
+    n.kt = kt_to_kn ? n.kn * 0.285714286 : n.kn;
+    n.gamman = gamman_of(c.meff, n.kn, c.tp);
+    n.gammat = tangential_damping ? n.gamman : 0.0;
+    n.Fn = n.kn * c.deltan - n.gamman * c.vn;
+    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
+    return n;
+  }
+
+  // Damped linear oscillator: pi / sqrt(kn/m* - (gamman / 2m*)^2).
+  double contact_time(const ContactTimeInput& in) const {
+    const double kn = kn_of(in.meff, in.reff, in.tp), g = gamman_of(in.meff, kn, in.tp);
+    const double w2 = kn / in.meff - g * g / (4.0 * in.meff * in.meff);
+    return std::numbers::pi / std::sqrt(std::max(w2, 1e-300));
+  }
+};
+
+}  // namespace sable

@@ -1,0 +1,39 @@
+#pragma once
+// rolling_friction cdt — reproduces LIGGGHTS 3.8 RollingModel<ROLLING_CDT> (constant
+// directional torque, Ai et al. 2011 model A):
+//   Mr = rmu kn dn R* wr / |wr|,  wr = w_i - w_j (wall: cri w_i / r),
+// with the component along en removed unless torsionTorque on. kn dn is the
+// elastic normal force (no damping). Returned Mr is subtracted from the torque
+// on i and added to j. rmu = coefficientRollingFriction.
+#include <cmath>
+
+#include "contact_models/contact.h"
+#include "contact_models/materials.h"
+
+namespace sable {
+
+struct RollingCdt {
+  static constexpr const char* kName = "cdt";
+  static constexpr int kHistory = 0;
+  static void history_slots(std::vector<HistorySlot>&) {}
+
+  bool torsion_torque = false;
+  const double* rmu = nullptr;
+  void settings(ModelSettings& s) { s.on_off("torsionTorque", torsion_torque); }
+  void connect(PropertyRequest& p) { rmu = p.pair_table("coefficientRollingFriction"); }
+
+  Vec3 torque(const Contact& c, const NormalForce& n, double*, const StepContext&) const {
+    const double* w = c.wroll;
+    const double wmag = std::sqrt(dot(w, w));
+    if (!(wmag > 0.0)) return {};
+    const double s = rmu[c.tp] * n.kn * c.deltan * c.reff / wmag;
+    Vec3 t{w[0] * s, w[1] * s, w[2] * s};
+    if (!torsion_torque) {
+      const double tn = t.x * c.en[0] + t.y * c.en[1] + t.z * c.en[2];
+      t = {t.x - tn * c.en[0], t.y - tn * c.en[1], t.z - tn * c.en[2]};
+    }
+    return t;
+  }
+};
+
+}  // namespace sable

@@ -1,0 +1,29 @@
+#pragma once
+// tangential no_history — reproduces LIGGGHTS 3.8 TangentialModel<TANGENTIAL_NO_HISTORY>:
+// viscous friction Ft = -min(mu |Fn|, gammat |vtr|) vtr / |vtr|, no spring, no history.
+#include <algorithm>
+#include <cmath>
+
+#include "contact_models/contact.h"
+#include "contact_models/materials.h"
+
+namespace sable {
+
+struct TangentialNoHistory {
+  static constexpr const char* kName = "no_history";
+  static constexpr int kHistory = 0;
+  static void history_slots(std::vector<HistorySlot>&) {}
+
+  const double* mu = nullptr;
+  void settings(ModelSettings&) {}
+  void connect(PropertyRequest& p) { mu = p.pair_table("coefficientFriction"); }
+
+  Vec3 force(const Contact& c, const NormalForce& n, double*, const StepContext&) const {
+    const double vrel = std::sqrt(dot(c.vtr, c.vtr));
+    if (vrel == 0.0) return {};
+    const double ft = std::min(mu[c.tp] * std::fabs(n.Fn), n.gammat * vrel) / vrel;
+    return {-ft * c.vtr[0], -ft * c.vtr[1], -ft * c.vtr[2]};
+  }
+};
+
+}  // namespace sable

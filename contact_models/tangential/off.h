@@ -1,0 +1,19 @@
+#pragma once
+// tangential off — LIGGGHTS' default when no 'tangential' is given (TANGENTIAL_OFF):
+// frictionless contacts, no coefficientFriction needed.
+#include "contact_models/contact.h"
+#include "contact_models/materials.h"
+
+namespace sable {
+
+struct TangentialOff {
+  static constexpr const char* kName = "off";
+  static constexpr int kHistory = 0;
+  static constexpr bool kNone = true;  // lets the kernel skip the torque arithmetic
+  static void history_slots(std::vector<HistorySlot>&) {}
+  void settings(ModelSettings&) {}
+  void connect(PropertyRequest&) {}
+  Vec3 force(const Contact&, const NormalForce&, double*, const StepContext&) const { return {}; }
+};
+
+}  // namespace sable

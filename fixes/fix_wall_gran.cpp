@@ -1,0 +1,218 @@
+#include "fixes/fix_wall_gran.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "contact_models/materials.h"
+#include "contact_models/pair_gran.h"
+#include "contact_models/registry.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+
+namespace sable {
+
+static int axis_of(const std::string& w) { return w == "x" ? 0 : w == "y" ? 1 : w == "z" ? 2 : -1; }
+
+FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
+  hooks = POST_FORCE;
+  vector_size = 3;
+  const ModelSelection sel = parse_model_selection(a, 4);
+  kernel_ = make_kernel(sel, a);
+  ModelSettings settings;
+  kernel_->settings(settings);
+  bool have_wall = false;
+  std::size_t i = sel.next;
+  while (i < a.size()) {
+    const std::string& k = a[i];
+    if (k == "primitive") {
+      if (a.word(i + 1, "'type' and the wall's material type") != "type") a.fail(i + 1, "'type'");
+      const long t = a.integer(i + 2, "the wall's material (atom) type");
+      if (t < 1 || t > s.atoms.ntypes)
+        a.fail(i + 2, "a type between 1 and " + std::to_string(s.atoms.ntypes) + " (as defined by create_box)");
+      type_ = static_cast<int>(t);
+      const std::string& w = a.word(i + 3, "a primitive: xplane, yplane, zplane, xcylinder, ycylinder, zcylinder");
+      if (w.size() == 6 && w.substr(1) == "plane" && axis_of(w.substr(0, 1)) >= 0) {
+        shape_ = Shape::Plane;
+        axis_ = axis_of(w.substr(0, 1));
+        pos0_ = a.num(i + 4, "the plane position");
+        i += 5;
+      } else if (w.size() == 9 && w.substr(1) == "cylinder" && axis_of(w.substr(0, 1)) >= 0) {
+        shape_ = Shape::Cylinder;
+        axis_ = axis_of(w.substr(0, 1));
+        radius_ = a.num(i + 4, "the cylinder radius");
+        if (!(radius_ > 0)) a.fail(i + 4, "a radius > 0");
+        c1_ = a.num(i + 5, "the first axis coordinate");
+        c2_ = a.num(i + 6, "the second axis coordinate");
+        i += 7;
+      } else {
+        a.fail(i + 3, "a primitive: xplane, yplane, zplane, xcylinder, ycylinder, zcylinder");
+      }
+      have_wall = true;
+    } else if (k == "mesh") {
+      a.fail(i, "'primitive' (mesh walls are not available in this fix yet)");
+    } else if (k == "shear") {
+      if (!have_wall) a.fail(i, "'primitive ...' before 'shear' (as LIGGGHTS)");
+      shear_dim_ = axis_of(a.word(i + 1, "x, y or z"));
+      if (shear_dim_ < 0) a.fail(i + 1, "x, y or z");
+      if (shape_ == Shape::Plane && shear_dim_ == axis_)
+        a.fail(i + 1, "a direction in the plane (use 'wiggle' to move a plane along its normal)");
+      vshear_ = a.num(i + 2, "the shear velocity");
+      i += 3;
+    } else if (k == "wiggle") {
+      if (!have_wall) a.fail(i, "'primitive ...' before 'wiggle'");
+      if (shape_ != Shape::Plane) a.fail(i, "a plane wall for 'wiggle'");
+      if (a.word(i + 1, "'amplitude' A 'period' P") == "amplitude") {
+        wiggle_amp_ = a.num(i + 2, "the wiggle amplitude");
+        if (a.word(i + 3, "'period'") != "period") a.fail(i + 3, "'period'");
+        wiggle_period_ = a.num(i + 4, "the wiggle period");
+        i += 5;
+      } else {  // LAMMPS form: wiggle dim A P, dim = the plane's normal
+        if (axis_of(a[i + 1]) != axis_) a.fail(i + 1, "'amplitude' or the plane's normal axis");
+        wiggle_amp_ = a.num(i + 2, "the wiggle amplitude");
+        wiggle_period_ = a.num(i + 3, "the wiggle period");
+        i += 4;
+      }
+      if (!(wiggle_period_ > 0)) a.fail(i - 1, "a period > 0");
+      wiggle_step0_ = s.step;
+    } else if (k == "store_force" || k == "store_force_contact") {
+      if (a.yes_no(i + 1, "yes or no")) a.fail(i + 1, "'no' (use f_" + id + "[1..3] for the total wall force)");
+      i += 2;
+    } else if (!settings.try_parse(a, i)) {
+      a.fail(i, "primitive, shear, wiggle, or a model keyword: " + settings.names());
+    }
+  }
+  if (!have_wall) a.fail(a.size(), "'primitive type T xplane|yplane|zplane|xcylinder|... ARGS'");
+  hist_size_ = static_cast<int>(kernel_->history_slots().size());
+  if (hist_size_ > 0) hist_col_ = s.atoms.add_column("wall/gran " + id, hist_size_);
+}
+
+void FixWallGran::init() {
+  kernel_->connect(Materials::of(sim), args);
+  freeze_bit_ = frozen_groupbits(sim);
+  setup_pass_ = true;
+}
+
+double FixWallGran::max_speed() const {
+  double v = std::fabs(vshear_);
+  if (shape_ == Shape::Cylinder && shear_dim_ >= 0 && shear_dim_ != axis_) v *= radius_;  // spin: |w| R at the wall
+  if (wiggle_period_ > 0) v += std::fabs(wiggle_amp_) * 2.0 * std::numbers::pi / wiggle_period_;
+  return v;
+}
+
+void FixWallGran::collect(std::uint32_t also, bool zero_history) {
+  const Atoms& at = sim.atoms;
+  atom_.clear();
+  hidx_.clear();
+  deltan_.clear();
+  en_.clear();
+  vwall_.clear();
+  point_.clear();
+  double* hist = hist_col_ >= 0 ? sim.atoms.column(hist_col_).data() : nullptr;
+  // Wall position and velocity now (wiggle); shear velocity for planes and axial cylinders.
+  double pos = pos0_, vnormal = 0.0;
+  if (wiggle_period_ > 0) {
+    const double w = 2.0 * std::numbers::pi / wiggle_period_, t = (sim.step - wiggle_step0_) * sim.dt;
+    pos += wiggle_amp_ * std::sin(w * t);
+    vnormal = wiggle_amp_ * w * std::cos(w * t);
+  }
+  const bool spin = shape_ == Shape::Cylinder && shear_dim_ >= 0 && shear_dim_ != axis_;
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;  // cylinder cross-section axes (LIGGGHTS' Dim<>)
+  for (std::size_t i = 0; i < at.n; ++i) {
+    if (!(at.mask[i] & groupbit) || !(at.mask[i] & also)) continue;
+    const double* x = &at.x[3 * i];
+    const double r = at.radius[i];
+    double n[3] = {0, 0, 0}, dist;
+    double vw[3] = {0, 0, 0};
+    if (shape_ == Shape::Plane) {
+      const double d = x[axis_] - pos;
+      n[axis_] = d > 0 ? 1.0 : -1.0;  // grains on either side, pushed away from the plane
+      dist = std::fabs(d);
+      vw[axis_] = vnormal;
+      if (shear_dim_ >= 0) vw[shear_dim_] = vshear_;
+    } else {
+      const double d1 = x[a1] - c1_, d2 = x[a2] - c2_, rho = std::sqrt(d1 * d1 + d2 * d2);
+      if (rho == 0.0) continue;  // on the axis: no defined normal
+      const double sgn = rho > radius_ ? 1.0 : -1.0;  // outside: pushed outward; inside: towards the axis
+      n[a1] = sgn * d1 / rho;
+      n[a2] = sgn * d2 / rho;
+      dist = std::fabs(rho - radius_);
+      if (spin) {  // (vshear e_axis) x r_radial, r_radial = (d1, d2) in the cross-section
+        vw[a1] = -vshear_ * d2;
+        vw[a2] = vshear_ * d1;
+      } else if (shear_dim_ >= 0) {
+        vw[shear_dim_] = vshear_;
+      }
+    }
+    const double overlap = r - dist;
+    if (overlap <= 0.0) {
+      if (zero_history && hist)
+        for (int m = 0; m < hist_size_; ++m) hist[i * hist_size_ + m] = 0.0;
+      continue;
+    }
+    atom_.push_back(static_cast<int>(i));
+    hidx_.push_back(static_cast<int>(i));
+    deltan_.push_back(overlap);
+    for (int k = 0; k < 3; ++k) {
+      en_.push_back(n[k]);
+      vwall_.push_back(vw[k]);
+      point_.push_back(x[k] - n[k] * dist);
+    }
+  }
+}
+
+WallBatch FixWallGran::batch() {
+  Atoms& at = sim.atoms;
+  WallBatch b;
+  b.a.n = at.n;
+  b.a.x = at.x.data();
+  b.a.v = at.v.data();
+  b.a.omega = at.omega.data();
+  b.a.radius = at.radius.data();
+  b.a.rmass = at.rmass.data();
+  b.a.type = at.type.data();
+  b.a.mask = at.mask.data();
+  b.a.f = at.f.data();
+  b.a.torque = at.torque.data();
+  b.a.stride = at.ntypes + 1;
+  b.a.freeze_bit = freeze_bit_;
+  b.n = atom_.size();
+  b.atom = atom_.data();
+  b.deltan = deltan_.data();
+  b.en = en_.data();
+  b.vwall = vwall_.data();
+  if (hist_col_ >= 0) {
+    b.hist = at.column(hist_col_).data();
+    b.hist_index = hidx_.data();
+    b.hist_stride = hist_size_;
+  }
+  b.wall_type = type_;
+  b.ctx.dt = sim.dt;
+  return b;
+}
+
+void FixWallGran::post_force() {
+  collect(~0u, true);
+  WallBatch b = batch();
+  b.ctx.update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
+  setup_pass_ = false;
+  const Vec3 on_grains = kernel_->wall_forces(b);
+  force_[0] = -on_grains.x;
+  force_[1] = -on_grains.y;
+  force_[2] = -on_grains.z;
+}
+
+void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {
+  collect(bits, false);
+  WallBatch b = batch();
+  b.ctx.update = false;
+  kernel_->wall_records(b, out);
+}
+
+double FixWallGran::compute_vector(int i) {
+  if (i < 1 || i > 3) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..3");
+  return force_[i - 1];
+}
+
+SABLE_FIX("wall/gran", FixWallGran);
+
+}  // namespace sable

@@ -1,0 +1,64 @@
+#pragma once
+// fix ID group wall/gran model M [tangential T] [rolling_friction R] primitive type T
+//     xplane|yplane|zplane POS | xcylinder|ycylinder|zcylinder R C1 C2
+//     [shear x|y|z V] [wiggle amplitude A period P] [keyword on|off ...]
+// LIGGGHTS 3.8 primitive granular walls. The wall is a partner of infinite
+// radius and mass (R* = r_i, m* = m_i) of material type T, and uses the same
+// compiled kernel as `pair_style gran` with the same model names. Planes act on
+// grains on either side; cylinders on grains inside or outside.
+//   shear: planes move tangentially at V; a cylinder moves along its axis at V
+//          (dim = axis) or spins about it with wall velocity V e_axis x r_radial
+//          (dim != axis: LIGGGHTS' code treats V as an angular velocity, rad/s).
+//   wiggle (sable addition, LIGGGHTS-PUBLIC has none for primitives): a plane
+//          moves along its normal as POS + A sin(2 pi t / P), t from the fix's creation.
+// Outputs (sable addition): f_ID[1..3] = total force exerted by the grains ON the
+// wall at the last force evaluation. Per-atom wall history (tangential spring,
+// rolling spring) is an Atoms column, so it follows atoms through sorting.
+#include <memory>
+#include <vector>
+
+#include "contact_models/kernel.h"
+#include "core/fix.h"
+
+namespace sable {
+
+class FixWallGran : public Fix {
+ public:
+  FixWallGran(Simulation& sim, const Args& args);
+  void init() override;
+  void post_force() override;
+  double compute_vector(int i) override;  // 1..3: force on the wall
+  double max_speed() const override;
+
+  ContactKernel& kernel() { return *kernel_; }
+  int wall_type() const { return type_; }
+  // Per-contact records at the current state (no force or history change). The
+  // wall velocity and the wall point of record r are vwall(r.shift), point(r.shift).
+  void records(std::uint32_t groupbit, ContactRecords& out);
+  const double* vwall(int k) const { return &vwall_[3 * k]; }
+  const double* point(int k) const { return &point_[3 * k]; }
+
+ private:
+  std::unique_ptr<ContactKernel> kernel_;
+  enum class Shape { Plane, Cylinder } shape_ = Shape::Plane;
+  int axis_ = 2;                 // plane normal / cylinder axis
+  double pos0_ = 0, radius_ = 0, c1_ = 0, c2_ = 0;
+  int shear_dim_ = -1;
+  double vshear_ = 0;
+  double wiggle_amp_ = 0, wiggle_period_ = 0;
+  long wiggle_step0_ = 0;
+  int type_ = 1;
+  int hist_col_ = -1, hist_size_ = 0;
+  bool setup_pass_ = true;
+  std::uint32_t freeze_bit_ = 0;
+  double force_[3] = {0, 0, 0};
+  std::vector<int> atom_, hidx_;
+  std::vector<double> deltan_, en_, vwall_, point_;
+
+  // Finds the overlapping grains of the fix group that also match `also`; zeroes
+  // the history of the others when asked.
+  void collect(std::uint32_t also, bool zero_history);
+  WallBatch batch();
+};
+
+}  // namespace sable
