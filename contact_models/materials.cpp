@@ -1,6 +1,7 @@
 #include "contact_models/materials.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "core/args.h"
@@ -10,6 +11,11 @@
 namespace sable {
 
 namespace {
+std::string fmt(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", x);
+  return b;
+}
 // One cache entry per live Simulation; weak so a finished simulation frees its tables.
 std::map<const Simulation*, std::weak_ptr<Materials>>& cache() {
   static std::map<const Simulation*, std::weak_ptr<Materials>> c;
@@ -91,10 +97,10 @@ const double* Materials::type_vector(const std::string& name, const std::string&
   for (int i = 1; i <= ntypes_; ++i) {
     if (name == "youngsModulus" && sim_.units == "si" && t[i] < 5e6)
       f->args.fail_line("youngsModulus >= 5e6 required for SI units (as in LIGGGHTS); type " + std::to_string(i) +
-                        " has " + std::to_string(t[i]));
+                        " has " + fmt(t[i]));
     if (name == "poissonsRatio" && (t[i] < 0.0 || t[i] > 0.5))
       f->args.fail_line("0 <= poissonsRatio <= 0.5 required (as in LIGGGHTS); type " + std::to_string(i) + " has " +
-                        std::to_string(t[i]));
+                        fmt(t[i]));
   }
   auto& stored = tables_[key];
   stored = std::move(t);
@@ -137,7 +143,7 @@ const double* Materials::pair_table(const std::string& name, const std::string& 
         const double e = t[i * s + j];
         if (!(e > 0.05 && e <= 1.0))
           f->args.fail_line("0.05 < coefficientRestitution <= 1 required (as in LIGGGHTS); types " + std::to_string(i) +
-                            "," + std::to_string(j) + " have " + std::to_string(e));
+                            "," + std::to_string(j) + " have " + fmt(e));
         return e;
       });
     }

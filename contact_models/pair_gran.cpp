@@ -63,7 +63,8 @@ PairBatch PairGran::batch() {
   Atoms& at = sim.atoms;
   const NeighborList& list = sim.neighbor.list;
   PairBatch b;
-  b.a.n = at.n;
+  // Atoms inserted since the last build have no list entries yet: the list covers its first n atoms.
+  b.a.n = list.first.empty() ? 0 : list.first.size() - 1;
   b.a.x = at.x.data();
   b.a.v = at.v.data();
   b.a.omega = at.omega.data();
@@ -87,8 +88,14 @@ PairBatch PairGran::batch() {
   return b;
 }
 
+// The list must describe the current atoms (deletions and sorting rebuild it).
+static bool list_usable(const Simulation& sim) {
+  const auto& first = sim.neighbor.list.first;
+  return !first.empty() && first.size() - 1 <= sim.atoms.n;
+}
+
 void PairGran::compute() {
-  if (sim.neighbor.list.first.size() != sim.atoms.n + 1) return;  // no list yet (no atoms)
+  if (!list_usable(sim)) return;
   PairBatch b = batch();
   b.ctx.update = !setup_pass_;
   setup_pass_ = false;
@@ -100,7 +107,7 @@ void PairGran::compute() {
 
 void PairGran::records(std::uint32_t groupbit, ContactRecords& out) {
   out.clear();
-  if (sim.neighbor.list.first.size() != sim.atoms.n + 1) return;
+  if (!list_usable(sim)) return;
   PairBatch b = batch();
   b.ctx.update = false;
   b.groupbit = groupbit;

@@ -63,6 +63,18 @@ Region* Simulation::find_region(const std::string& id) const {
 }
 
 void Simulation::add_fix(std::unique_ptr<Fix> f) {
+  // After read_restart, a fix defined with a stored ID and style resumes its state (LIGGGHTS).
+  auto st = restart.fix_states.find(f->id);
+  if (st != restart.fix_states.end()) {
+    if (st->second.style == f->style) {
+      f->read_state(st->second.bytes);
+      print("INFO: fix " + f->id + " (" + f->style + ") resumes its state from restart file '" + restart.file + "'");
+    } else {
+      warn("fix " + f->id + " was style " + st->second.style + " in restart file '" + restart.file +
+           "'; its stored state does not apply to style " + f->style + " and is discarded");
+    }
+    restart.fix_states.erase(st);
+  }
   // A fix with an existing ID replaces it in place (LAMMPS semantics).
   for (auto& old : fixes)
     if (old->id == f->id) {
@@ -175,7 +187,8 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
     if (a.rmass[i] < a.rmass[ismall]) ismall = i;
     b.rayleigh = std::min(b.rayleigh, pair->rayleigh_time(i));
   }
-  b.hertz = pair->contact_time(ismall, ismall, b.speed);
+  // Grains approach each other at up to twice the fastest speed (LIGGGHTS uses the relative speed too).
+  b.hertz = pair->contact_time(ismall, ismall, 2.0 * b.speed);
   b.skin_ratio = neighbor.skin / (2.0 * b.speed * dt);
   b.valid = true;
   return b;
@@ -184,11 +197,14 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
 void Simulation::stability_check() {
   const StepBounds b = step_bounds();
   if (!b.valid) return;
+  char ray[128] = "no Rayleigh time (no youngsModulus: stiffness model)";
+  if (b.rayleigh < 1e300)
+    std::snprintf(ray, sizeof ray, "%.1f%% of the Rayleigh time %g s (limit 20%%)", 100 * dt / b.rayleigh, b.rayleigh);
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "Time-step check: dt = %g s is %.1f%% of the Rayleigh time %g s (limit 20%%) and %.1f%% of the "
-                "contact time %g s at v = %g m/s (limit 10%%); skin / (2 v dt) = %.3g (limit > 1)",
-                dt, 100 * dt / b.rayleigh, b.rayleigh, 100 * dt / b.hertz, b.hertz, b.speed, b.skin_ratio);
+                "Time-step check: dt = %g s is %s and %.1f%% of the contact time %g s at v_rel = %g m/s (limit 10%%); "
+                "skin / (2 v dt) = %.3g (limit > 1)",
+                dt, ray, 100 * dt / b.hertz, b.hertz, 2 * b.speed, b.skin_ratio);
   print(buf);
   std::string why;
   if (dt > 0.2 * b.rayleigh) why = "exceeds 20% of the Rayleigh time";
@@ -203,6 +219,32 @@ void Simulation::stability_check() {
   fail(msg + ". Reduce the time step, or add 'timestep_check accept' to run anyway.");
 }
 
+// Restart data nobody claimed by the first run: pair history goes into the pair
+// style's store (restored at the build below); unclaimed fix states are dropped
+// (LIGGGHTS discards them at the first run too).
+void Simulation::claim_restart_leftovers() {
+  RestartPending& r = restart;
+  if (r.contacts.count() > 0) {
+    ContactStore* store = pair ? pair->history() : nullptr;
+    if (!store) {
+      warn("restart file '" + r.file + "' holds contact history of " + std::to_string(r.contacts.count()) +
+           " contacts (" + r.pair_model + "), but " + (pair ? pair->describe() : std::string("no pair style")) +
+           " keeps none: it is dropped");
+    } else {
+      const auto missing = store->inject(r.slots, r.contacts);
+      for (auto& m : missing)
+        warn("restart file '" + r.file + "' has no contact history slot '" + m + "' (written by " + r.pair_model +
+             "); it starts at zero for the " + std::to_string(r.contacts.count()) + " stored contacts");
+    }
+  }
+  r.contacts.clear();
+  r.slots.clear();
+  for (auto& [id, st] : r.fix_states)
+    warn("restart file '" + r.file + "' holds a state for fix " + id + " (" + st.style +
+         "), but no fix with that ID and style was defined before this run: the state is discarded");
+  r.fix_states.clear();
+}
+
 void Simulation::setup() {
   if (!domain.box_exists) fail("run: no simulation box yet (use create_box or read_data before run)");
   if (!neighbor.skin_set) neighbor.skin = 0.001;  // LIGGGHTS default for SI units
@@ -213,6 +255,7 @@ void Simulation::setup() {
   }
   for (auto& d : dumps) d->init();
   if (pair) pair->init();
+  claim_restart_leftovers();
   handle_lost(*this);
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
   check_atoms();

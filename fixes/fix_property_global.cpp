@@ -40,10 +40,10 @@ FixPropertyGlobal::FixPropertyGlobal(Simulation& s, const Args& a) : Fix(s, a) {
   if (kind == Kind::Matrix) {
     const std::size_t n = ncols;
     if (symmetric && nv != n * n) {
-      // Name the word where the count goes wrong: the first surplus value, or the end of the line.
-      a.fail(nv > n * n ? first + n * n : a.size(),
-             std::to_string(n * n) + " values (" + std::to_string(n) + " x " + std::to_string(n) + " for N = " +
-                 std::to_string(n) + " atom types), got " + std::to_string(nv));
+      // Name the word where the count goes wrong: N itself when values are missing, else the first surplus value.
+      a.fail(nv < n * n ? 6 : first + n * n,
+             "N*N = " + std::to_string(n * n) + " values after N = " + std::to_string(n) + " atom types, got " +
+                 std::to_string(nv));
     }
     if (!symmetric && nv % n != 0)
       a.fail(a.size(), "a multiple of " + std::to_string(n) + " values (whole rows), got " + std::to_string(nv));

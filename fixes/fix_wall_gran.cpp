@@ -196,9 +196,9 @@ void FixWallGran::post_force() {
   b.ctx.update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
   const Vec3 on_grains = kernel_->wall_forces(b);
-  force_[0] = -on_grains.x;
-  force_[1] = -on_grains.y;
-  force_[2] = -on_grains.z;
+  force_[0] = 0.0 - on_grains.x;  // (0.0 - x, not -x: no "-0" in thermo output)
+  force_[1] = 0.0 - on_grains.y;
+  force_[2] = 0.0 - on_grains.z;
 }
 
 void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {

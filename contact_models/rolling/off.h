@@ -8,7 +8,6 @@ namespace sable {
 struct RollingOff {
   static constexpr const char* kName = "off";
   static constexpr int kHistory = 0;
-  static constexpr bool kNone = true;
   static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
   void connect(PropertyRequest&) {}

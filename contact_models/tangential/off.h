@@ -9,7 +9,6 @@ namespace sable {
 struct TangentialOff {
   static constexpr const char* kName = "off";
   static constexpr int kHistory = 0;
-  static constexpr bool kNone = true;  // lets the kernel skip the torque arithmetic
   static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
   void connect(PropertyRequest&) {}

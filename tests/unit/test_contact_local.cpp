@@ -51,13 +51,13 @@ TEST(ContactLocal, PairColumnsValuesAndPeriodicFlag) {
   c->local_now();
   // Contacts: 1-2 (overlap 2e-5) and 3-4 across the periodic x boundary.
   ASSERT_EQ(c->local_rows(), 2u);
-  ASSERT_EQ(c->local_cols, 33);
+  ASSERT_EQ(c->local_cols, 32);
   EXPECT_EQ(c->local_names[12], "id1");
   EXPECT_EQ(c->local_names[27], "shearx");
-  EXPECT_EQ(c->local_names[31], "contactArea");
-  EXPECT_EQ(c->local_names[32], "delta");
+  EXPECT_EQ(c->local_names[30], "contactArea");
+  EXPECT_EQ(c->local_names[31], "delta");
   for (std::size_t r = 0; r < 2; ++r) {
-    const double* row = &c->local[r * 33];
+    const double* row = &c->local[r * 32];
     const long a = static_cast<long>(row[12]), b = static_cast<long>(row[13]);
     const bool periodic = (a == 3 || a == 4);
     EXPECT_EQ(row[14], periodic ? 1.0 : 0.0);
@@ -69,9 +69,9 @@ TEST(ContactLocal, PairColumnsValuesAndPeriodicFlag) {
     // force = normal + tangential parts
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(row[15 + k], row[18 + k] + row[21 + k], 1e-15);
     // Overlap and sphere-sphere contact area pi (r^2 - (d/2)^2) for equal radii.
-    const double dist = 0.002 - row[32];
-    EXPECT_NEAR(row[31], std::numbers::pi * (1e-6 - dist * dist / 4), 1e-18);
-    EXPECT_GT(row[32], 0.0);
+    const double dist = 0.002 - row[31];
+    EXPECT_NEAR(row[30], std::numbers::pi * (1e-6 - dist * dist / 4), 1e-18);
+    EXPECT_GT(row[31], 0.0);
     EXPECT_NE(b, 0);
   }
 }
