@@ -82,9 +82,34 @@ std::size_t Atoms::index_of(long aid) const {
   return map_[aid];
 }
 
+int Atoms::find_column(const std::string& name) const {
+  for (std::size_t c = 0; c < extra_.size(); ++c)
+    if (extra_[c].name == name) return static_cast<int>(c);
+  return -1;
+}
+
 int Atoms::add_column(const std::string& name, int stride, double init) {
+  const int h = find_column(name);
+  if (h >= 0) {
+    Column& c = extra_[h];
+    c.init = init;
+    if (c.stride != stride) {
+      c.stride = stride;
+      c.data.assign(n * stride, init);
+    }
+    return h;
+  }
   extra_.push_back({name, stride, init, std::vector<double>(n * stride, init)});
   return static_cast<int>(extra_.size()) - 1;
+}
+
+void Atoms::resize(std::size_t count) {
+  const std::size_t old = n;
+  n = count;
+  for_each_array([this](auto& vec, int stride) { vec.resize(n * stride); });
+  for (auto& c : extra_)
+    if (n > old) std::fill(c.data.begin() + old * c.stride, c.data.end(), c.init);
+  invalidate();
 }
 
 void Atoms::clear_forces() {

@@ -32,9 +32,17 @@ class Atoms {
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
   // Extra per-atom columns (history of walls, fix state): stride doubles per atom.
+  // A column of the same name is re-attached, not duplicated: a fix defined again
+  // with the same ID (after read_restart, or replacing itself) finds its data.
+  // With a different stride the old data is meaningless and the column restarts at init.
   int add_column(const std::string& name, int stride, double init = 0.0);
   std::vector<double>& column(int handle) { return extra_[handle].data; }
   int column_stride(int handle) const { return extra_[handle].stride; }
+  int ncolumns() const { return static_cast<int>(extra_.size()); }
+  const std::string& column_name(int handle) const { return extra_[handle].name; }
+  int find_column(const std::string& name) const;  // -1 when absent
+  // Set the atom count, growing (new entries zero, extra columns at init) or shrinking every array.
+  void resize(std::size_t count);
   void clear_forces();
 
  private:

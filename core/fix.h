@@ -50,6 +50,13 @@ class Fix {
   virtual double compute_scalar() { return 0.0; }
   virtual double compute_vector(int /*i*/) { return 0.0; }
 
+  // Restart state (write_restart / read_restart). A fix whose behaviour depends on
+  // its history (insertion counters, random streams) appends that state to `out`
+  // and returns true; after read_restart, a fix defined again with the same ID and
+  // style gets the same bytes in read_state() (pack them with core/restart.h).
+  virtual bool write_state(std::string& /*out*/) const { return false; }
+  virtual void read_state(const std::string& /*in*/) {}
+
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }
   // Acceleration this fix imposes on free grains (gravity), for the speed estimate.

@@ -20,26 +20,52 @@ void ContactStore::resize(std::size_t entries) {
   touch.assign(entries, 0);
 }
 
-void ContactStore::save(const NeighborList& list, const std::vector<long>& ids) {
-  saved_.clear();
-  saved_hist_.clear();
-  if (touch.empty()) return;
+SavedContacts ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
+  SavedContacts out;
+  if (touch.empty() || touch.size() != list.size()) return out;
   const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
   for (std::size_t i = 0; i < n; ++i)
     for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
       if (!touch[k]) continue;
-      saved_.push_back({ids[i], ids[list.j[k]], saved_hist_.size()});
-      saved_hist_.insert(saved_hist_.end(), hist.begin() + k * size, hist.begin() + (k + 1) * size);
+      out.ids.push_back(ids[i]);
+      out.ids.push_back(ids[list.j[k]]);
+      out.hist.insert(out.hist.end(), hist.begin() + k * size, hist.begin() + (k + 1) * size);
     }
+  return out;
+}
+
+void ContactStore::save(const NeighborList& list, const std::vector<long>& ids) {
+  saved_ = touching(list, ids);
+  // Restart contacts go after the list's own: restore() sees them the same way.
+  saved_.ids.insert(saved_.ids.end(), injected_.ids.begin(), injected_.ids.end());
+  saved_.hist.insert(saved_.hist.end(), injected_.hist.begin(), injected_.hist.end());
+  injected_.clear();
+}
+
+std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& from, const SavedContacts& c) {
+  std::vector<int> src(size, -1);  // our slot m <- their slot src[m]
+  std::vector<std::string> missing;
+  for (int m = 0; m < size; ++m) {
+    for (std::size_t q = 0; q < from.size(); ++q)
+      if (from[q].name == slots[m].name) src[m] = static_cast<int>(q);
+    if (src[m] < 0) missing.push_back(slots[m].name);
+  }
+  const std::size_t w = from.size();
+  for (std::size_t s = 0; s < c.count(); ++s) {
+    injected_.ids.push_back(c.ids[2 * s]);
+    injected_.ids.push_back(c.ids[2 * s + 1]);
+    for (int m = 0; m < size; ++m) injected_.hist.push_back(src[m] < 0 ? 0.0 : c.hist[s * w + src[m]]);
+  }
+  return missing;
 }
 
 void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   resize(list.size());
-  if (saved_.empty()) return;
+  if (saved_.ids.empty()) return;
   auto key = [](long a, long b) { return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b); };
   std::unordered_map<std::uint64_t, std::size_t> where;
-  where.reserve(saved_.size() * 2);
-  for (std::size_t s = 0; s < saved_.size(); ++s) where[key(saved_[s].idi, saved_[s].idj)] = s;
+  where.reserve(saved_.count() * 2);
+  for (std::size_t s = 0; s < saved_.count(); ++s) where[key(saved_.ids[2 * s], saved_.ids[2 * s + 1])] = s;
   const std::size_t n = list.first.size() - 1;
   for (std::size_t i = 0; i < n; ++i)
     for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
@@ -51,15 +77,14 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
         swapped = true;
       }
       if (it == where.end()) continue;
-      const Saved& s = saved_[it->second];
+      const std::size_t at = it->second * size;
       touch[k] = 1;
       for (int m = 0; m < size; ++m) {
-        const double h = saved_hist_[s.at + m];
+        const double h = saved_.hist[at + m];
         hist[k * size + m] = (swapped && slots[m].flip) ? -h : h;
       }
     }
   saved_.clear();
-  saved_hist_.clear();
 }
 
 bool Neighbor::decide(const Atoms& atoms, long step) const {

@@ -27,6 +27,15 @@ struct HistorySlot {
   bool flip;  // negate when the pair is seen as (j, i)
 };
 
+// History of touching contacts keyed by atom ids, independent of atom order
+// and of the list (what survives a rebuild, and what a restart file holds).
+struct SavedContacts {
+  std::vector<long> ids;     // id_i, id_j per contact
+  std::vector<double> hist;  // history values per contact, in slot order
+  std::size_t count() const { return ids.size() / 2; }
+  void clear() { ids.clear(), hist.clear(); }
+};
+
 class ContactStore {
  public:
   int size = 0;                       // doubles per contact
@@ -40,14 +49,15 @@ class ContactStore {
   // have been deleted, inserted or sorted since).
   void save(const NeighborList& list, const std::vector<long>& ids);
   void restore(const NeighborList& list, const Atoms& atoms);
+  // The touching contacts of `list` (built over atoms whose ids were `ids`), as save() keeps them.
+  SavedContacts touching(const NeighborList& list, const std::vector<long>& ids) const;
+  // Contacts from a restart file with slots `from`, matched to ours by name; the
+  // next rebuild restores them like its own. Returns our slot names absent from
+  // `from` (those values start at zero).
+  std::vector<std::string> inject(const std::vector<HistorySlot>& from, const SavedContacts& c);
 
  private:
-  struct Saved {
-    long idi, idj;
-    std::size_t at;
-  };
-  std::vector<Saved> saved_;
-  std::vector<double> saved_hist_;
+  SavedContacts saved_, injected_;
 };
 
 class Neighbor {
@@ -68,6 +78,8 @@ class Neighbor {
   bool decide(const Atoms& atoms, long step) const;
   double max_displacement_sq(const Atoms& atoms) const;
   double cutoff() const { return cutoff_; }
+  // Atom ids in index order at the last build: how to read `list` after atoms moved.
+  const std::vector<long>& built_ids() const { return ids_; }
 
  private:
   std::vector<double> xhold_;

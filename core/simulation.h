@@ -66,6 +66,20 @@ class Simulation {
   bool lost_ignore = false;
   double progress_every_s = 10.0;  // wall seconds between progress lines
 
+  // What read_restart holds until the deck declares the styles that own it again
+  // (core/restart.h): pair history, injected into the pair's ContactStore at the
+  // next setup, and fix states, handed to a fix defined with the same ID and style.
+  struct RestartPending {
+    std::string file;                   // for messages
+    std::string pair_model;             // PairGran::describe() of the writer
+    std::vector<HistorySlot> slots;     // history slots of the stored contacts
+    SavedContacts contacts;
+    struct FixState {
+      std::string style, bytes;
+    };
+    std::map<std::string, FixState> fix_states;  // by fix ID
+  } restart;
+
   // Output to screen and log.
   void print(const std::string& line);
   void warn(const std::string& line);
@@ -114,6 +128,7 @@ class Simulation {
   void check_atoms();  // NaN / lost atoms: stop with step, atom, cause
   void force_and_history();
   void rebuild_if_due();
+  void claim_restart_leftovers();
   std::chrono::steady_clock::time_point t0_;
 };
 

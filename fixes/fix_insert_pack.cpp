@@ -20,6 +20,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/restart.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "fixes/fix_particledistribution_discrete.h"
@@ -257,6 +258,30 @@ class FixInsertPack : public Fix {
 
   double compute_vector(int i) override {
     return i == 1 ? static_cast<double>(ninserted_) : i == 2 ? mass_inserted_ : 0.0;
+  }
+
+  // Restart state (LIGGGHTS fix insert stores the same): next insertion step,
+  // counters and this fix's random streams, so a restarted deck neither inserts
+  // again (insert_every once) nor repeats positions. The templates' and the
+  // distribution's own streams are theirs to store.
+  bool write_state(std::string& out) const override {
+    static_assert(std::is_trivially_copyable_v<Rng>);
+    restart::Packer p;
+    p.put<std::int64_t>(next_step_);
+    p.put<std::int64_t>(ninserted_);
+    p.put(mass_inserted_);
+    p.put(rng_);
+    p.put(pos_rng_);
+    out = p.bytes;
+    return true;
+  }
+  void read_state(const std::string& in) override {
+    restart::Unpacker u(in, "the restart state of fix " + id);
+    next_step_ = u.get<std::int64_t>();
+    ninserted_ = u.get<std::int64_t>();
+    mass_inserted_ = u.get<double>();
+    rng_ = u.get<Rng>();
+    pos_rng_ = u.get<Rng>();
   }
 
  private:

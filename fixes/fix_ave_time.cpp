@@ -1,0 +1,488 @@
+// fix ID group ave/time Nevery Nrepeat Nfreq value1 value2 ... keyword args ...
+//   value = c_ID, c_ID[I], f_ID, f_ID[I], v_name (global scalars; global vectors with mode vector)
+//   keywords: mode scalar|vector, ave one|running|window M, start S, off M, file F,
+//             overwrite, title1/title2/title3 STRING, hdf5 F (sable addition)
+// LIGGGHTS 3.8 semantics and file format (fix_ave_time.cpp): values sampled on
+// Nrepeat steps Nevery apart ending on each multiple of Nfreq, averaged, then
+// combined across Nfreq outputs per `ave`. Outputs f_ID (first value) and
+// f_ID[i] (value i; row i in vector mode). `hdf5 F` writes datasets `step` (N)
+// and `values` (N x nvalues, or N x nrows x nvalues), attribute `columns`.
+// Global arrays (c_ID[I] in vector mode) are not available: sable's computes and
+// fixes have none.
+#include "fixes/fix_ave_time.h"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <type_traits>
+
+#include "core/error.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+#include "core/thermo.h"
+#include "core/variable.h"
+
+namespace sable {
+namespace ave {
+
+void Schedule::parse(const Args& a, std::size_t i) {
+  nevery = a.integer(i, "Nevery (steps between samples)");
+  nrepeat = a.integer(i + 1, "Nrepeat (samples per average)");
+  nfreq = a.integer(i + 2, "Nfreq (steps between averages)");
+  if (nevery <= 0) a.fail(i, "Nevery > 0");
+  if (nrepeat <= 0) a.fail(i + 1, "Nrepeat > 0");
+  if (nfreq <= 0) a.fail(i + 2, "Nfreq > 0");
+  if (nfreq % nevery) a.fail(i + 2, "Nfreq a multiple of Nevery (" + std::to_string(nevery) + ")");
+  if ((nrepeat - 1) * nevery >= nfreq)
+    a.fail(i + 1, "Nrepeat with (Nrepeat-1)*Nevery < Nfreq (samples of one average must not overlap the next)");
+}
+
+long Schedule::first_after(long step) const {  // LIGGGHTS' nextvalid()
+  long n = (step / nfreq) * nfreq + nfreq;
+  while (n < start) n += nfreq;
+  if (n - nfreq == step && nrepeat == 1)
+    n = step;
+  else
+    n -= (nrepeat - 1) * nevery;
+  if (n < step) n += nfreq;
+  return n;
+}
+
+TextFile::~TextFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void TextFile::open(const std::string& path, const Args& a, std::size_t word) {
+  path_ = path;
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
+  if (fd_ < 0) a.fail(word, "a writable file (" + std::string(std::strerror(errno)) + ")");
+}
+
+void TextFile::write_all(int fd, const std::string& s) {
+  for (std::size_t done = 0; done < s.size();) {
+    const ssize_t w = ::write(fd, s.data() + done, s.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) fail("writing '" + path_ + "' failed: " + std::strerror(errno));
+    done += static_cast<std::size_t>(w);
+  }
+}
+
+void TextFile::header(const std::string& text) {
+  header_ = text;
+  write_all(fd_, text);
+}
+
+void TextFile::block(const std::string& text) {
+  if (!overwrite) return write_all(fd_, text);
+  const std::string tmp = path_ + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) fail("cannot write '" + tmp + "': " + std::strerror(errno));
+  write_all(fd, header_ + text);
+  ::close(fd);
+  std::filesystem::rename(tmp, path_);
+  ::close(fd_);  // the old descriptor points at the replaced file
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND);
+}
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "H5Series stores hid_t as int64_t");
+
+namespace {
+[[noreturn]] void h5fail(const std::string& path, const std::string& what) {
+  fail("HDF5 file '" + path + "': cannot " + what);
+}
+}  // namespace
+
+H5Series::H5Series(const std::string& path) : path_(path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our messages instead of HDF5's error stack
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);  // SWMR needs the latest format
+  file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  H5Pclose(fapl);
+  if (file_ < 0) h5fail(path, "be created (is the directory writable, or the file open elsewhere?)");
+}
+
+H5Series::~H5Series() {
+  for (auto& s : series_) H5Dclose(s.dset);
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void H5Series::attribute(const std::string& name, const std::vector<std::string>& values) {
+  std::vector<const char*> p;
+  for (auto& v : values) p.push_back(v.c_str());
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  const hsize_t n = values.size();
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t attr = H5Acreate2(file_, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Awrite(attr, type, p.data()) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+  if (!ok) h5fail(path_, "write attribute '" + name + "'");
+}
+
+void H5Series::constant(const std::string& name, const std::vector<double>& values) {
+  const hsize_t n = values.size();
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t d = H5Dcreate2(file_, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const bool ok = d >= 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
+  if (d >= 0) H5Dclose(d);
+  H5Sclose(space);
+  if (!ok) h5fail(path_, "write dataset '" + name + "'");
+}
+
+int H5Series::series(const std::string& name, const std::vector<std::size_t>& row_shape, bool integer) {
+  Series s;
+  s.integer = integer;
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{1};
+  hsize_t row = 1;
+  for (auto k : row_shape) {
+    s.shape.push_back(k);
+    dims.push_back(k);
+    maxdims.push_back(k);
+    chunk.push_back(k);
+    row *= k;
+  }
+  chunk[0] = std::clamp<hsize_t>(8192 / std::max<hsize_t>(row, 1), 1, 1024);  // chunks of ~64 KiB at most
+  const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data());
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
+  s.dset =
+      H5Dcreate2(file_, name.c_str(), integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  if (s.dset < 0) h5fail(path_, "create dataset '" + name + "'");
+  series_.push_back(s);
+  return static_cast<int>(series_.size()) - 1;
+}
+
+void H5Series::start() {
+  if (H5Fstart_swmr_write(file_) < 0) h5fail(path_, "start SWMR writing");
+}
+
+void H5Series::append_raw(int k, const void* row) {
+  Series& s = series_[k];
+  std::vector<hsize_t> dims{s.rows + 1}, start{s.rows}, count{1};
+  for (auto d : s.shape) {
+    dims.push_back(d);
+    start.push_back(0);
+    count.push_back(d);
+  }
+  const int rank = static_cast<int>(dims.size());
+  bool ok = H5Dset_extent(s.dset, dims.data()) >= 0;
+  const hid_t fspace = H5Dget_space(s.dset);
+  const hid_t mspace = H5Screate_simple(rank, count.data(), nullptr);
+  ok = ok && H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0;
+  ok = ok && H5Dwrite(s.dset, s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, row) >= 0;
+  ok = ok && H5Dflush(s.dset) >= 0;  // on disk now: a killed run keeps this row
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  if (!ok) h5fail(path_, "append to a dataset (disk full?)");
+  ++s.rows;
+}
+
+void H5Series::append(int k, const double* row) { append_raw(k, row); }
+void H5Series::append(int k, std::int64_t value) { append_raw(k, &value); }
+
+}  // namespace ave
+
+namespace {
+
+class FixAveTime : public Fix {
+ public:
+  FixAveTime(Simulation& s, const Args& a) : Fix(s, a) {
+    hooks = END_OF_STEP;
+    sched_.parse(a, 4);
+    std::size_t i = 7;
+    for (; i < a.size(); ++i) {
+      Value v;
+      if (!parse_reference(a[i], v.kind, v.id, v.index)) break;
+      v.word = a[i];
+      v.at = i;
+      values_.push_back(v);
+    }
+    if (values_.empty()) a.fail(7, "at least one value: c_ID, c_ID[I], f_ID, f_ID[I] or v_name");
+    std::string file, h5file;
+    std::size_t file_at = 0;
+    std::string title[3];
+    bool titled[3] = {false, false, false};
+    std::vector<long> off;
+    for (; i < a.size();) {
+      const std::string& k = a[i];
+      if (k == "mode") {
+        const std::string& m = a.word(i + 1, "scalar or vector");
+        if (m != "scalar" && m != "vector") a.fail(i + 1, "scalar or vector");
+        vector_mode_ = m == "vector";
+        i += 2;
+      } else if (k == "ave") {
+        const std::string& m = a.word(i + 1, "one, running or window M");
+        if (m == "one")
+          ave_ = One;
+        else if (m == "running")
+          ave_ = Running;
+        else if (m == "window") {
+          ave_ = Window;
+          nwindow_ = a.integer(i + 2, "the window length M (outputs)");
+          if (nwindow_ <= 0) a.fail(i + 2, "a window of M > 0 outputs");
+          ++i;
+        } else
+          a.fail(i + 1, "one, running or window M");
+        i += 2;
+      } else if (k == "start") {
+        sched_.start = a.integer(i + 1, "the first step to average from");
+        i += 2;
+      } else if (k == "off") {
+        off.push_back(a.integer(i + 1, "the number of a value not to average (1..N)"));
+        if (off.back() < 1 || off.back() > static_cast<long>(values_.size()))
+          a.fail(i + 1, "a value number between 1 and " + std::to_string(values_.size()));
+        i += 2;
+      } else if (k == "file") {
+        file = a.word(i + 1, "a file name");
+        file_at = i + 1;
+        i += 2;
+      } else if (k == "hdf5") {
+        h5file = a.word(i + 1, "an HDF5 file name");
+        i += 2;
+      } else if (k == "overwrite") {
+        overwrite_ = true;
+        ++i;
+      } else if (k == "title1" || k == "title2" || k == "title3") {
+        const int t = k[5] - '1';
+        title[t] = a.word(i + 1, "a title string");
+        titled[t] = true;
+        i += 2;
+      } else {
+        a.fail(i,
+               "a value (c_ID, f_ID, v_name) or an ave/time keyword: mode, ave, start, off, file, overwrite, "
+               "title1, title2, title3, hdf5");
+      }
+    }
+    if (overwrite_ && ave_ != Running) a.fail_line("'overwrite' needs 'ave running' (as in LIGGGHTS)");
+    for (auto& v : values_) v.off = std::find(off.begin(), off.end(), &v - values_.data() + 1) != off.end();
+    check_values();
+    scalar_flag = !vector_mode_;
+    vector_size = vector_mode_ ? nrows_ : static_cast<int>(values_.size());
+    const std::size_t width = (vector_mode_ ? nrows_ : 1) * values_.size();
+    sample_.assign(width, 0.0);
+    total_.assign(width, 0.0);
+    if (ave_ == Window) window_.assign(nwindow_ * width, 0.0);
+
+    if (!file.empty()) {
+      text_.open(file, a, file_at);
+      text_.overwrite = overwrite_;
+      std::string h = titled[0] ? title[0] : "# Time-averaged data for fix " + id;
+      h += "\n";
+      if (titled[1])
+        h += title[1] + "\n";
+      else if (!vector_mode_) {
+        h += "# TimeStep";
+        for (auto& v : values_) h += " " + v.word;
+        h += "\n";
+      } else
+        h += "# TimeStep Number-of-rows\n";
+      if (vector_mode_) {
+        if (titled[2])
+          h += title[2] + "\n";
+        else {
+          h += "# Row";
+          for (auto& v : values_) h += " " + v.word;
+          h += "\n";
+        }
+      }
+      text_.header(h);
+    }
+    if (!h5file.empty()) {
+      h5_ = std::make_unique<ave::H5Series>(h5file);
+      std::vector<std::string> cols;
+      for (auto& v : values_) cols.push_back(v.word);
+      h5_->attribute("columns", cols);
+      h5_->attribute("fix", {id, style, args.joined(1)});
+      std::vector<std::size_t> shape{values_.size()};
+      if (vector_mode_) shape.insert(shape.begin(), nrows_);
+      h5_values_ = h5_->series("values", shape, false);
+      h5_step_ = h5_->series("step", {}, true);
+      h5_->start();
+    }
+    nvalid_ = sched_.first_after(s.step);
+  }
+
+  void init() override {
+    for (auto& v : values_) resolve(v);
+    if (nvalid_ < sim.step) {
+      irepeat_ = 0;
+      nvalid_ = sched_.first_after(sim.step);
+    }
+  }
+  void setup() override { end_of_step(); }  // LIGGGHTS: samples at setup when due (step 0 with Nrepeat 1)
+
+  void end_of_step() override {
+    if (sim.step != nvalid_) return;
+    const std::size_t nv = values_.size(), rows = vector_mode_ ? nrows_ : 1;
+    if (irepeat_ == 0) std::fill(sample_.begin(), sample_.end(), 0.0);
+    for (std::size_t j = 0; j < nv; ++j)
+      for (std::size_t r = 0; r < rows; ++r) {
+        const double x = value(values_[j], static_cast<int>(r));
+        double& s = sample_[r * nv + j];
+        s = values_[j].off ? x : s + x;
+      }
+    if (++irepeat_ < sched_.nrepeat) {
+      nvalid_ += sched_.nevery;
+      return;
+    }
+    irepeat_ = 0;
+    nvalid_ = sim.step + sched_.nfreq - (sched_.nrepeat - 1) * sched_.nevery;
+    for (std::size_t k = 0; k < sample_.size(); ++k)
+      if (!values_[k % nv].off) sample_[k] /= static_cast<double>(sched_.nrepeat);
+    // Combine with earlier outputs, as LIGGGHTS (same operations, same rounding).
+    const std::size_t w = sample_.size();
+    if (ave_ == One) {
+      total_ = sample_;
+      norm_ = 1;
+    } else if (ave_ == Running) {
+      for (std::size_t k = 0; k < w; ++k) total_[k] += sample_[k];
+      ++norm_;
+    } else {
+      double* slot = &window_[iwindow_ * w];
+      for (std::size_t k = 0; k < w; ++k) {
+        total_[k] += sample_[k];
+        if (window_full_) total_[k] -= slot[k];
+        slot[k] = sample_[k];
+      }
+      if (++iwindow_ == nwindow_) iwindow_ = 0, window_full_ = true;
+      norm_ = window_full_ ? nwindow_ : iwindow_;
+    }
+    for (std::size_t k = 0; k < w; ++k)
+      if (values_[k % nv].off) total_[k] = norm_ * sample_[k];
+    write_outputs();
+  }
+
+  double compute_scalar() override { return norm_ ? total_[0] / norm_ : 0.0; }
+  double compute_vector(int i) override {
+    if (i < 1 || i > vector_size)
+      args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1.." + std::to_string(vector_size));
+    // Vector mode: row i of the first value (LIGGGHTS forgets to divide by norm there; we do not).
+    const std::size_t k = vector_mode_ ? static_cast<std::size_t>(i - 1) * values_.size() : i - 1;
+    return norm_ ? total_[k] / norm_ : 0.0;
+  }
+
+ private:
+  struct Value {
+    char kind = 0;  // c, f, v
+    std::string id, word;
+    int index = 0;  // 0: scalar (or whole vector in vector mode)
+    std::size_t at = 0;
+    bool off = false;
+    Compute* c = nullptr;
+    Fix* f = nullptr;
+  };
+  enum Ave { One, Running, Window };
+  ave::Schedule sched_;
+  std::vector<Value> values_;
+  bool vector_mode_ = false, overwrite_ = false;
+  Ave ave_ = One;
+  long nwindow_ = 0, iwindow_ = 0;
+  bool window_full_ = false;
+  int nrows_ = 1;
+  long nvalid_ = 0, irepeat_ = 0, norm_ = 0;
+  std::vector<double> sample_, total_, window_;  // [row * nvalues + value]
+  ave::TextFile text_;
+  std::unique_ptr<ave::H5Series> h5_;
+  int h5_values_ = -1, h5_step_ = -1;
+
+  // Errors at the value's own word, with what was expected there.
+  void check_values() {
+    int len = -1;
+    for (auto& v : values_) {
+      resolve(v);
+      int n = 0;
+      if (v.kind == 'v') {
+        if (vector_mode_) args.fail(v.at, "c_ID or f_ID (variables cannot be used with mode vector)");
+        if (sim.variables->is_atom_style(v.id))
+          args.fail(v.at, "an equal-style variable (v_" + v.id + " is atom-style)");
+        continue;
+      }
+      const bool scalar = v.c ? v.c->scalar_flag : v.f->scalar_flag != 0;
+      const int size = v.c ? v.c->vector_size : v.f->vector_size;
+      const std::string what = std::string(v.c ? "compute " : "fix ") + v.id;
+      if (!vector_mode_) {
+        if (v.index == 0 && !scalar)
+          args.fail(v.at, "a global scalar (" + what + " has none" + (size ? "; use " + v.word + "[I]" : "") + ")");
+        if (v.index > 0 && v.index > size)
+          args.fail(v.at, "an index within the global vector of " + what + " (1.." + std::to_string(size) + ")");
+        continue;
+      }
+      if (v.index > 0) args.fail(v.at, "a global vector without [I] (sable computes and fixes have no global arrays)");
+      if (size <= 0) args.fail(v.at, "a global vector (" + what + " has none)");
+      n = size;
+      if (len >= 0 && n != len)
+        args.fail(v.at, "a vector of the same length as the others (" + std::to_string(len) + ", not " +
+                            std::to_string(n) + ")");
+      len = n;
+    }
+    if (vector_mode_) nrows_ = len;
+  }
+
+  void resolve(Value& v) {
+    v.c = nullptr;
+    v.f = nullptr;
+    if (v.kind == 'c' && !(v.c = sim.find_compute(v.id)))
+      args.fail(v.at, "an existing compute ID ('" + v.id + "' is not defined)");
+    if (v.kind == 'f' && !(v.f = sim.find_fix(v.id)))
+      args.fail(v.at, "an existing fix ID ('" + v.id + "' is not defined)");
+    if (v.kind == 'f' && v.f == this) args.fail(v.at, "another fix (a fix cannot average itself)");
+    if (v.kind == 'v' && !sim.variables->exists(v.id)) args.fail(v.at, "a defined variable ('" + v.id + "' is not)");
+  }
+
+  double value(const Value& v, int row) {
+    if (v.kind == 'c') return vector_mode_ ? v.c->vector(row + 1) : v.index ? v.c->vector(v.index) : v.c->scalar();
+    if (v.kind == 'f')
+      return vector_mode_ ? v.f->compute_vector(row + 1)
+             : v.index    ? v.f->compute_vector(v.index)
+                          : v.f->compute_scalar();
+    double x;
+    if (!sim.variables->numeric(v.id, x)) args.fail(v.at, "an equal-style variable");
+    return x;
+  }
+
+  void write_outputs() {
+    const std::size_t nv = values_.size(), w = total_.size();
+    std::vector<double> out(w);
+    for (std::size_t k = 0; k < w; ++k) out[k] = total_[k] / norm_;
+    if (text_.is_open()) {
+      char buf[64];
+      std::string s;
+      if (!vector_mode_) {
+        std::snprintf(buf, sizeof buf, "%ld", sim.step);
+        s = buf;
+        for (double x : out) std::snprintf(buf, sizeof buf, " %g", x), s += buf;
+        s += "\n";
+      } else {
+        std::snprintf(buf, sizeof buf, "%ld %d\n", sim.step, nrows_);
+        s = buf;
+        for (int r = 0; r < nrows_; ++r) {
+          s += std::to_string(r + 1);
+          for (std::size_t j = 0; j < nv; ++j) std::snprintf(buf, sizeof buf, " %g", out[r * nv + j]), s += buf;
+          s += "\n";
+        }
+      }
+      text_.block(s);
+    }
+    if (h5_) {
+      h5_->append(h5_values_, out.data());
+      h5_->append(h5_step_, static_cast<std::int64_t>(sim.step));  // last: the record is complete
+    }
+  }
+};
+
+}  // namespace
+
+SABLE_FIX("ave/time", FixAveTime);
+
+}  // namespace sable
