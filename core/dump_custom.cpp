@@ -116,7 +116,8 @@ class DumpCustom : public Dump {
       });
     }
 
-    // The whole snapshot goes out in one write(): a killed run leaves only complete snapshots.
+    // The whole snapshot goes out in one write(): earlier snapshots are never touched again; a kill
+    // -9 can still cut the one in flight (the kernel may stop a write between pages).
     std::string out;
     out.reserve(200 + n * nc * 14);
     char buf[256];
