@@ -16,6 +16,7 @@
 //               double contact_time(const ContactTimeInput&) const;
 //   tangential: Vec3 force(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 //   rolling:    Vec3 torque(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -24,6 +25,7 @@
 
 #include "contact_models/contact.h"
 #include "contact_models/materials.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -49,6 +51,7 @@ struct PairBatch {
   std::uint8_t* touch = nullptr;
   StepContext ctx;
   std::uint32_t groupbit = ~0u;           // records: both grains must be in this group
+  long list_version = -1;                 // changes whenever the list is rebuilt (thread partition cache)
   // LIGGGHTS 3.8 mode (pair_gran.h): a separated pair keeps its history until
   // the first force pass after a neighbour rebuild (`rebuilt`), then loses it.
   bool keep_until_rebuild = false, rebuilt = false;
@@ -87,6 +90,176 @@ struct ContactRecords {
     rows.clear();
     hist.clear();
   }
+};
+
+// State of the two grains of a pair contact, as the kinematics below need it.
+struct PairState {
+  double dx, dy, dz;   // x_i - (x_j + image shift)
+  double radi, radj, mi, mj;
+  double vr[3];        // v_i - v_j
+  double wi[3], wj[3];
+  int frozen;          // bit 0: i frozen, bit 1: j frozen (fix freeze: infinitely heavy)
+};
+
+// Contact kinematics of a touching pair (LIGGGHTS' conventions, contact.h).
+// One definition for the force loop and the per-contact records, so both give
+// the same numbers bit for bit.
+[[gnu::always_inline]] inline void pair_kinematics(Contact& c, const PairState& s) {
+  c.is_wall = false;
+  const double rsq = s.dx * s.dx + s.dy * s.dy + s.dz * s.dz;
+  c.r = std::sqrt(rsq);
+  const double rinv = 1.0 / c.r;
+  c.en[0] = s.dx * rinv;
+  c.en[1] = s.dy * rinv;
+  c.en[2] = s.dz * rinv;
+  const double radsum = s.radi + s.radj;
+  c.deltan = radsum - c.r;
+  c.radi = s.radi;
+  c.radj = s.radj;
+  c.reff = s.radi * s.radj / radsum;
+  const double meff = s.mi * s.mj / (s.mi + s.mj);
+  c.meff = (s.frozen & 2) ? s.mi : (s.frozen & 1) ? s.mj : meff;
+  c.vn = s.vr[0] * c.en[0] + s.vr[1] * c.en[1] + s.vr[2] * c.en[2];
+  c.cri = s.radi - 0.5 * c.deltan;
+  c.crj = s.radj - 0.5 * c.deltan;
+  const double wr0 = (c.cri * s.wi[0] + c.crj * s.wj[0]) * rinv;
+  const double wr1 = (c.cri * s.wi[1] + c.crj * s.wj[1]) * rinv;
+  const double wr2 = (c.cri * s.wi[2] + c.crj * s.wj[2]) * rinv;
+  c.vtr[0] = s.vr[0] - c.vn * c.en[0] - (s.dz * wr1 - s.dy * wr2);
+  c.vtr[1] = s.vr[1] - c.vn * c.en[1] - (s.dx * wr2 - s.dz * wr0);
+  c.vtr[2] = s.vr[2] - c.vn * c.en[2] - (s.dy * wr0 - s.dx * wr1);
+  c.wroll[0] = s.wi[0] - s.wj[0];
+  c.wroll[1] = s.wi[1] - s.wj[1];
+  c.wroll[2] = s.wi[2] - s.wj[2];
+}
+
+// Force on i and torques on i and j of one contact.
+struct ContactParts {
+  double f[3], ti[3], tj[3];
+};
+
+// Touching contacts of a stretch of the half list, gathered into columns
+// (see GranKernel::pair_forces), and what the scatter applies, in list order.
+template <int kH>
+struct PairChunk {
+  static constexpr int kCap = 64;
+  int n = 0;    // contacts to evaluate (columns 0..n-1)
+  int nev = 0;  // scatter events in list order: e >= 0 column e; e < 0 precomputed cross contact ~e
+  int ev[kCap];
+  int k[kCap], i[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
+  alignas(64) double dx[kCap], dy[kCap], dz[kCap], radi[kCap], radj[kCap], mi[kCap], mj[kCap];
+  alignas(64) double vr[3][kCap], wi[3][kCap], wj[3][kCap];
+  alignas(64) double h[kH > 0 ? kH : 1][kCap];
+  alignas(64) double f[3][kCap], ti[3][kCap], tj[3][kCap];
+
+  [[gnu::always_inline]] inline void contact(int m, Contact& c) const {
+    PairState s;
+    s.dx = dx[m];
+    s.dy = dy[m];
+    s.dz = dz[m];
+    s.radi = radi[m];
+    s.radj = radj[m];
+    s.mi = mi[m];
+    s.mj = mj[m];
+    s.frozen = frozen[m];
+    for (int d = 0; d < 3; ++d) {
+      s.vr[d] = vr[d][m];
+      s.wi[d] = wi[d][m];
+      s.wj[d] = wj[d][m];
+    }
+    pair_kinematics(c, s);
+    c.itype = itype[m];
+    c.jtype = jtype[m];
+    c.tp = tp[m];
+  }
+  [[gnu::always_inline]] inline void store(int m, const ContactParts& p) {
+    for (int d = 0; d < 3; ++d) {
+      f[d][m] = p.f[d];
+      ti[d][m] = p.ti[d];
+      tj[d][m] = p.tj[d];
+    }
+  }
+};
+
+// State of a grain touching a wall.
+struct WallState {
+  double en[3];  // unit normal, wall -> grain centre
+  double deltan, radi, mi;
+  double vr[3];  // v_i - v_wall at the contact
+  double wi[3];
+};
+
+// Wall contact kinematics (LIGGGHTS' conventions: the wall has infinite
+// radius and mass). Shared by the force pass and the per-contact records.
+[[gnu::always_inline]] inline void wall_kinematics(Contact& c, const WallState& s) {
+  c.is_wall = true;
+  c.en[0] = s.en[0];
+  c.en[1] = s.en[1];
+  c.en[2] = s.en[2];
+  c.deltan = s.deltan;
+  c.radi = s.radi;
+  c.radj = 0.0;
+  c.r = c.radi - c.deltan;
+  c.reff = c.radi;  // wall: infinite radius ...
+  c.meff = s.mi;    // ... and infinite mass
+  c.vn = s.vr[0] * s.en[0] + s.vr[1] * s.en[1] + s.vr[2] * s.en[2];
+  c.cri = c.radi - 0.5 * c.deltan;
+  c.crj = 0.0;
+  // LIGGGHTS: wr = cri w_i / r and vtr = vt - wr x (r en), i.e. contact point of i at -cri en.
+  const double q = c.cri / c.r;
+  c.wroll[0] = q * s.wi[0];
+  c.wroll[1] = q * s.wi[1];
+  c.wroll[2] = q * s.wi[2];
+  const double dx = s.en[0] * c.r, dy = s.en[1] * c.r, dz = s.en[2] * c.r;
+  c.vtr[0] = s.vr[0] - c.vn * s.en[0] - (dz * c.wroll[1] - dy * c.wroll[2]);
+  c.vtr[1] = s.vr[1] - c.vn * s.en[1] - (dx * c.wroll[2] - dz * c.wroll[0]);
+  c.vtr[2] = s.vr[2] - c.vn * s.en[2] - (dy * c.wroll[0] - dx * c.wroll[1]);
+}
+
+// Wall contacts gathered into columns (GranKernel::wall_forces).
+template <int kH>
+struct WallChunk {
+  static constexpr int kCap = 64;
+  int n = 0;
+  int itype[kCap], jtype[kCap], tp[kCap];
+  alignas(64) double en[3][kCap], deltan[kCap], radi[kCap], mi[kCap], vr[3][kCap], wi[3][kCap];
+  alignas(64) double h[kH > 0 ? kH : 1][kCap];
+  alignas(64) double f[3][kCap], ti[3][kCap];
+
+  [[gnu::always_inline]] inline void contact(int m, Contact& c) const {
+    WallState s;
+    for (int d = 0; d < 3; ++d) {
+      s.en[d] = en[d][m];
+      s.vr[d] = vr[d][m];
+      s.wi[d] = wi[d][m];
+    }
+    s.deltan = deltan[m];
+    s.radi = radi[m];
+    s.mi = mi[m];
+    wall_kinematics(c, s);
+    c.itype = itype[m];
+    c.jtype = jtype[m];
+    c.tp = tp[m];
+  }
+  [[gnu::always_inline]] inline void store(int m, const ContactParts& p) {
+    for (int d = 0; d < 3; ++d) {
+      f[d][m] = p.f[d];
+      ti[d][m] = p.ti[d];
+    }
+  }
+};
+
+// Thread partition of the half list for the parallel force pass (GranKernel::pair_forces).
+struct PairPartition {
+  long version = -1;
+  int nparts = 0;
+  std::size_t natoms = 0, nentries = 0;
+  std::vector<int> lo;                   // nparts + 1 atom bounds of the ranges
+  std::vector<int> cross_first;          // nparts + 1: cross entries of range t
+  std::vector<int> cross_k, cross_i;     // per cross entry (list order): entry and its atom i
+  std::vector<int> in_first, in_slot;    // per atom: incoming cross entries, in list order
+  std::vector<double> val;               // 9 per cross entry: force on i, torque on i, torque on j
+  std::vector<std::uint8_t> on;          // cross entry touching this step
 };
 
 class ContactKernel {
@@ -134,13 +307,13 @@ class GranKernel final : public ContactKernel {
     rolling_.connect(p);
   }
   const std::vector<HistorySlot>& history_slots() const override { return slots_; }
-  void pair_forces(const PairBatch& b) override { pair_loop<false>(b, nullptr); }
+  void pair_forces(const PairBatch& b) override { pair_forces_staged(b); }
   void pair_records(const PairBatch& b, ContactRecords& out) override {
     out.clear();
     out.hist_size = kH;
     pair_loop<true>(b, &out);
   }
-  Vec3 wall_forces(const WallBatch& b) override { return wall_loop<false>(b, nullptr); }
+  Vec3 wall_forces(const WallBatch& b) override { return wall_forces_staged(b); }
   void wall_records(const WallBatch& b, ContactRecords& out) override {
     out.clear();
     out.hist_size = kH;
@@ -155,13 +328,13 @@ class GranKernel final : public ContactKernel {
  private:
   std::vector<HistorySlot> slots_;
   std::shared_ptr<Materials> materials_;
+  PairPartition part_;
+  using Chunk = PairChunk<kH>;
 
-  struct Parts {
-    double f[3], ti[3], tj[3];
-  };
+  using Parts = ContactParts;
 
   // All sub-models on one contact: force on i and torques on i and j.
-  inline Parts evaluate(const Contact& c, double* h, const StepContext& ctx) const {
+  [[gnu::always_inline]] inline Parts evaluate(const Contact& c, double* h, const StepContext& ctx) const {
     const NormalForce nf = normal_.force(c, h, ctx);
     const Vec3 ft = tangential_.force(c, nf, h + kHN, ctx);
     const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHT, ctx);
@@ -180,160 +353,482 @@ class GranKernel final : public ContactKernel {
     return p;
   }
 
-  // kRecord: per-contact output at the current state; history is copied, never written.
+  // Per-contact records at the current state (compute pair/gran/local): a plain
+  // loop over the list; history is copied, never written.
   template <bool kRecord>
   void pair_loop(const PairBatch& b, ContactRecords* out) {
+    static_assert(kRecord, "forces go through pair_forces_staged");
     const AtomView& a = b.a;
-    const double *x = a.x, *v = a.v, *w = a.omega;
-    const StepContext ctx{b.ctx.dt, kRecord ? false : b.ctx.update};
+    const double* x = a.x;
+    const StepContext ctx{b.ctx.dt, false};
     [[maybe_unused]] double hbuf[kH > 0 ? kH : 1];
     for (std::size_t i = 0; i < a.n; ++i) {
-      if constexpr (kRecord)
-        if (!(a.mask[i] & b.groupbit)) continue;
+      if (!(a.mask[i] & b.groupbit)) continue;
       const double xi = x[3 * i], yi = x[3 * i + 1], zi = x[3 * i + 2];
-      const double radi = a.radius[i], mi = a.rmass[i];
-      const int itype = a.type[i];
-      const bool ifrozen = a.mask[i] & a.freeze_bit;
+      const double radi = a.radius[i];
       for (int k = b.first[i]; k < b.first[i + 1]; ++k) {
         const int j = b.jlist[k];
         const double* sh = b.shift_vec[b.shift[k]];
-        const double dx = xi - (x[3 * j] + sh[0]), dy = yi - (x[3 * j + 1] + sh[1]), dz = zi - (x[3 * j + 2] + sh[2]);
-        const double rsq = dx * dx + dy * dy + dz * dz;
-        const double radj = a.radius[j], radsum = radi + radj;
-        if (rsq >= radsum * radsum) {
-          if constexpr (kH > 0 && !kRecord)
-            if (b.touch[k] && (!b.keep_until_rebuild || b.rebuilt)) {  // contact ended: forget it
-              b.touch[k] = 0;
-              for (int m = 0; m < kH; ++m) b.hist[k * kH + m] = 0.0;
-            }
-          continue;
-        }
-        if constexpr (kRecord)
-          if (!(a.mask[j] & b.groupbit)) continue;
+        PairState s;
+        s.dx = xi - (x[3 * j] + sh[0]);
+        s.dy = yi - (x[3 * j + 1] + sh[1]);
+        s.dz = zi - (x[3 * j + 2] + sh[2]);
+        const double rsq = s.dx * s.dx + s.dy * s.dy + s.dz * s.dz;
+        s.radi = radi;
+        s.radj = a.radius[j];
+        const double radsum = s.radi + s.radj;
+        if (rsq >= radsum * radsum) continue;
+        if (!(a.mask[j] & b.groupbit)) continue;
+        gather_state(a, static_cast<int>(i), j, s);
         Contact c;
-        c.is_wall = false;
-        c.r = std::sqrt(rsq);
-        const double rinv = 1.0 / c.r;
-        c.en[0] = dx * rinv;
-        c.en[1] = dy * rinv;
-        c.en[2] = dz * rinv;
-        c.deltan = radsum - c.r;
-        c.radi = radi;
-        c.radj = radj;
-        c.reff = radi * radj / radsum;
-        const double mj = a.rmass[j];
-        c.meff = mi * mj / (mi + mj);
-        if (ifrozen) c.meff = mj;
-        if (a.mask[j] & a.freeze_bit) c.meff = mi;
-        const double vr0 = v[3 * i] - v[3 * j], vr1 = v[3 * i + 1] - v[3 * j + 1], vr2 = v[3 * i + 2] - v[3 * j + 2];
-        c.vn = vr0 * c.en[0] + vr1 * c.en[1] + vr2 * c.en[2];
-        c.cri = radi - 0.5 * c.deltan;
-        c.crj = radj - 0.5 * c.deltan;
-        const double wr0 = (c.cri * w[3 * i] + c.crj * w[3 * j]) * rinv;
-        const double wr1 = (c.cri * w[3 * i + 1] + c.crj * w[3 * j + 1]) * rinv;
-        const double wr2 = (c.cri * w[3 * i + 2] + c.crj * w[3 * j + 2]) * rinv;
-        c.vtr[0] = vr0 - c.vn * c.en[0] - (dz * wr1 - dy * wr2);
-        c.vtr[1] = vr1 - c.vn * c.en[1] - (dx * wr2 - dz * wr0);
-        c.vtr[2] = vr2 - c.vn * c.en[2] - (dy * wr0 - dx * wr1);
-        c.wroll[0] = w[3 * i] - w[3 * j];
-        c.wroll[1] = w[3 * i + 1] - w[3 * j + 1];
-        c.wroll[2] = w[3 * i + 2] - w[3 * j + 2];
-        c.itype = itype;
+        pair_kinematics(c, s);
+        c.itype = a.type[i];
         c.jtype = a.type[j];
-        c.tp = itype * a.stride + c.jtype;
+        c.tp = c.itype * a.stride + c.jtype;
         double* h = nullptr;
         if constexpr (kH > 0) {
-          h = b.hist + static_cast<std::size_t>(k) * kH;
-          if constexpr (kRecord) {
-            for (int m = 0; m < kH; ++m) hbuf[m] = h[m];
-            h = hbuf;
-          } else {
-            b.touch[k] = 1;
-          }
+          for (int m = 0; m < kH; ++m) hbuf[m] = b.hist[static_cast<std::size_t>(k) * kH + m];
+          h = hbuf;
         }
         const Parts p = evaluate(c, h, ctx);
-        if constexpr (kRecord) {
-          ContactRecord r{static_cast<int>(i), j, b.shift[k], {p.f[0], p.f[1], p.f[2]}, {p.ti[0], p.ti[1], p.ti[2]},
-                          c.deltan, {c.en[0], c.en[1], c.en[2]}};
-          out->rows.push_back(r);
-          if constexpr (kH > 0) out->hist.insert(out->hist.end(), h, h + kH);
-        } else {
-          double* fi = a.f + 3 * i;
-          double* fj = a.f + 3 * j;
-          double* ti = a.torque + 3 * i;
-          double* tj = a.torque + 3 * j;
-          for (int d = 0; d < 3; ++d) {
-            fi[d] += p.f[d];
-            fj[d] -= p.f[d];
-            ti[d] += p.ti[d];
-            tj[d] += p.tj[d];
-          }
-        }
+        ContactRecord r{static_cast<int>(i), j, b.shift[k], {p.f[0], p.f[1], p.f[2]}, {p.ti[0], p.ti[1], p.ti[2]},
+                        c.deltan, {c.en[0], c.en[1], c.en[2]}};
+        out->rows.push_back(r);
+        if constexpr (kH > 0) out->hist.insert(out->hist.end(), h, h + kH);
       }
     }
   }
 
+  // Masses, velocities, spins and freeze flags of pair (i, j).
+  static void gather_state(const AtomView& a, int i, int j, PairState& s) {
+    s.mi = a.rmass[i];
+    s.mj = a.rmass[j];
+    s.frozen = ((a.mask[i] & a.freeze_bit) ? 1 : 0) | ((a.mask[j] & a.freeze_bit) ? 2 : 0);
+    const double *v = a.v, *w = a.omega;
+    for (int d = 0; d < 3; ++d) {
+      s.vr[d] = v[3 * i + d] - v[3 * j + d];
+      s.wi[d] = w[3 * i + d];
+      s.wj[d] = w[3 * j + d];
+    }
+  }
+
+  // ---- The force pass -------------------------------------------------------
+  //
+  // Each stretch of the half list goes through three stages, a chunk of
+  // PairChunk::kCap contacts at a time:
+  //   1. filter: which entries touch (branch-free append; an ended contact
+  //      forgets its history); the state of the touching pairs is copied into
+  //      columns;
+  //   2. evaluate: all sub-models on every column, a loop over independent
+  //      contacts without branches that the compiler vectorises (AVX2 where the
+  //      CPU has it, SSE2 otherwise: the same operations lane by lane, so the
+  //      same bits);
+  //   3. scatter: forces and torques added to the grains in list order.
+  //
+  // Threads (OpenMP, when the list is long enough) own contiguous atom ranges
+  // balanced by work. A contact whose j lies in a later range (a "cross" entry)
+  // is evaluated first, into its own slot (phase A); after a barrier each thread
+  // adds, for each of its atoms, the slots aimed at it, then runs its range
+  // (phase B), taking cross entries from their slots in list order. Every atom
+  // thus receives exactly the serial sequence of additions: j-side
+  // contributions by increasing list entry (all from lower atoms), then its own
+  // entries in list order. The result is bit-identical to the serial pass for
+  // any thread count, with no atomics and no per-thread force copies.
+
+  void pair_forces_staged(const PairBatch& b) {
+    const int nparts = pair_thread_count(b.a.n, b.a.n ? static_cast<std::size_t>(b.first[b.a.n]) : 0);
+    if (nparts <= 1) {
+      Chunk ch;
+      pair_range(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
+      return;
+    }
+#ifdef _OPENMP
+    plan_partition(b, nparts);
+    PairPartition& pp = part_;
+#pragma omp parallel num_threads(nparts)
+    {
+      const int nt = omp_get_num_threads(), tid = omp_get_thread_num();
+      Chunk ch;
+      for (int t = tid; t < nparts; t += nt) cross_range(b, pp, t, ch);
+#pragma omp barrier
+      for (int t = tid; t < nparts; t += nt) {
+        apply_incoming(b, pp, t);
+        pair_range(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
+      }
+    }
+#endif
+  }
+
+  // What stage 1 reads, copied out of the batch: locals cannot be aliased by
+  // the byte stores into `touch`, so the compiler keeps them in registers.
+  struct ListView {
+    const double* x;
+    const double* radius;
+    const int* jlist;
+    const std::uint8_t* shift;
+    const double (*shift_vec)[3];
+    std::uint8_t* touch;
+    double* hist;
+    bool forget;  // an ended contact loses its history now (else at the next rebuild)
+  };
+  static ListView list_view(const PairBatch& b) {
+    return {b.a.x, b.a.radius, b.jlist, b.shift, b.shift_vec, b.touch, b.hist,
+            !b.keep_until_rebuild || b.rebuilt};
+  }
+
+  // Stage 1 for list entry k of atom i: append to the columns (n, nev: the
+  // chunk's counts, kept in registers by the caller) if touching; forget an
+  // ended contact.
+  [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int& nev, int i,
+                                                         double xi, double yi, double zi, double radi, int k) {
+    const int j = L.jlist[k];
+    const double* sh = L.shift_vec[L.shift[k]];
+    const double* xj = L.x + 3 * j;
+    const double dx = xi - (xj[0] + sh[0]), dy = yi - (xj[1] + sh[1]), dz = zi - (xj[2] + sh[2]);
+    const double rsq = dx * dx + dy * dy + dz * dz;
+    const double radj = L.radius[j], radsum = radi + radj;
+    const bool touching = !(rsq >= radsum * radsum);
+    ch.k[n] = k;
+    ch.i[n] = i;
+    ch.j[n] = j;
+    ch.dx[n] = dx;
+    ch.dy[n] = dy;
+    ch.dz[n] = dz;
+    ch.radi[n] = radi;
+    ch.radj[n] = radj;
+    ch.ev[nev] = n;
+    n += touching;
+    nev += touching;
+    if constexpr (kH > 0) {
+      // Contact ended: forget it. Rare, so the branch is predictable as long as
+      // it does not test `touching` alone (a coin flip): hence the arithmetic.
+      const unsigned ended = L.touch[k] & static_cast<unsigned>(!touching) & static_cast<unsigned>(L.forget);
+      if (__builtin_expect(ended != 0, 0)) {
+        L.touch[k] = 0;
+        for (int q = 0; q < kH; ++q) L.hist[static_cast<std::size_t>(k) * kH + q] = 0.0;
+      }
+    }
+  }
+
+  // Stage 1, second half: copy the state of the touching pairs into columns.
+  void gather(const PairBatch& b, Chunk& ch) const {
+    const AtomView& a = b.a;
+    for (int m = 0; m < ch.n; ++m) {
+      const int i = ch.i[m], j = ch.j[m];
+      PairState s;
+      gather_state(a, i, j, s);
+      ch.mi[m] = s.mi;
+      ch.mj[m] = s.mj;
+      ch.frozen[m] = s.frozen;
+      for (int d = 0; d < 3; ++d) {
+        ch.vr[d][m] = s.vr[d];
+        ch.wi[d][m] = s.wi[d];
+        ch.wj[d][m] = s.wj[d];
+      }
+      ch.itype[m] = a.type[i];
+      ch.jtype[m] = a.type[j];
+      ch.tp[m] = a.type[i] * a.stride + a.type[j];
+      if constexpr (kH > 0) {
+        const double* h = b.hist + static_cast<std::size_t>(ch.k[m]) * kH;
+        for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
+      }
+    }
+  }
+
+  // Stage 2 (see above). Columns in, force/torque columns and new history out.
+  // Cols: PairChunk or WallChunk (their contact() builds the kinematics).
+  template <bool kUpdate, class Cols>
+  [[gnu::always_inline]] inline void evaluate_columns(Cols& ch, double dt) const {
+    const StepContext ctx{dt, kUpdate};
+    const int n = ch.n;
+#pragma GCC ivdep
+    for (int m = 0; m < n; ++m) {
+      Contact c;
+      ch.contact(m, c);
+      double h[kH > 0 ? kH : 1];
+      for (int q = 0; q < kH; ++q) h[q] = ch.h[q][m];
+      const Parts p = evaluate(c, h, ctx);
+      if constexpr (kUpdate)
+        for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
+      ch.store(m, p);
+    }
+  }
+#if defined(__x86_64__) && defined(__GNUC__)
+  template <class Cols>
+  [[gnu::target("avx2"), gnu::flatten]] void evaluate_columns_avx2(Cols& ch, double dt, bool update) const {
+    if (update)
+      evaluate_columns<true>(ch, dt);
+    else
+      evaluate_columns<false>(ch, dt);
+  }
+#endif
+  template <class Cols>
+  [[gnu::flatten]] void evaluate_columns_base(Cols& ch, double dt, bool update) const {
+    if (update)
+      evaluate_columns<true>(ch, dt);
+    else
+      evaluate_columns<false>(ch, dt);
+  }
+  template <class Cols>
+  void evaluate_columns_any(Cols& ch, double dt, bool update) const {
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (simd_avx2()) return evaluate_columns_avx2(ch, dt, update);
+#endif
+    evaluate_columns_base(ch, dt, update);
+  }
+
+  // Stages 1b-3 for the chunk; `pp` given: cross contacts come from their slots.
+  // Not inlined into the filter loop, which then keeps its values in registers.
+  [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch, const PairPartition* pp) const {
+    gather(b, ch);
+    evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+    double* f = b.a.f;
+    double* t = b.a.torque;
+    for (int q = 0; q < ch.nev; ++q) {
+      const int e = ch.ev[q];
+      if (e >= 0) {
+        const int i = ch.i[e], j = ch.j[e];
+        for (int d = 0; d < 3; ++d) {
+          f[3 * i + d] += ch.f[d][e];
+          f[3 * j + d] -= ch.f[d][e];
+          t[3 * i + d] += ch.ti[d][e];
+          t[3 * j + d] += ch.tj[d][e];
+        }
+      } else {
+        const int s = ~e, i = pp->cross_i[s];
+        const double* val = &pp->val[9 * static_cast<std::size_t>(s)];
+        for (int d = 0; d < 3; ++d) {
+          f[3 * i + d] += val[d];
+          t[3 * i + d] += val[3 + d];
+        }
+      }
+    }
+    store_history(b, ch);
+    ch.n = ch.nev = 0;
+  }
+
+  static void store_history(const PairBatch& b, const Chunk& ch) {
+    if constexpr (kH > 0) {
+      std::uint8_t* touch = b.touch;
+      double* hist = b.hist;
+      const int n = ch.n;
+      for (int m = 0; m < n; ++m) touch[ch.k[m]] = 1;
+      if (b.ctx.update)
+        for (int m = 0; m < n; ++m)
+          for (int q = 0; q < kH; ++q) hist[static_cast<std::size_t>(ch.k[m]) * kH + q] = ch.h[q][m];
+    }
+  }
+
+  // Phase B (or the whole serial pass): the entries of atoms [lo, hi) in list order.
+  void pair_range(const PairBatch& b, int lo, int hi, const PairPartition* pp, int t, Chunk& ch) const {
+    const ListView L = list_view(b);
+    const int* first = b.first;
+    int cursor = pp ? pp->cross_first[t] : 0;  // next cross entry of this range
+    int n = 0, nev = 0;
+    for (int i = lo; i < hi; ++i) {
+      const double xi = L.x[3 * i], yi = L.x[3 * i + 1], zi = L.x[3 * i + 2], radi = L.radius[i];
+      for (int k = first[i], kend = first[i + 1]; k < kend; ++k) {
+        if (L.jlist[k] >= hi) {  // cross entry (only with pp): evaluated in phase A
+          const int s = cursor++;
+          if (pp->on[s]) ch.ev[nev++] = ~s;
+        } else {
+          filter_entry(L, ch, n, nev, i, xi, yi, zi, radi, k);
+        }
+        if (nev == Chunk::kCap) {
+          ch.n = n, ch.nev = nev;
+          flush(b, ch, pp);
+          n = nev = 0;
+        }
+      }
+    }
+    ch.n = n, ch.nev = nev;
+    flush(b, ch, pp);
+  }
+
+  // Phase A: the cross entries of range t, into their slots.
+  void cross_range(const PairBatch& b, PairPartition& pp, int t, Chunk& ch) const {
+    const ListView L = list_view(b);
+    int n = 0, nev = 0;
+    for (int s = pp.cross_first[t]; s < pp.cross_first[t + 1]; ++s) {
+      const int i = pp.cross_i[s], k = pp.cross_k[s];
+      const int before = n;
+      filter_entry(L, ch, n, nev, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
+      pp.on[s] = static_cast<std::uint8_t>(n != before);
+      ch.ev[before] = s;  // phase A: event m names the slot of column m
+      nev = n;
+      if (n == Chunk::kCap) {
+        ch.n = n, ch.nev = nev;
+        cross_flush(b, pp, ch);
+        n = nev = 0;
+      }
+    }
+    ch.n = n, ch.nev = nev;
+    cross_flush(b, pp, ch);
+  }
+
+  [[gnu::noinline]] void cross_flush(const PairBatch& b, PairPartition& pp, Chunk& ch) const {
+    gather(b, ch);
+    evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+    for (int m = 0; m < ch.n; ++m) {
+      double* val = &pp.val[9 * static_cast<std::size_t>(ch.ev[m])];
+      for (int d = 0; d < 3; ++d) {
+        val[d] = ch.f[d][m];
+        val[3 + d] = ch.ti[d][m];
+        val[6 + d] = ch.tj[d][m];
+      }
+    }
+    store_history(b, ch);
+    ch.n = ch.nev = 0;
+  }
+
+  // Phase B, first: j-side contributions of cross entries to the atoms of range t.
+  void apply_incoming(const PairBatch& b, const PairPartition& pp, int t) const {
+    double* f = b.a.f;
+    double* tq = b.a.torque;
+    for (int a = pp.lo[t]; a < pp.lo[t + 1]; ++a)
+      for (int q = pp.in_first[a]; q < pp.in_first[a + 1]; ++q) {
+        const int s = pp.in_slot[q];
+        if (!pp.on[s]) continue;
+        const double* val = &pp.val[9 * static_cast<std::size_t>(s)];
+        for (int d = 0; d < 3; ++d) {
+          f[3 * a + d] -= val[d];
+          tq[3 * a + d] += val[6 + d];
+        }
+      }
+  }
+
+  // Ranges balanced by work (entries, touching ones counting 3 more), cross
+  // entries and the per-atom incoming lists; redone after each rebuild.
+  void plan_partition(const PairBatch& b, int nparts) {
+    PairPartition& pp = part_;
+    const std::size_t n = b.a.n, ne = static_cast<std::size_t>(b.first[n]);
+    if (pp.version == b.list_version && pp.nparts == nparts && pp.natoms == n && pp.nentries == ne) return;
+    pp.version = b.list_version;
+    pp.nparts = nparts;
+    pp.natoms = n;
+    pp.nentries = ne;
+    std::vector<double> cum(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double w = 1.0 + (b.first[i + 1] - b.first[i]);
+      if constexpr (kH > 0)
+        for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * b.touch[k];
+      cum[i + 1] = cum[i] + w;
+    }
+    pp.lo.assign(nparts + 1, 0);
+    for (int t = 1; t < nparts; ++t) {
+      const double target = cum[n] * t / nparts;
+      pp.lo[t] = static_cast<int>(std::lower_bound(cum.begin(), cum.end(), target) - cum.begin());
+      pp.lo[t] = std::max(pp.lo[t], pp.lo[t - 1]);
+    }
+    pp.lo[nparts] = static_cast<int>(n);
+    pp.cross_first.assign(nparts + 1, 0);
+    pp.cross_k.clear();
+    pp.cross_i.clear();
+    pp.in_first.assign(n + 1, 0);
+    for (int t = 0; t < nparts; ++t) {
+      pp.cross_first[t] = static_cast<int>(pp.cross_k.size());
+      for (int i = pp.lo[t]; i < pp.lo[t + 1]; ++i)
+        for (int k = b.first[i]; k < b.first[i + 1]; ++k)
+          if (b.jlist[k] >= pp.lo[t + 1]) {
+            pp.cross_k.push_back(k);
+            pp.cross_i.push_back(i);
+            ++pp.in_first[b.jlist[k] + 1];
+          }
+    }
+    const int ncross = static_cast<int>(pp.cross_k.size());
+    pp.cross_first[nparts] = ncross;
+    for (std::size_t a = 0; a < n; ++a) pp.in_first[a + 1] += pp.in_first[a];
+    pp.in_slot.assign(ncross, 0);
+    std::vector<int> fill(pp.in_first.begin(), pp.in_first.end() - 1);
+    for (int s = 0; s < ncross; ++s) pp.in_slot[fill[b.jlist[pp.cross_k[s]]]++] = s;
+    pp.val.assign(9 * static_cast<std::size_t>(ncross), 0.0);
+    pp.on.assign(ncross, 0);
+  }
+
+  // Wall contacts: gathered into columns and evaluated like pair contacts
+  // (stage 2 above); forces added to the grains and summed in contact order.
+  Vec3 wall_forces_staged(const WallBatch& b) {
+    const AtomView& a = b.a;
+    double sum[3] = {0, 0, 0};
+    WallChunk<kH> ch;
+    for (std::size_t k0 = 0; k0 < b.n; k0 += WallChunk<kH>::kCap) {
+      const int n = static_cast<int>(std::min<std::size_t>(WallChunk<kH>::kCap, b.n - k0));
+      ch.n = n;
+      for (int m = 0; m < n; ++m) {
+        const std::size_t k = k0 + m;
+        const int i = b.atom[k];
+        for (int d = 0; d < 3; ++d) {
+          ch.en[d][m] = b.en[3 * k + d];
+          ch.vr[d][m] = a.v[3 * i + d] - b.vwall[3 * k + d];
+          ch.wi[d][m] = a.omega[3 * i + d];
+        }
+        ch.deltan[m] = b.deltan[k];
+        ch.radi[m] = a.radius[i];
+        ch.mi[m] = a.rmass[i];
+        ch.itype[m] = a.type[i];
+        ch.jtype[m] = b.wall_type;
+        ch.tp[m] = a.type[i] * a.stride + b.wall_type;
+        if constexpr (kH > 0) {
+          const double* h = b.hist + static_cast<std::size_t>(b.hist_index[k]) * b.hist_stride;
+          for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
+        }
+      }
+      evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+      for (int m = 0; m < n; ++m) {
+        const std::size_t k = k0 + m;
+        const int i = b.atom[k];
+        for (int d = 0; d < 3; ++d) {
+          a.f[3 * i + d] += ch.f[d][m];
+          a.torque[3 * i + d] += ch.ti[d][m];
+          sum[d] += ch.f[d][m];
+        }
+        if constexpr (kH > 0)
+          if (b.ctx.update) {
+            double* h = b.hist + static_cast<std::size_t>(b.hist_index[k]) * b.hist_stride;
+            for (int q = 0; q < kH; ++q) h[q] = ch.h[q][m];
+          }
+      }
+    }
+    return {sum[0], sum[1], sum[2]};
+  }
+
+  // Per-contact records of wall contacts (compute wall/gran/local); history is copied, never written.
   template <bool kRecord>
   Vec3 wall_loop(const WallBatch& b, ContactRecords* out) {
+    static_assert(kRecord, "forces go through wall_forces_staged");
     const AtomView& a = b.a;
-    const double *v = a.v, *w = a.omega;
-    const StepContext ctx{b.ctx.dt, kRecord ? false : b.ctx.update};
+    const StepContext ctx{b.ctx.dt, false};
     [[maybe_unused]] double hbuf[kH > 0 ? kH : 1];
-    double sum[3] = {0, 0, 0};
     for (std::size_t k = 0; k < b.n; ++k) {
       const int i = b.atom[k];
       const double* en = b.en + 3 * k;
-      const double* vw = b.vwall + 3 * k;
+      WallState s;
+      for (int d = 0; d < 3; ++d) {
+        s.en[d] = en[d];
+        s.vr[d] = a.v[3 * i + d] - b.vwall[3 * k + d];
+        s.wi[d] = a.omega[3 * i + d];
+      }
+      s.deltan = b.deltan[k];
+      s.radi = a.radius[i];
+      s.mi = a.rmass[i];
       Contact c;
-      c.is_wall = true;
-      c.en[0] = en[0];
-      c.en[1] = en[1];
-      c.en[2] = en[2];
-      c.deltan = b.deltan[k];
-      c.radi = a.radius[i];
-      c.radj = 0.0;
-      c.r = c.radi - c.deltan;
-      c.reff = c.radi;     // wall: infinite radius ...
-      c.meff = a.rmass[i];  // ... and infinite mass
-      const double vr0 = v[3 * i] - vw[0], vr1 = v[3 * i + 1] - vw[1], vr2 = v[3 * i + 2] - vw[2];
-      c.vn = vr0 * en[0] + vr1 * en[1] + vr2 * en[2];
-      c.cri = c.radi - 0.5 * c.deltan;
-      c.crj = 0.0;
-      // LIGGGHTS: wr = cri w_i / r and vtr = vt - wr x (r en), i.e. contact point of i at -cri en.
-      const double s = c.cri / c.r;
-      c.wroll[0] = s * w[3 * i];
-      c.wroll[1] = s * w[3 * i + 1];
-      c.wroll[2] = s * w[3 * i + 2];
-      const double dx = en[0] * c.r, dy = en[1] * c.r, dz = en[2] * c.r;
-      c.vtr[0] = vr0 - c.vn * en[0] - (dz * c.wroll[1] - dy * c.wroll[2]);
-      c.vtr[1] = vr1 - c.vn * en[1] - (dx * c.wroll[2] - dz * c.wroll[0]);
-      c.vtr[2] = vr2 - c.vn * en[2] - (dy * c.wroll[0] - dx * c.wroll[1]);
+      wall_kinematics(c, s);
       c.itype = a.type[i];
       c.jtype = b.wall_type;
       c.tp = c.itype * a.stride + c.jtype;
       double* h = nullptr;
       if constexpr (kH > 0) {
-        h = b.hist + static_cast<std::size_t>(b.hist_index[k]) * b.hist_stride;
-        if constexpr (kRecord) {
-          for (int m = 0; m < kH; ++m) hbuf[m] = h[m];
-          h = hbuf;
-        }
+        const double* hs = b.hist + static_cast<std::size_t>(b.hist_index[k]) * b.hist_stride;
+        for (int m = 0; m < kH; ++m) hbuf[m] = hs[m];
+        h = hbuf;
       }
       const Parts p = evaluate(c, h, ctx);
-      if constexpr (kRecord) {
-        ContactRecord r{i, -1, static_cast<int>(k), {p.f[0], p.f[1], p.f[2]}, {p.ti[0], p.ti[1], p.ti[2]},
-                        c.deltan, {en[0], en[1], en[2]}};
-        out->rows.push_back(r);
-        if constexpr (kH > 0) out->hist.insert(out->hist.end(), h, h + kH);
-      } else {
-        for (int d = 0; d < 3; ++d) {
-          a.f[3 * i + d] += p.f[d];
-          a.torque[3 * i + d] += p.ti[d];
-          sum[d] += p.f[d];
-        }
-      }
+      ContactRecord r{i, -1, static_cast<int>(k), {p.f[0], p.f[1], p.f[2]}, {p.ti[0], p.ti[1], p.ti[2]},
+                      c.deltan, {en[0], en[1], en[2]}};
+      out->rows.push_back(r);
+      if constexpr (kH > 0) out->hist.insert(out->hist.end(), h, h + kH);
     }
-    return {sum[0], sum[1], sum[2]};
+    return {};
   }
 };
 

@@ -80,6 +80,7 @@ PairBatch PairGran::batch() {
   b.jlist = list.j.data();
   b.shift = list.shift.data();
   b.shift_vec = list.shift_vec;
+  b.list_version = sim.neighbor.builds;
   if (history()) {
     b.hist = store_.hist.data();
     b.touch = store_.touch.data();

@@ -7,6 +7,7 @@
 
 #include "core/atoms.h"
 #include "core/domain.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -98,9 +99,14 @@ bool Neighbor::decide(const Atoms& atoms, long step) const {
 double Neighbor::max_displacement_sq(const Atoms& atoms) const {
   double m = 0.0;
   const double* x = atoms.x.data();
-  for (std::size_t i = 0; i < 3 * atoms.n; i += 3) {
-    const double dx = x[i] - xhold_[i], dy = x[i + 1] - xhold_[i + 1], dz = x[i + 2] - xhold_[i + 2];
-    m = std::max(m, dx * dx + dy * dy + dz * dz);
+  const double* xh = xhold_.data();
+  const long n = static_cast<long>(atoms.n);
+  // A maximum does not depend on the order: threads and SIMD give the same value.
+#pragma omp parallel for simd reduction(max : m) schedule(static) if (loop_thread_count(atoms.n, 2) > 1)
+  for (long i = 0; i < n; ++i) {
+    const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    m = d2 > m ? d2 : m;
   }
   return m;
 }
@@ -108,10 +114,20 @@ double Neighbor::max_displacement_sq(const Atoms& atoms) const {
 void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {
   if (store) store->save(list, ids_);
   const std::size_t n = atoms.n;
-  for (std::size_t i = 0; i < n; ++i) domain.remap(&atoms.x[3 * i], &atoms.image[3 * i]);
+  const long nl = static_cast<long>(n);
+  // Per-atom passes are threaded for large systems; the list is built in
+  // blocks of atoms and joined in atom order, so it is the same list (same
+  // entries, same order) for every thread count.
+  const int nth = loop_thread_count(n, 16);
+  double* xa = atoms.x.data();
+  int* image = atoms.image.data();
+  const double* radius = atoms.radius.data();
+#pragma omp parallel for schedule(static) if (nth > 1)
+  for (long i = 0; i < nl; ++i) domain.remap(&xa[3 * i], &image[3 * i]);
 
   double rmax = 0.0;
-  for (std::size_t i = 0; i < n; ++i) rmax = std::max(rmax, atoms.radius[i]);
+#pragma omp parallel for reduction(max : rmax) schedule(static) if (nth > 1)
+  for (long i = 0; i < nl; ++i) rmax = std::max(rmax, radius[i]);
   cutoff_ = 2.0 * rmax + skin;
 
   // Bins at least one cutoff wide: the 27 (9 in 2D) surrounding bins hold every partner.
@@ -134,9 +150,11 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     int c = static_cast<int>(std::floor((x - domain.lo[k]) * inv[k]));
     return std::clamp(c, 0, nb[k] - 1);
   };
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* xi = &atoms.x[3 * i];
-    bin_of_[i] = coord(xi[0], 0) + nb[0] * (coord(xi[1], 1) + nb[1] * coord(xi[2], 2));
+  int* bin_of = bin_of_.data();
+#pragma omp parallel for schedule(static) if (nth > 1)
+  for (long i = 0; i < nl; ++i) {
+    const double* xi = &xa[3 * i];
+    bin_of[i] = coord(xi[0], 0) + nb[0] * (coord(xi[1], 1) + nb[1] * coord(xi[2], 2));
   }
   // Counting sort by bin.
   bin_start_.assign(nbins + 1, 0);
@@ -160,15 +178,15 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     for (int k = 0; k < 3; ++k) list.shift_vec[c][k] = s[k] * domain.length(k);
   }
 
-  list.first.assign(n + 1, 0);
-  list.j.clear();
-  list.shift.clear();
   const int zr = domain.dimension == 3 ? 1 : 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  const double* x = atoms.x.data();  // after the sort
+  radius = atoms.radius.data();
+  // Entries of atom i (partners j > i within the cutoff plus skin), appended to (js, shifts).
+  auto scan = [&](std::size_t i, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
     const int b = bin_of_[i];
     const int bc[3] = {b % nb[0], (b / nb[0]) % nb[1], b / (nb[0] * nb[1])};
-    const double* xi = &atoms.x[3 * i];
-    const double ri = atoms.radius[i];
+    const double* xi = &x[3 * i];
+    const double ri = radius[i];
     for (int oz = -zr; oz <= zr; ++oz)
       for (int oy = -1; oy <= 1; ++oy)
         for (int ox = -1; ox <= 1; ++ox) {
@@ -195,16 +213,55 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
           for (int s = bin_start_[nbin]; s < bin_start_[nbin + 1]; ++s) {
             const int j = bin_atoms_[s];
             if (j <= static_cast<int>(i)) continue;
-            const double* xj = &atoms.x[3 * j];
+            const double* xj = &x[3 * j];
             const double dx = xj[0] + sv[0] - xi[0], dy = xj[1] + sv[1] - xi[1], dz = xj[2] + sv[2] - xi[2];
-            const double cut = ri + atoms.radius[j] + skin;
+            const double cut = ri + radius[j] + skin;
             if (dx * dx + dy * dy + dz * dz < cut * cut) {
-              list.j.push_back(j);
-              list.shift.push_back(static_cast<std::uint8_t>(code));
+              js.push_back(j);
+              shifts.push_back(static_cast<std::uint8_t>(code));
             }
           }
         }
-    list.first[i + 1] = static_cast<int>(list.j.size());
+  };
+  list.first.assign(n + 1, 0);
+  if (nth <= 1) {
+    list.j.clear();
+    list.shift.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      scan(i, list.j, list.shift);
+      list.first[i + 1] = static_cast<int>(list.j.size());
+    }
+  } else {
+    // One block of atoms per thread; first[i + 1] holds the count within the block until the join.
+    std::vector<std::vector<int>> bj(nth);
+    std::vector<std::vector<std::uint8_t>> bs(nth);
+    std::vector<std::size_t> base(nth + 1, 0);
+#pragma omp parallel num_threads(nth)
+    {
+#pragma omp for schedule(static, 1)
+      for (int t = 0; t < nth; ++t) {
+        const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
+        bj[t].reserve((hi - lo) * 8);
+        bs[t].reserve((hi - lo) * 8);
+        for (std::size_t i = lo; i < hi; ++i) {
+          scan(i, bj[t], bs[t]);
+          list.first[i + 1] = static_cast<int>(bj[t].size());
+        }
+      }
+#pragma omp single
+      {
+        for (int t = 0; t < nth; ++t) base[t + 1] = base[t] + bj[t].size();
+        list.j.resize(base[nth]);
+        list.shift.resize(base[nth]);
+      }
+#pragma omp for schedule(static, 1)
+      for (int t = 0; t < nth; ++t) {
+        const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
+        for (std::size_t i = lo; i < hi; ++i) list.first[i + 1] += static_cast<int>(base[t]);
+        std::copy(bj[t].begin(), bj[t].end(), list.j.begin() + base[t]);
+        std::copy(bs[t].begin(), bs[t].end(), list.shift.begin() + base[t]);
+      }
+    }
   }
   if (store) store->restore(list, atoms);
   ids_.assign(atoms.id.begin(), atoms.id.begin() + n);

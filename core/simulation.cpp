@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/input.h"
+#include "core/threads.h"
 #include "core/thermo.h"
 #include "core/variable.h"
 
@@ -105,8 +106,21 @@ void Simulation::flush_outputs() {
   for (auto& d : dumps) d->flush();
 }
 
+// True when every position and velocity is finite. x - x is 0 for a finite x and
+// NaN otherwise, so the sum is 0 exactly when all are finite: a branch-free pass
+// (vectorised; each thread's partial sum is 0 or NaN whatever the order).
+static bool all_finite(const Atoms& a) {
+  const double *x = a.x.data(), *v = a.v.data();
+  const long n3 = static_cast<long>(3 * a.n);
+  double s = 0.0;
+#pragma omp parallel for simd reduction(+ : s) schedule(static) if (loop_thread_count(a.n, 2) > 1)
+  for (long k = 0; k < n3; ++k) s += (x[k] - x[k]) + (v[k] - v[k]);
+  return s == 0.0;
+}
+
 void Simulation::check_atoms() {
   const Atoms& a = atoms;
+  if (all_finite(a)) return;
   for (std::size_t i = 0; i < a.n; ++i) {
     const double* x = &a.x[3 * i];
     const double* v = &a.v[3 * i];
@@ -266,6 +280,14 @@ void Simulation::setup() {
   for (auto& f : fixes) f->setup();
 }
 
+// Atoms::clear_forces, threaded for large systems (the step loop's only other per-atom pass).
+static void clear_forces_threaded(Atoms& a) {
+  double *f = a.f.data(), *t = a.torque.data();
+  const long n3 = static_cast<long>(3 * a.n);
+#pragma omp parallel for simd schedule(static) if (loop_thread_count(a.n, 2) > 1)
+  for (long k = 0; k < n3; ++k) f[k] = t[k] = 0.0;
+}
+
 void Simulation::run(long nsteps) {
   run_first = step;
   run_last = step + nsteps;
@@ -301,7 +323,7 @@ void Simulation::run(long nsteps) {
     rebuild_if_due();
     lap(timers.neigh);
     for (Fix* f : hook[2]) f->pre_force();
-    atoms.clear_forces();
+    clear_forces_threaded(atoms);
     if (pair) pair->compute();
     lap(timers.pair);
     for (Fix* f : hook[3]) f->post_force();

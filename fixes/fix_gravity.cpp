@@ -3,6 +3,7 @@
 
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -22,9 +23,19 @@ class FixGravity : public Fix {
   }
   void post_force() override {
     Atoms& at = sim.atoms;
-    for (std::size_t i = 0; i < at.n; ++i) {
-      if (!(at.mask[i] & groupbit)) continue;
-      for (int k = 0; k < 3; ++k) at.f[3 * i + k] += at.rmass[i] * acc_[k];
+    double* f = at.f.data();
+    const double* rmass = at.rmass.data();
+    const std::uint32_t* mask = at.mask.data();
+    const std::uint32_t bit = groupbit;
+    const bool all = bit == 1u;  // group all: the mask test leaves the loop, which vectorises
+    const double a0 = acc_[0], a1 = acc_[1], a2 = acc_[2];
+    const long n = static_cast<long>(at.n);
+#pragma omp parallel for schedule(static) if (loop_thread_count(at.n, 2) > 1)
+    for (long i = 0; i < n; ++i) {
+      if (!all && !(mask[i] & bit)) continue;
+      f[3 * i] += rmass[i] * a0;
+      f[3 * i + 1] += rmass[i] * a1;
+      f[3 * i + 2] += rmass[i] * a2;
     }
   }
   double acceleration() const override { return std::fabs(g_); }

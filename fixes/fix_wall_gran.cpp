@@ -107,7 +107,6 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
   en_.clear();
   vwall_.clear();
   point_.clear();
-  double* hist = hist_col_ >= 0 ? sim.atoms.column(hist_col_).data() : nullptr;
   // Wall position and velocity now (wiggle); shear velocity for planes and axial cylinders.
   double pos = pos0_, vnormal = 0.0;
   if (wiggle_period_ > 0) {
@@ -117,38 +116,36 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
   }
   const bool spin = shape_ == Shape::Cylinder && shear_dim_ >= 0 && shear_dim_ != axis_;
   const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;  // cylinder cross-section axes (LIGGGHTS' Dim<>)
-  for (std::size_t i = 0; i < at.n; ++i) {
-    if (!(at.mask[i] & groupbit) || !(at.mask[i] & also)) continue;
+  // Unit normal (wall -> grain), wall velocity at the grain and centre distance of grain i;
+  // false for a grain on a cylinder's axis (no defined normal).
+  auto geometry = [&](std::size_t i, double n[3], double vw[3], double& dist) {
     const double* x = &at.x[3 * i];
-    const double r = at.radius[i];
-    double n[3] = {0, 0, 0}, dist;
-    double vw[3] = {0, 0, 0};
+    n[0] = n[1] = n[2] = 0.0;
+    vw[0] = vw[1] = vw[2] = 0.0;
     if (shape_ == Shape::Plane) {
       const double d = x[axis_] - pos;
       n[axis_] = d > 0 ? 1.0 : -1.0;  // grains on either side, pushed away from the plane
       dist = std::fabs(d);
       vw[axis_] = vnormal;
       if (shear_dim_ >= 0) vw[shear_dim_] = vshear_;
-    } else {
-      const double d1 = x[a1] - c1_, d2 = x[a2] - c2_, rho = std::sqrt(d1 * d1 + d2 * d2);
-      if (rho == 0.0) continue;  // on the axis: no defined normal
-      const double sgn = rho > radius_ ? 1.0 : -1.0;  // outside: pushed outward; inside: towards the axis
-      n[a1] = sgn * d1 / rho;
-      n[a2] = sgn * d2 / rho;
-      dist = std::fabs(rho - radius_);
-      if (spin) {  // (vshear e_axis) x r_radial, r_radial = (d1, d2) in the cross-section
-        vw[a1] = -vshear_ * d2;
-        vw[a2] = vshear_ * d1;
-      } else if (shear_dim_ >= 0) {
-        vw[shear_dim_] = vshear_;
-      }
+      return true;
     }
-    const double overlap = r - dist;
-    if (overlap <= 0.0) {
-      if (zero_history && hist)
-        for (int m = 0; m < hist_size_; ++m) hist[i * hist_size_ + m] = 0.0;
-      continue;
+    const double d1 = x[a1] - c1_, d2 = x[a2] - c2_, rho = std::sqrt(d1 * d1 + d2 * d2);
+    if (rho == 0.0) return false;
+    const double sgn = rho > radius_ ? 1.0 : -1.0;  // outside: pushed outward; inside: towards the axis
+    n[a1] = sgn * d1 / rho;
+    n[a2] = sgn * d2 / rho;
+    dist = std::fabs(rho - radius_);
+    if (spin) {  // (vshear e_axis) x r_radial, r_radial = (d1, d2) in the cross-section
+      vw[a1] = -vshear_ * d2;
+      vw[a2] = vshear_ * d1;
+    } else if (shear_dim_ >= 0) {
+      vw[shear_dim_] = vshear_;
     }
+    return true;
+  };
+  auto add = [&](std::size_t i, const double n[3], const double vw[3], double dist, double overlap) {
+    const double* x = &at.x[3 * i];
     atom_.push_back(static_cast<int>(i));
     hidx_.push_back(static_cast<int>(i));
     deltan_.push_back(overlap);
@@ -157,7 +154,63 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
       vwall_.push_back(vw[k]);
       point_.push_back(x[k] - n[k] * dist);
     }
+  };
+  const std::uint32_t bits = groupbit;
+  if (shape_ == Shape::Plane) {
+    // Most grains are far from a plane: one subtraction and compare each.
+    const double* x = at.x.data();
+    const double* rad = at.radius.data();
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const double overlap = rad[i] - std::fabs(x[3 * i + axis_] - pos);
+      if (overlap <= 0.0) continue;
+      if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
+      double n[3], vw[3], dist = 0.0;
+      geometry(i, n, vw, dist);
+      add(i, n, vw, dist, at.radius[i] - dist);
+    }
+  } else {
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
+      double n[3], vw[3], dist = 0.0;
+      if (!geometry(i, n, vw, dist)) continue;
+      const double overlap = at.radius[i] - dist;
+      if (overlap > 0.0) add(i, n, vw, dist, overlap);
+    }
   }
+  if (!zero_history || hist_col_ < 0) return;
+  // History of the grains that left the wall is reset. Between neighbour
+  // rebuilds atoms keep their indices, so only last step's contacts can have
+  // left (a merge of two sorted lists); after a rebuild or an insertion every
+  // grain of the group is checked.
+  double* hist = sim.atoms.column(hist_col_).data();
+  auto forget = [&](std::size_t i) {
+    double n[3], vw[3], dist = 0.0;
+    if (!geometry(i, n, vw, dist)) return;  // on a cylinder's axis: left as it was
+    for (int m = 0; m < hist_size_; ++m) hist[i * hist_size_ + m] = 0.0;
+  };
+  if (prev_builds_ == sim.neighbor.builds && prev_n_ == at.n) {
+    std::size_t c = 0;
+    for (int i : prev_atoms_) {
+      while (c < atom_.size() && atom_[c] < i) ++c;
+      if (c < atom_.size() && atom_[c] == i) continue;
+      forget(static_cast<std::size_t>(i));
+    }
+  } else {
+    std::size_t c = 0;
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (c < atom_.size() && atom_[c] == static_cast<int>(i)) {
+        ++c;
+        continue;
+      }
+      if (!(at.mask[i] & bits)) continue;
+      bool nonzero = false;
+      for (int m = 0; m < hist_size_; ++m) nonzero |= hist[i * hist_size_ + m] != 0.0;
+      if (nonzero) forget(i);
+    }
+  }
+  prev_atoms_ = atom_;
+  prev_builds_ = sim.neighbor.builds;
+  prev_n_ = at.n;
 }
 
 WallBatch FixWallGran::batch() {

@@ -54,6 +54,10 @@ class FixWallGran : public Fix {
   double force_[3] = {0, 0, 0};
   std::vector<int> atom_, hidx_;
   std::vector<double> deltan_, en_, vwall_, point_;
+  // Contacts of the last force pass (atom indices), valid while no rebuild or insertion changed the indices.
+  std::vector<int> prev_atoms_;
+  long prev_builds_ = -1;
+  std::size_t prev_n_ = 0;
 
   // Finds the overlapping grains of the fix group that also match `also`; zeroes
   // the history of the others when asked.

@@ -8,7 +8,7 @@
 //   3. Coulomb cap |Ft| <= mu |Fn| with Fn the damped (possibly limited) normal force;
 //      at slip Ft is scaled to mu |Fn| and shear = -Ft / kt (no tangential damping);
 //      otherwise Ft -= gammat vtr.
-// History is written only when ctx.update (not during setup or per-contact output).
+// History changes only when ctx.update (not during setup or per-contact output).
 // Slots shearx, sheary, shearz change sign when the pair is seen as (j, i).
 #include <cmath>
 
@@ -33,44 +33,35 @@ struct TangentialHistory {
   }
   void connect(PropertyRequest& p) { mu = p.pair_table("coefficientFriction"); }
 
+  // Written with selects instead of branches so the kernel's contact loop
+  // vectorises; with ctx.update a compile-time constant there, they fold away.
+  // At slip the spring shrinks by the same ratio as the force
+  // (shear = -Ft/kt = ratio shear, LIGGGHTS' expression to round-off).
   Vec3 force(const Contact& c, const NormalForce& n, double* shear, const StepContext& ctx) const {
     const double* en = c.en;
     double s0 = shear[0], s1 = shear[1], s2 = shear[2];
-    if (ctx.update) {
-      s0 += c.vtr[0] * ctx.dt;
-      s1 += c.vtr[1] * ctx.dt;
-      s2 += c.vtr[2] * ctx.dt;
-      const double rsht = s0 * en[0] + s1 * en[1] + s2 * en[2];
-      s0 -= rsht * en[0];
-      s1 -= rsht * en[1];
-      s2 -= rsht * en[2];
+    {
+      const double a0 = s0 + c.vtr[0] * ctx.dt, a1 = s1 + c.vtr[1] * ctx.dt, a2 = s2 + c.vtr[2] * ctx.dt;
+      const double rsht = a0 * en[0] + a1 * en[1] + a2 * en[2];
+      s0 = ctx.update ? a0 - rsht * en[0] : s0;
+      s1 = ctx.update ? a1 - rsht * en[1] : s1;
+      s2 = ctx.update ? a2 - rsht * en[2] : s2;
     }
     const double kt = n.kt;
-    Vec3 f{-kt * s0, -kt * s1, -kt * s2};
     const double shrmag = std::sqrt(s0 * s0 + s1 * s1 + s2 * s2);
     const double ft_shear = kt * shrmag, ft_friction = mu[c.tp] * std::fabs(n.Fn);
-    if (ft_shear > ft_friction) {
-      if (shrmag != 0.0) {
-        const double ratio = ft_friction / ft_shear;
-        f = {f.x * ratio, f.y * ratio, f.z * ratio};
-        if (ctx.update) {
-          s0 = -f.x / kt;
-          s1 = -f.y / kt;
-          s2 = -f.z / kt;
-        }
-      } else {
-        f = {0, 0, 0};
-      }
-    } else {
-      f.x -= n.gammat * c.vtr[0];
-      f.y -= n.gammat * c.vtr[1];
-      f.z -= n.gammat * c.vtr[2];
-    }
-    if (ctx.update) {
-      shear[0] = s0;
-      shear[1] = s1;
-      shear[2] = s2;
-    }
+    const bool slip = ft_shear > ft_friction;
+    // slip with shrmag = 0 cannot happen for mu >= 0; LIGGGHTS zeroes the force then, as ratio 0 does
+    const double ratio = shrmag != 0.0 ? ft_friction / ft_shear : 0.0;
+    const double fac = slip ? ratio : 1.0, gam = slip ? 0.0 : n.gammat;  // at slip: no damping
+    Vec3 f;
+    f.x = -kt * s0 * fac - gam * c.vtr[0];
+    f.y = -kt * s1 * fac - gam * c.vtr[1];
+    f.z = -kt * s2 * fac - gam * c.vtr[2];
+    const double keep = ctx.update ? fac : 1.0;
+    shear[0] = s0 * keep;
+    shear[1] = s1 * keep;
+    shear[2] = s2 * keep;
     return f;
   }
 };
