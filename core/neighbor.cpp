@@ -179,6 +179,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   }
 
   const int zr = domain.dimension == 3 ? 1 : 0;
+  const bool sorted = sort && n > 0;
   const double* x = atoms.x.data();  // after the sort
   radius = atoms.radius.data();
   // Entries of atom i (partners j > i within the cutoff plus skin), appended to (js, shifts).
@@ -207,9 +208,11 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
           }
           // Without wrap, a neighbouring offset outside a single-bin axis is not a new cell.
           if (!ok) continue;
+          const int nbin = nbc[0] + nb[0] * (nbc[1] + nb[1] * nbc[2]);
+          // Sorted atoms are in bin order: a lower bin holds only atoms j < i (none kept).
+          if (sorted && nbin < b) continue;
           const int code = (sh[0] + 1) + 3 * (sh[1] + 1) + 9 * (sh[2] + 1);
           const double* sv = list.shift_vec[code];
-          const int nbin = nbc[0] + nb[0] * (nbc[1] + nb[1] * nbc[2]);
           for (int s = bin_start_[nbin]; s < bin_start_[nbin + 1]; ++s) {
             const int j = bin_atoms_[s];
             if (j <= static_cast<int>(i)) continue;
