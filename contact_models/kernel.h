@@ -25,6 +25,7 @@
 
 #include "contact_models/contact.h"
 #include "contact_models/materials.h"
+#include "core/atoms.h"
 #include "core/threads.h"
 
 namespace sable {
@@ -39,6 +40,24 @@ struct AtomView {
   int stride = 2;                 // ntypes + 1 (per-type-pair table stride)
   std::uint32_t freeze_bit = 0;   // grains of this group count as infinitely heavy (LIGGGHTS fix freeze)
 };
+
+// The per-atom arrays a kernel reads and writes, for the first n atoms.
+inline AtomView atom_view(Atoms& at, std::size_t n, std::uint32_t freeze_bit) {
+  AtomView a;
+  a.n = n;
+  a.x = at.x.data();
+  a.v = at.v.data();
+  a.omega = at.omega.data();
+  a.radius = at.radius.data();
+  a.rmass = at.rmass.data();
+  a.type = at.type.data();
+  a.mask = at.mask.data();
+  a.f = at.f.data();
+  a.torque = at.torque.data();
+  a.stride = at.ntypes + 1;
+  a.freeze_bit = freeze_bit;
+  return a;
+}
 
 // Particle-particle contacts: Neighbor's half list plus history parallel to it.
 struct PairBatch {

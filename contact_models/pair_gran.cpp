@@ -64,18 +64,7 @@ PairBatch PairGran::batch() {
   const NeighborList& list = sim.neighbor.list;
   PairBatch b;
   // Atoms inserted since the last build have no list entries yet: the list covers its first n atoms.
-  b.a.n = list.first.empty() ? 0 : list.first.size() - 1;
-  b.a.x = at.x.data();
-  b.a.v = at.v.data();
-  b.a.omega = at.omega.data();
-  b.a.radius = at.radius.data();
-  b.a.rmass = at.rmass.data();
-  b.a.type = at.type.data();
-  b.a.mask = at.mask.data();
-  b.a.f = at.f.data();
-  b.a.torque = at.torque.data();
-  b.a.stride = at.ntypes + 1;
-  b.a.freeze_bit = freeze_bit_;
+  b.a = atom_view(at, list.first.empty() ? 0 : list.first.size() - 1, freeze_bit_);
   b.first = list.first.data();
   b.jlist = list.j.data();
   b.shift = list.shift.data();

@@ -216,18 +216,7 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
 WallBatch FixWallGran::batch() {
   Atoms& at = sim.atoms;
   WallBatch b;
-  b.a.n = at.n;
-  b.a.x = at.x.data();
-  b.a.v = at.v.data();
-  b.a.omega = at.omega.data();
-  b.a.radius = at.radius.data();
-  b.a.rmass = at.rmass.data();
-  b.a.type = at.type.data();
-  b.a.mask = at.mask.data();
-  b.a.f = at.f.data();
-  b.a.torque = at.torque.data();
-  b.a.stride = at.ntypes + 1;
-  b.a.freeze_bit = freeze_bit_;
+  b.a = atom_view(at, at.n, freeze_bit_);
   b.n = atom_.size();
   b.atom = atom_.data();
   b.deltan = deltan_.data();
