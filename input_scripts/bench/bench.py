@@ -380,9 +380,10 @@ def table_md(rows, threads, info, args):
         for t in threads:
             s = row["sable"].get(t)
             c.append("%.2f" % (s["psps"] / lg["psps"]) if s and lg.get("psps") else "-")
-        st = row["sable"].get(threads[-1]) or next(iter(row["sable"].values()), None)
+        tst = max(row["sable"]) if row["sable"] else None  # the split of the most threads run
+        st = row["sable"].get(tst)
         c.append(split_str(st and st["split"], ["pair", "neigh", "integrate", "fixes", "output"]) +
-                 (" (%dt)" % threads[-1] if st and len(threads) > 1 else ""))
+                 (" (%dt)" % tst if st and len(threads) > 1 else ""))
         c.append(split_str(lg.get("split"), ["Pair", "Neigh", "Comm", "Outpt", "Modify", "Other"]))
         srss = max((s["maxrss_mb"] for s in row["sable"].values()), default=None)
         c.append("%s / %s" % (srss if srss is not None else "-", lg.get("maxrss_mb", "-")))
@@ -414,6 +415,10 @@ def write_report(path_md, path_json, rows, results, threads, info, args, title):
           "in the timed run; contacts/grain from the final dump (distance <= ri + rj); "
           "LIGGGHTS neighs/atom = its 'Ave neighs/atom' (newton off)", "",
           table_md(rows, threads, info, args), ""]
+    kept = [(k, v["measured"]) for k, v in results.items() if v.get("measured")]
+    if kept:
+        md.insert(-3, "- kept from the previous report (--update): " +
+                  ", ".join("%s (measured %s)" % kv for kv in kept))
     md.append("| case | scene | deck variables |")
     md.append("|---|---|---|")
     for row in rows:
@@ -579,6 +584,8 @@ def main():
                          "determinism[_quick] with --determinism); writes PREFIX.md and PREFIX.json")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="override a deck variable for every selected case (repeatable), e.g. --set prep=4000")
+    ap.add_argument("--update", action="store_true",
+                    help="merge into the existing PREFIX.json: the cases run now replace theirs, the others stay")
     ap.add_argument("--keep", action="store_true", help="keep the run directories (logs, dumps)")
     args = ap.parse_args()
     if args.liggghts_repeats is None:
@@ -626,14 +633,27 @@ def main():
             print("\n" + table)
             print(f"\nwritten: {prefix}.md, {prefix}.json")
             return
+        prefix = args.out or os.path.join(HERE, "results_quick" if args.quick else "results")
         results = bench(args, cases, threads, sable, liggghts, tmp)
         info["loadavg_end"] = os.getloadavg()
+        if args.update and os.path.exists(prefix + ".json"):
+            with open(prefix + ".json") as f:
+                old = json.load(f)
+            merged = {k: v for k, v in old.get("results", {}).items() if k not in results}
+            for k, v in merged.items():
+                v.setdefault("measured", old.get("info", {}).get("date"))
+            merged.update(results)
+            order = [c["name"] for c in CASES]
+            results = {k: merged[k] for k in sorted(merged, key=lambda k: order.index(k) if k in order else 99)}
+            info["merged_from"] = prefix + ".json"
         for res in results.values():
             for r in res["runs"]:
                 if r["engine"] == "liggghts" and r.get("version"):
                     info["liggghts_version"] = r["version"]
+        if args.update:  # show every thread count present in the merged runs
+            threads = sorted({r["threads"] for v in results.values() for r in v["runs"] if r["engine"] == "sable"}
+                             | set(threads))
         rows = summarize(results, threads)
-        prefix = args.out or os.path.join(HERE, "results_quick" if args.quick else "results")
         title = "sable vs LIGGGHTS benchmark" + (" (--quick smoke test: tiny sizes)" if args.quick else "")
         write_report(prefix + ".md", prefix + ".json", rows, results, threads, info, args, title)
         print("\n" + table_md(rows, threads, info, args))
