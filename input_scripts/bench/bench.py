@@ -306,8 +306,10 @@ def machine_info(sable, liggghts):
 
 
 def deck_hash(case):
-    with open(os.path.join(HERE, case["deck"]), "rb") as f:
-        return hashlib.sha1(f.read()).hexdigest()[:12]
+    """SHA-1 of the deck's commands (comments and blank lines left out)."""
+    with open(os.path.join(HERE, case["deck"])) as f:
+        cmds = [" ".join(l.split("#")[0].split()) for l in f]
+    return hashlib.sha1("\n".join(c for c in cmds if c).encode()).hexdigest()[:12]
 
 
 # ---------------------------------------------------------------- reports ---
