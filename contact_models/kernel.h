@@ -458,7 +458,7 @@ class GranKernel final : public ContactKernel {
     const int nparts = pair_thread_count(b.a.n, b.a.n ? static_cast<std::size_t>(b.first[b.a.n]) : 0);
     if (nparts <= 1) {
       Chunk ch;
-      pair_range(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
+      pair_range<false>(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
       return;
     }
 #ifdef _OPENMP
@@ -472,7 +472,7 @@ class GranKernel final : public ContactKernel {
 #pragma omp barrier
       for (int t = tid; t < nparts; t += nt) {
         apply_incoming(b, pp, t);
-        pair_range(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
+        pair_range<true>(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
       }
     }
 #endif
@@ -491,19 +491,26 @@ class GranKernel final : public ContactKernel {
     bool forget;  // an ended contact loses its history now (else at the next rebuild)
   };
   static ListView list_view(const PairBatch& b) {
-    return {b.a.x, b.a.radius, b.jlist, b.shift, b.shift_vec, b.touch, b.hist,
-            !b.keep_until_rebuild || b.rebuilt};
+    return {b.a.x, b.a.radius, b.jlist, b.shift, b.shift_vec, b.touch, b.hist, !b.keep_until_rebuild || b.rebuilt};
   }
 
-  // Stage 1 for list entry k of atom i: append to the columns (n, nev: the
-  // chunk's counts, kept in registers by the caller) if touching; forget an
-  // ended contact.
+  // Stage 1 for list entry k of atom i: append to the columns (n: the chunk's
+  // count, kept in a register by the caller) if touching; forget an ended
+  // contact. kEvents (threaded phase B): also record the column as a scatter event.
+  template <bool kEvents>
   [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int& nev, int i,
                                                          double xi, double yi, double zi, double radi, int k) {
     const int j = L.jlist[k];
-    const double* sh = L.shift_vec[L.shift[k]];
     const double* xj = L.x + 3 * j;
-    const double dx = xi - (xj[0] + sh[0]), dy = yi - (xj[1] + sh[1]), dz = zi - (xj[2] + sh[2]);
+    double xj0 = xj[0], xj1 = xj[1], xj2 = xj[2];
+    const std::uint8_t code = L.shift[k];
+    if (code != NeighborList::kNoShift) {  // periodic image: rare, so predictable
+      const double* sh = L.shift_vec[code];
+      xj0 += sh[0];
+      xj1 += sh[1];
+      xj2 += sh[2];
+    }
+    const double dx = xi - xj0, dy = yi - xj1, dz = zi - xj2;
     const double rsq = dx * dx + dy * dy + dz * dz;
     const double radj = L.radius[j], radsum = radi + radj;
     const bool touching = !(rsq >= radsum * radsum);
@@ -515,9 +522,11 @@ class GranKernel final : public ContactKernel {
     ch.dz[n] = dz;
     ch.radi[n] = radi;
     ch.radj[n] = radj;
-    ch.ev[nev] = n;
+    if constexpr (kEvents) {
+      ch.ev[nev] = n;
+      nev += touching;
+    }
     n += touching;
-    nev += touching;
     if constexpr (kH > 0) {
       // Contact ended: forget it. Rare, so the branch is predictable as long as
       // it does not test `touching` alone (a coin flip): hence the arithmetic.
@@ -530,23 +539,38 @@ class GranKernel final : public ContactKernel {
   }
 
   // Stage 1, second half: copy the state of the touching pairs into columns.
+  // Specialised for the common scene: no frozen grains, one atom type.
   void gather(const PairBatch& b, Chunk& ch) const {
+    const bool frozen = b.a.freeze_bit != 0, types = b.a.stride > 2;
+    if (frozen || types)
+      gather_columns<true>(b, ch);
+    else
+      gather_columns<false>(b, ch);
+  }
+  template <bool kGeneral>
+  void gather_columns(const PairBatch& b, Chunk& ch) const {
     const AtomView& a = b.a;
-    for (int m = 0; m < ch.n; ++m) {
+    const double *v = a.v, *w = a.omega, *rmass = a.rmass;
+    const int n = ch.n;
+    for (int m = 0; m < n; ++m) {
       const int i = ch.i[m], j = ch.j[m];
-      PairState s;
-      gather_state(a, i, j, s);
-      ch.mi[m] = s.mi;
-      ch.mj[m] = s.mj;
-      ch.frozen[m] = s.frozen;
+      ch.mi[m] = rmass[i];
+      ch.mj[m] = rmass[j];
       for (int d = 0; d < 3; ++d) {
-        ch.vr[d][m] = s.vr[d];
-        ch.wi[d][m] = s.wi[d];
-        ch.wj[d][m] = s.wj[d];
+        ch.vr[d][m] = v[3 * i + d] - v[3 * j + d];
+        ch.wi[d][m] = w[3 * i + d];
+        ch.wj[d][m] = w[3 * j + d];
       }
-      ch.itype[m] = a.type[i];
-      ch.jtype[m] = a.type[j];
-      ch.tp[m] = a.type[i] * a.stride + a.type[j];
+      if constexpr (kGeneral) {
+        ch.frozen[m] = ((a.mask[i] & a.freeze_bit) ? 1 : 0) | ((a.mask[j] & a.freeze_bit) ? 2 : 0);
+        ch.itype[m] = a.type[i];
+        ch.jtype[m] = a.type[j];
+        ch.tp[m] = a.type[i] * a.stride + a.type[j];
+      } else {  // one type (1), nothing frozen
+        ch.frozen[m] = 0;
+        ch.itype[m] = ch.jtype[m] = 1;
+        ch.tp[m] = a.stride + 1;
+      }
       if constexpr (kH > 0) {
         const double* h = b.hist + static_cast<std::size_t>(ch.k[m]) * kH;
         for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
@@ -598,13 +622,28 @@ class GranKernel final : public ContactKernel {
 
   // Stages 1b-3 for the chunk; `pp` given: cross contacts come from their slots.
   // Not inlined into the filter loop, which then keeps its values in registers.
+  // kCross: threaded phase B, where the events interleave cross contacts.
+  template <bool kCross>
   [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch, const PairPartition* pp) const {
     gather(b, ch);
     evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+    if (b.ctx.update)
+      scatter<true, kCross>(b, ch, pp);
+    else
+      scatter<false, kCross>(b, ch, pp);
+    ch.n = ch.nev = 0;
+  }
+
+  // Stage 3: forces and torques onto the grains in list order; history and touch flags back.
+  template <bool kUpdate, bool kCross>
+  void scatter(const PairBatch& b, const Chunk& ch, const PairPartition* pp) const {
     double* f = b.a.f;
     double* t = b.a.torque;
-    for (int q = 0; q < ch.nev; ++q) {
-      const int e = ch.ev[q];
+    [[maybe_unused]] std::uint8_t* touch = b.touch;
+    [[maybe_unused]] double* hist = b.hist;
+    const int nev = kCross ? ch.nev : ch.n;
+    for (int q = 0; q < nev; ++q) {
+      const int e = kCross ? ch.ev[q] : q;
       if (e >= 0) {
         const int i = ch.i[e], j = ch.j[e];
         for (int d = 0; d < 3; ++d) {
@@ -613,7 +652,13 @@ class GranKernel final : public ContactKernel {
           t[3 * i + d] += ch.ti[d][e];
           t[3 * j + d] += ch.tj[d][e];
         }
-      } else {
+        if constexpr (kH > 0) {
+          const std::size_t k = static_cast<std::size_t>(ch.k[e]);
+          touch[k] = 1;
+          if constexpr (kUpdate)
+            for (int c = 0; c < kH; ++c) hist[k * kH + c] = ch.h[c][e];
+        }
+      } else if constexpr (kCross) {
         const int s = ~e, i = pp->cross_i[s];
         const double* val = &pp->val[9 * static_cast<std::size_t>(s)];
         for (int d = 0; d < 3; ++d) {
@@ -622,8 +667,6 @@ class GranKernel final : public ContactKernel {
         }
       }
     }
-    store_history(b, ch);
-    ch.n = ch.nev = 0;
   }
 
   static void store_history(const PairBatch& b, const Chunk& ch) {
@@ -639,29 +682,31 @@ class GranKernel final : public ContactKernel {
   }
 
   // Phase B (or the whole serial pass): the entries of atoms [lo, hi) in list order.
+  // kCross = (pp != nullptr): threaded, entries whose j lies beyond `hi` come from phase A.
+  template <bool kCross>
   void pair_range(const PairBatch& b, int lo, int hi, const PairPartition* pp, int t, Chunk& ch) const {
     const ListView L = list_view(b);
     const int* first = b.first;
-    int cursor = pp ? pp->cross_first[t] : 0;  // next cross entry of this range
+    int cursor = kCross ? pp->cross_first[t] : 0;  // next cross entry of this range
     int n = 0, nev = 0;
     for (int i = lo; i < hi; ++i) {
       const double xi = L.x[3 * i], yi = L.x[3 * i + 1], zi = L.x[3 * i + 2], radi = L.radius[i];
       for (int k = first[i], kend = first[i + 1]; k < kend; ++k) {
-        if (L.jlist[k] >= hi) {  // cross entry (only with pp): evaluated in phase A
+        if (kCross && L.jlist[k] >= hi) {  // cross entry: evaluated in phase A
           const int s = cursor++;
           if (pp->on[s]) ch.ev[nev++] = ~s;
         } else {
-          filter_entry(L, ch, n, nev, i, xi, yi, zi, radi, k);
+          filter_entry<kCross>(L, ch, n, nev, i, xi, yi, zi, radi, k);
         }
-        if (nev == Chunk::kCap) {
+        if ((kCross ? nev : n) == Chunk::kCap) {
           ch.n = n, ch.nev = nev;
-          flush(b, ch, pp);
+          flush<kCross>(b, ch, pp);
           n = nev = 0;
         }
       }
     }
     ch.n = n, ch.nev = nev;
-    flush(b, ch, pp);
+    flush<kCross>(b, ch, pp);
   }
 
   // Phase A: the cross entries of range t, into their slots.
@@ -671,7 +716,7 @@ class GranKernel final : public ContactKernel {
     for (int s = pp.cross_first[t]; s < pp.cross_first[t + 1]; ++s) {
       const int i = pp.cross_i[s], k = pp.cross_k[s];
       const int before = n;
-      filter_entry(L, ch, n, nev, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
+      filter_entry<false>(L, ch, n, nev, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
       pp.on[s] = static_cast<std::uint8_t>(n != before);
       ch.ev[before] = s;  // phase A: event m names the slot of column m
       nev = n;

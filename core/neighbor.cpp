@@ -118,7 +118,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   // Per-atom passes are threaded for large systems; the list is built in
   // blocks of atoms and joined in atom order, so it is the same list (same
   // entries, same order) for every thread count.
-  const int nth = loop_thread_count(n, 16);
+  const int nth = loop_thread_count(n, 8);
   double* xa = atoms.x.data();
   int* image = atoms.image.data();
   const double* radius = atoms.radius.data();

@@ -7,6 +7,10 @@
 // once and summed in a fixed order); below a size threshold a loop runs on one
 // thread, where the fork/join would cost more than it saves. The thread count
 // is OpenMP's (OMP_NUM_THREADS).
+//
+// When the cores are shared (other jobs, ctest -j), libgomp's default
+// spin-waiting at barriers can cost whole scheduler time slices per step:
+// there, run with OMP_WAIT_POLICY=passive (or one thread).
 #include <cstddef>
 
 #ifdef _OPENMP
@@ -15,15 +19,25 @@
 
 namespace sable {
 
+// Size thresholds and the SIMD switch. Tests lower the thresholds to run the
+// threaded paths on small systems and switch AVX2 off to compare the variants.
+struct ThreadSettings {
+  std::size_t pair_atoms = 4096;    // pair pass threaded from this many grains ...
+  std::size_t pair_entries = 8192;  // ... and list entries
+  std::size_t loop_work = 32768;    // per-atom loops: atoms x cost units
+  bool avx2 = true;                 // allow the AVX2 contact loops (also off with SABLE_NO_AVX2 set)
+};
+ThreadSettings& thread_settings();
+
 // Threads to use for the pair force pass over `natoms` atoms with `entries` list entries (1: serial).
 int pair_thread_count(std::size_t natoms, std::size_t entries);
 
-// Threads available to a loop over `n` items of about `cost` cheap operations each (1: serial).
+// Threads for a loop over `n` items of about `cost` cheap operations each (1: serial).
 int loop_thread_count(std::size_t n, std::size_t cost = 1);
 
-// True when the contact loops may use their AVX2 variant (the CPU has it and
-// SABLE_NO_AVX2 is not set). Both variants give identical results: they differ
-// in vector width only (no FMA contraction, no reassociation).
+// True when the contact loops use their AVX2 variant (the CPU has it, it is
+// allowed, SABLE_NO_AVX2 is not set). Both variants give identical results:
+// they differ in vector width only (no FMA contraction, no reassociation).
 bool simd_avx2();
 
 }  // namespace sable

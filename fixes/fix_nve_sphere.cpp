@@ -28,27 +28,38 @@ class FixNveSphere : public Fix {
     Atoms& at = sim.atoms;
     const std::size_t n = at.n;
     const double dt = sim.dt, h = 0.5 * sim.dt;
-    double* x = at.x.data();
-    double* v = at.v.data();
-    double* w = at.omega.data();
-    const double* f = at.f.data();
-    const double* t = at.torque.data();
-    const double* rmass = at.rmass.data();
-    const double* radius = at.radius.data();
+    Arrays p{at.x.data(), at.v.data(), at.omega.data(), at.f.data(), at.torque.data(), at.rmass.data(),
+             at.radius.data()};
     const std::uint32_t* mask = at.mask.data();
     const std::uint32_t bit = groupbit;
-    const bool all = bit == 1u;  // group all (bit 0): every atom
     const long nn = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (loop_thread_count(n, 8) > 1)
-    for (long i = 0; i < nn; ++i) {
-      if (!all && !(mask[i] & bit)) continue;
-      const double m = rmass[i], r = radius[i];
-      const double hm = h / m, hi = h / (0.4 * m * r * r);
-      for (int k = 0; k < 3; ++k) {
-        v[3 * i + k] += hm * f[3 * i + k];
-        w[3 * i + k] += hi * t[3 * i + k];
-        if constexpr (kDrift) x[3 * i + k] += dt * v[3 * i + k];
-      }
+    const bool threads = loop_thread_count(n, 8) > 1;
+    if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
+#pragma omp parallel for schedule(static) if (threads)
+      for (long i = 0; i < nn; ++i) step<kDrift>(p, i, dt, h);
+    } else {
+#pragma omp parallel for schedule(static) if (threads)
+      for (long i = 0; i < nn; ++i)
+        if (mask[i] & bit) step<kDrift>(p, i, dt, h);
+    }
+  }
+  struct Arrays {
+    double* __restrict x;
+    double* __restrict v;
+    double* __restrict w;
+    const double* __restrict f;
+    const double* __restrict t;
+    const double* __restrict rmass;
+    const double* __restrict radius;
+  };
+  template <bool kDrift>
+  [[gnu::always_inline]] static inline void step(const Arrays& p, long i, double dt, double h) {
+    const double m = p.rmass[i], r = p.radius[i];
+    const double hm = h / m, hi = h / (0.4 * m * r * r);
+    for (int k = 0; k < 3; ++k) {
+      p.v[3 * i + k] += hm * p.f[3 * i + k];
+      p.w[3 * i + k] += hi * p.t[3 * i + k];
+      if constexpr (kDrift) p.x[3 * i + k] += dt * p.v[3 * i + k];
     }
   }
 };
