@@ -26,6 +26,7 @@
 #include "contact_models/contact.h"
 #include "contact_models/materials.h"
 #include "core/atoms.h"
+#include "core/neighbor.h"
 #include "core/threads.h"
 
 namespace sable {
@@ -66,8 +67,9 @@ struct PairBatch {
   const int* jlist = nullptr;
   const std::uint8_t* shift = nullptr;    // image code per entry
   const double (*shift_vec)[3] = nullptr; // j's image = x[j] + shift_vec[code]
-  double* hist = nullptr;                 // kHistory doubles per list entry (null without history)
-  std::uint8_t* touch = nullptr;
+  ContactStore* store = nullptr;          // history (null without): row per entry, kHistory doubles per row
+  int* row = nullptr;                     // store->row
+  double* hist = nullptr;                 // store->rows()
   StepContext ctx;
   std::uint32_t groupbit = ~0u;           // records: both grains must be in this group
   long list_version = -1;                 // changes whenever the list is rebuilt (thread partition cache)
@@ -165,7 +167,7 @@ struct PairChunk {
   int n = 0;    // contacts to evaluate (columns 0..n-1)
   int nev = 0;  // scatter events in list order: e >= 0 column e; e < 0 precomputed cross contact ~e
   int ev[kCap];
-  int k[kCap], i[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
+  int row[kCap], i[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
   alignas(64) double dx[kCap], dy[kCap], dz[kCap], radi[kCap], radj[kCap], mi[kCap], mj[kCap];
   alignas(64) double vr[3][kCap], wi[3][kCap], wj[3][kCap];
   alignas(64) double h[kH > 0 ? kH : 1][kCap];
@@ -406,7 +408,8 @@ class GranKernel final : public ContactKernel {
         c.tp = c.itype * a.stride + c.jtype;
         double* h = nullptr;
         if constexpr (kH > 0) {
-          for (int m = 0; m < kH; ++m) hbuf[m] = b.hist[static_cast<std::size_t>(k) * kH + m];
+          const int r = b.row[k];
+          for (int m = 0; m < kH; ++m) hbuf[m] = r < 0 ? 0.0 : b.hist[static_cast<std::size_t>(r) * kH + m];
           h = hbuf;
         }
         const Parts p = evaluate(c, h, ctx);
@@ -486,17 +489,18 @@ class GranKernel final : public ContactKernel {
     const int* jlist;
     const std::uint8_t* shift;
     const double (*shift_vec)[3];
-    std::uint8_t* touch;
-    double* hist;
+    int* row;
+    ContactStore* store;
     bool forget;  // an ended contact loses its history now (else at the next rebuild)
   };
   static ListView list_view(const PairBatch& b) {
-    return {b.a.x, b.a.radius, b.jlist, b.shift, b.shift_vec, b.touch, b.hist, !b.keep_until_rebuild || b.rebuilt};
+    return {b.a.x, b.a.radius, b.jlist, b.shift, b.shift_vec, b.row, b.store, !b.keep_until_rebuild || b.rebuilt};
   }
 
   // Stage 1 for list entry k of atom i: append to the columns (n: the chunk's
-  // count, kept in a register by the caller) if touching; forget an ended
-  // contact. kEvents (threaded phase B): also record the column as a scatter event.
+  // count, kept in a register by the caller) if touching; a new contact takes a
+  // history row, an ended one forgets it. kEvents (threaded phase B): also
+  // record the column as a scatter event.
   template <bool kEvents>
   [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int& nev, int i,
                                                          double xi, double yi, double zi, double radi, int k) {
@@ -514,7 +518,6 @@ class GranKernel final : public ContactKernel {
     const double rsq = dx * dx + dy * dy + dz * dz;
     const double radj = L.radius[j], radsum = radi + radj;
     const bool touching = !(rsq >= radsum * radsum);
-    ch.k[n] = k;
     ch.i[n] = i;
     ch.j[n] = j;
     ch.dx[n] = dx;
@@ -522,20 +525,20 @@ class GranKernel final : public ContactKernel {
     ch.dz[n] = dz;
     ch.radi[n] = radi;
     ch.radj[n] = radj;
+    if constexpr (kH > 0) {
+      // Contact begun or ended. Rare, so the branch is predictable as long as
+      // it does not test `touching` alone (a coin flip): hence the arithmetic.
+      int r = L.row[k];
+      const unsigned t = touching, has = r >= 0, gone = !t && has;
+      if (__builtin_expect(((t & !has) | (gone & static_cast<unsigned>(L.forget))) != 0, 0))
+        L.row[k] = r = t ? L.store->new_row() : ContactStore::kNone;
+      ch.row[n] = r;
+    }
     if constexpr (kEvents) {
       ch.ev[nev] = n;
       nev += touching;
     }
     n += touching;
-    if constexpr (kH > 0) {
-      // Contact ended: forget it. Rare, so the branch is predictable as long as
-      // it does not test `touching` alone (a coin flip): hence the arithmetic.
-      const unsigned ended = L.touch[k] & static_cast<unsigned>(!touching) & static_cast<unsigned>(L.forget);
-      if (__builtin_expect(ended != 0, 0)) {
-        L.touch[k] = 0;
-        for (int q = 0; q < kH; ++q) L.hist[static_cast<std::size_t>(k) * kH + q] = 0.0;
-      }
-    }
   }
 
   // Stage 1, second half: copy the state of the touching pairs into columns.
@@ -572,7 +575,7 @@ class GranKernel final : public ContactKernel {
         ch.tp[m] = a.stride + 1;
       }
       if constexpr (kH > 0) {
-        const double* h = b.hist + static_cast<std::size_t>(ch.k[m]) * kH;
+        const double* h = b.hist + static_cast<std::size_t>(ch.row[m]) * kH;
         for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
       }
     }
@@ -634,12 +637,11 @@ class GranKernel final : public ContactKernel {
     ch.n = ch.nev = 0;
   }
 
-  // Stage 3: forces and torques onto the grains in list order; history and touch flags back.
+  // Stage 3: forces and torques onto the grains in list order; history back.
   template <bool kUpdate, bool kCross>
   void scatter(const PairBatch& b, const Chunk& ch, const PairPartition* pp) const {
     double* f = b.a.f;
     double* t = b.a.torque;
-    [[maybe_unused]] std::uint8_t* touch = b.touch;
     [[maybe_unused]] double* hist = b.hist;
     const int nev = kCross ? ch.nev : ch.n;
     for (int q = 0; q < nev; ++q) {
@@ -652,11 +654,9 @@ class GranKernel final : public ContactKernel {
           t[3 * i + d] += ch.ti[d][e];
           t[3 * j + d] += ch.tj[d][e];
         }
-        if constexpr (kH > 0) {
-          const std::size_t k = static_cast<std::size_t>(ch.k[e]);
-          touch[k] = 1;
-          if constexpr (kUpdate)
-            for (int c = 0; c < kH; ++c) hist[k * kH + c] = ch.h[c][e];
+        if constexpr (kH > 0 && kUpdate) {
+          const std::size_t r = static_cast<std::size_t>(ch.row[e]);
+          for (int c = 0; c < kH; ++c) hist[r * kH + c] = ch.h[c][e];
         }
       } else if constexpr (kCross) {
         const int s = ~e, i = pp->cross_i[s];
@@ -671,13 +671,11 @@ class GranKernel final : public ContactKernel {
 
   static void store_history(const PairBatch& b, const Chunk& ch) {
     if constexpr (kH > 0) {
-      std::uint8_t* touch = b.touch;
       double* hist = b.hist;
       const int n = ch.n;
-      for (int m = 0; m < n; ++m) touch[ch.k[m]] = 1;
       if (b.ctx.update)
         for (int m = 0; m < n; ++m)
-          for (int q = 0; q < kH; ++q) hist[static_cast<std::size_t>(ch.k[m]) * kH + q] = ch.h[q][m];
+          for (int q = 0; q < kH; ++q) hist[static_cast<std::size_t>(ch.row[m]) * kH + q] = ch.h[q][m];
     }
   }
 
@@ -775,7 +773,7 @@ class GranKernel final : public ContactKernel {
     for (std::size_t i = 0; i < n; ++i) {
       double w = 1.0 + (b.first[i + 1] - b.first[i]);
       if constexpr (kH > 0)
-        for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * b.touch[k];
+        for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * (b.row[k] >= 0);
       cum[i + 1] = cum[i] + w;
     }
     pp.lo.assign(nparts + 1, 0);

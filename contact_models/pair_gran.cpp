@@ -71,8 +71,9 @@ PairBatch PairGran::batch() {
   b.shift_vec = list.shift_vec;
   b.list_version = sim.neighbor.builds;
   if (history()) {
-    b.hist = store_.hist.data();
-    b.touch = store_.touch.data();
+    b.store = &store_;
+    b.row = store_.row.data();
+    b.hist = store_.rows();
   }
   b.ctx.dt = sim.dt;
   return b;
@@ -86,6 +87,7 @@ static bool list_usable(const Simulation& sim) {
 
 void PairGran::compute() {
   if (!list_usable(sim)) return;
+  if (history()) store_.make_room();  // before batch(): it may move the rows
   PairBatch b = batch();
   b.ctx.update = !setup_pass_;
   setup_pass_ = false;

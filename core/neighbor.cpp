@@ -14,23 +14,53 @@ namespace sable {
 void ContactStore::configure(const std::vector<HistorySlot>& s) {
   slots = s;
   size = static_cast<int>(s.size());
+  buf_.reset();
+  cap_ = 0;
 }
 
+void ContactStore::reserve_rows(std::size_t rows) {
+  used_ = 0;
+  if (rows <= cap_ && buf_) return;
+  cap_ = rows;
+  buf_ = std::make_unique_for_overwrite<double[]>(std::max<std::size_t>(cap_ * size, 1));
+}
+
+// Twice the entries: make_room() then only compacts after as many new contacts
+// as there are entries, which a rebuild usually comes well before.
 void ContactStore::resize(std::size_t entries) {
-  hist.assign(entries * size, 0.0);
-  touch.assign(entries, 0);
+  row.assign(entries, kNone);
+  reserve_rows(2 * entries + 16);
+}
+
+void ContactStore::make_room() {
+  const std::size_t entries = row.size();
+  if (static_cast<std::size_t>(used_) + entries <= cap_) return;
+  std::vector<double> live;
+  for (int& r : row)
+    if (r >= 0) {
+      live.insert(live.end(), buf_.get() + static_cast<std::size_t>(r) * size, buf_.get() + (r + 1ul) * size);
+      r = static_cast<int>(live.size() / size) - 1;
+    }
+  reserve_rows(std::max(2 * entries + 16, cap_));
+  std::copy(live.begin(), live.end(), buf_.get());
+  used_ = static_cast<int>(live.size() / size);
+}
+
+std::size_t ContactStore::contacts() const {
+  return static_cast<std::size_t>(std::count_if(row.begin(), row.end(), [](int r) { return r >= 0; }));
 }
 
 SavedContacts ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
   SavedContacts out;
-  if (touch.empty() || touch.size() != list.size()) return out;
+  if (row.empty() || row.size() != list.size()) return out;
   const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
   for (std::size_t i = 0; i < n; ++i)
     for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
-      if (!touch[k]) continue;
+      const double* h = history(k);
+      if (!h) continue;
       out.ids.push_back(ids[i]);
       out.ids.push_back(ids[list.j[k]]);
-      out.hist.insert(out.hist.end(), hist.begin() + k * size, hist.begin() + (k + 1) * size);
+      out.hist.insert(out.hist.end(), h, h + size);
     }
   return out;
 }
@@ -79,10 +109,10 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
       }
       if (it == where.end()) continue;
       const std::size_t at = it->second * size;
-      touch[k] = 1;
+      double* h = begin_contact(k);  // rows in list order
       for (int m = 0; m < size; ++m) {
-        const double h = saved_.hist[at + m];
-        hist[k * size + m] = (swapped && slots[m].flip) ? -h : h;
+        const double v = saved_.hist[at + m];
+        h[m] = (swapped && slots[m].flip) ? -v : v;
       }
     }
   saved_.clear();

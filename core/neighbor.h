@@ -2,9 +2,11 @@
 // Cell binning + half Verlet list with skin (LIGGGHTS `neighbor SKIN bin`,
 // `neigh_modify delay/every/check`). Periodic images are not ghost atoms: each
 // list entry carries a shift code, so forces land directly on the owners.
-// ContactStore keeps per-contact history parallel to the list and carries it
-// across rebuilds by (id_i, id_j).
+// ContactStore keeps per-contact history, found from the list entries, and
+// carries it across rebuilds by (id_i, id_j).
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,14 +38,32 @@ struct SavedContacts {
   void clear() { ids.clear(), hist.clear(); }
 };
 
+// History rows, one per contact rather than one per list entry (most entries
+// are near misses within the skin): the force pass streams less than half the
+// bytes. Contacts alive at the last rebuild (or compaction) come first, in list
+// order; contacts begun since take rows at the end.
 class ContactStore {
  public:
-  int size = 0;                       // doubles per contact
+  static constexpr int kNone = -1;
+  int size = 0;                     // doubles per contact
   std::vector<HistorySlot> slots;
-  std::vector<double> hist;           // size * list entries
-  std::vector<std::uint8_t> touch;    // 1 while in contact
+  std::vector<int> row;             // per list entry: its history row, kNone while not in contact
   void configure(const std::vector<HistorySlot>& s);
+  // `entries` list entries, none in contact.
   void resize(std::size_t entries);
+  double* rows() { return buf_.get(); }
+  const double* history(std::size_t k) const { return row[k] < 0 ? nullptr : buf_.get() + row[k] * size; }
+  // A zeroed row for a contact that begins now (safe from several threads at once).
+  int new_row() {
+    const int r = used_.fetch_add(1, std::memory_order_relaxed);
+    for (int m = 0; m < size; ++m) buf_[static_cast<std::size_t>(r) * size + m] = 0.0;
+    return r;
+  }
+  // Entry k starts a contact now; returns its (zeroed) history.
+  double* begin_contact(std::size_t k) { return buf_.get() + (row[k] = new_row()) * static_cast<std::size_t>(size); }
+  // Before a force pass: room for one new contact per list entry (compacts when short).
+  void make_room();
+  std::size_t contacts() const;  // entries in contact
   // Keep history of touching pairs across a rebuild.
   // ids[i] is the id of the atom at index i when the list was built (atoms may
   // have been deleted, inserted or sorted since).
@@ -57,6 +77,10 @@ class ContactStore {
   std::vector<std::string> inject(const std::vector<HistorySlot>& from, const SavedContacts& c);
 
  private:
+  void reserve_rows(std::size_t rows);  // capacity for `rows` rows; contents dropped
+  std::unique_ptr<double[]> buf_;       // not zeroed: new rows are zeroed when taken
+  std::size_t cap_ = 0;                 // rows
+  std::atomic<int> used_{0};            // rows taken
   SavedContacts saved_, injected_;
 };
 

@@ -4,7 +4,11 @@
 #include <sstream>
 #include <string>
 
+#include <algorithm>
+#include <vector>
+
 #include "core/input.h"
+#include "core/neighbor.h"
 #include "core/simulation.h"
 
 namespace sable::test {
@@ -40,6 +44,15 @@ inline std::string printed(const std::string& text, Deck& d) {
   std::fclose(out);
   d->screen = nullptr;
   return s;
+}
+
+
+// Pair history per list entry (zeros where not in contact), in entry order.
+inline std::vector<double> entry_history(const ContactStore& s) {
+  std::vector<double> out(s.row.size() * s.size, 0.0);
+  for (std::size_t k = 0; k < s.row.size(); ++k)
+    if (const double* h = s.history(k)) std::copy(h, h + s.size, out.begin() + k * s.size);
+  return out;
 }
 
 }  // namespace sable::test

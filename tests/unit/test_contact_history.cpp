@@ -16,6 +16,7 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::entry_history;
 
 namespace {
 
@@ -104,13 +105,13 @@ TEST(ContactHistory, SignFlipsWhenThePairIsSeenReversed) {
     (*d)("run 8");
     ASSERT_EQ((*d)->atoms.index_of(1), 0u);  // unsorted: creation order
   }
-  const std::vector<double> before = ref->pair->history()->hist;
+  const std::vector<double> before = entry_history(*ref->pair->history());
   flip("atom_modify sort 1 0.001");
   ref("run 8");
   flip("run 8");
   ASSERT_EQ(flip->atoms.index_of(1), 1u) << "the sort should have reversed the pair";
-  const auto& hr = ref->pair->history()->hist;
-  const auto& hf = flip->pair->history()->hist;
+  const auto& hr = entry_history(*ref->pair->history());
+  const auto& hf = entry_history(*flip->pair->history());
   ASSERT_EQ(hr.size(), 6u);
   ASSERT_EQ(hf.size(), 6u);
   int moving = 0;
@@ -147,7 +148,7 @@ TEST(ContactHistory, SurvivesNeighbourRebuildsDuringASlidingContact) {
   never("neighbor 0.005 bin");
   every("neigh_modify every 1 check no");
   long touching_steps = 0;
-  g_probe = [&](sable::Simulation& s) { touching_steps += s.pair->history()->touch[0]; };
+  g_probe = [&](sable::Simulation& s) { touching_steps += (s.pair->history()->history(0) != nullptr); };
   every("run 2000");
   EXPECT_GT(touching_steps, 1500) << "the grains should stay in contact";
   touching_steps = 0;
@@ -156,7 +157,7 @@ TEST(ContactHistory, SurvivesNeighbourRebuildsDuringASlidingContact) {
   EXPECT_GT(touching_steps, 1500);
   EXPECT_GT(every->neighbor.builds, 1900);
   EXPECT_LE(never->neighbor.builds, 1);
-  EXPECT_GT(std::fabs(every->pair->history()->hist[1]), 1e-9) << "a loaded tangential spring";
+  EXPECT_GT(std::fabs(entry_history(*every->pair->history())[1]), 1e-9) << "a loaded tangential spring";
   expect_same_state(never, every, 1e-9);  // round-off growth over 2000 steps only
 }
 
@@ -213,7 +214,7 @@ TEST(ContactHistory, ResetAtSeparationOrAtRebuild) {
     at.v[3] = 0.01;   // sliding ...
     at.v[5] = 0.02;   // ... and hopping off
     g_probe = [&](sable::Simulation& s) {
-      const auto& h = s.pair->history()->hist;
+      const auto& h = entry_history(*s.pair->history());
       shear_y.push_back(std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]));
       const std::size_t a = s.atoms.index_of(1), b = s.atoms.index_of(2);
       double d2 = 0;

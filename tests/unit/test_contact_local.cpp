@@ -11,6 +11,7 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::entry_history;
 
 namespace {
 
@@ -81,11 +82,11 @@ TEST(ContactLocal, RecordsDoNotChangeHistoryOrForces) {
   setup(d);
   d("compute c all pair/gran/local");
   d("run 5");
-  const std::vector<double> hist = d->pair->history()->hist;
+  const std::vector<double> hist = entry_history(*d->pair->history());
   const std::vector<double> f = d->atoms.f;
   sable::Compute* c = d->find_compute("c");
   c->local_now();
-  EXPECT_EQ(d->pair->history()->hist, hist);
+  EXPECT_EQ(entry_history(*d->pair->history()), hist);
   EXPECT_EQ(d->atoms.f, f);
   // LIGGGHTS' default columns: pos vel id force torque history contactArea.
   EXPECT_EQ(c->local_cols, 6 + 6 + 3 + 3 + 3 + 3 + 1);

@@ -152,24 +152,25 @@ TEST(ContactStore, HistorySurvivesRebuildSortAndPeriodicWrap) {
       if (s.neighbor.list.first[i + 1] > k && s.neighbor.list.first[i] <= k) return s.atoms.id[i];
     return -1L;
   }();
-  store.touch[k] = 1;
-  store.hist[0] = 0.25;
-  store.hist[1] = -0.5;
-  store.hist[2] = 7.0;
+  double* h = store.begin_contact(k);
+  h[0] = 0.25;
+  h[1] = -0.5;
+  h[2] = 7.0;
   // Move grain 1 across the boundary (it wraps to the low side) and rebuild: the
   // orientation of the pair in the list may change; flagged slots flip with it.
   for (std::size_t i = 0; i < s.atoms.n; ++i)
     if (s.atoms.id[i] == 1) s.atoms.x[3 * i] += 0.01;
   s.neighbor.build(s.atoms, s.domain, &store, 10);
   ASSERT_EQ(s.neighbor.list.size(), 1u);
-  EXPECT_EQ(store.touch[0], 1);
+  const double* h1 = store.history(0);
+  ASSERT_NE(h1, nullptr);
   long now_i = -1;
   for (std::size_t i = 0; i < s.atoms.n; ++i)
     if (s.neighbor.list.first[i + 1] > 0 && s.neighbor.list.first[i] <= 0) now_i = s.atoms.id[i];
   const double sign = now_i == idi ? 1.0 : -1.0;
-  EXPECT_EQ(store.hist[0], sign * 0.25);
-  EXPECT_EQ(store.hist[1], sign * -0.5);
-  EXPECT_EQ(store.hist[2], 7.0);  // not flagged: never flips
+  EXPECT_EQ(h1[0], sign * 0.25);
+  EXPECT_EQ(h1[1], sign * -0.5);
+  EXPECT_EQ(h1[2], 7.0);  // not flagged: never flips
   // The wrapped grain is back inside the box with its image counter advanced.
   for (std::size_t i = 0; i < s.atoms.n; ++i)
     if (s.atoms.id[i] == 1) {

@@ -16,6 +16,7 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::entry_history;
 namespace fs = std::filesystem;
 
 namespace {
@@ -100,18 +101,23 @@ void expect_same_state(sable::Simulation& a, sable::Simulation& b) {
   auto* ha = a.pair->history();
   auto* hb = b.pair->history();
   ASSERT_TRUE(ha && hb);
-  expect_bits(ha->touch, hb->touch, ha->touch.size(), "contact flags");
-  expect_bits(ha->hist, hb->hist, ha->hist.size(), "contact history");
+  std::vector<int> ta, tb;  // in contact, per list entry (rows may be numbered differently)
+  for (int r : ha->row) ta.push_back(r >= 0);
+  for (int r : hb->row) tb.push_back(r >= 0);
+  expect_bits(ta, tb, ta.size(), "contact flags");
+  const std::vector<double> va = entry_history(*ha), vb = entry_history(*hb);
+  expect_bits(va, vb, va.size(), "contact history");
 }
 
 // Touching pairs with a non-zero tangential spring; grains whose wall spring is non-zero.
 std::size_t active_pair_history(sable::Simulation& s) {
   auto* h = s.pair->history();
   std::size_t c = 0;
-  for (std::size_t k = 0; k < h->touch.size(); ++k) {
+  for (std::size_t k = 0; k < h->row.size(); ++k) {
+    const double* v = h->history(k);
     bool nz = false;
-    for (int m = 0; m < h->size; ++m) nz = nz || h->hist[k * h->size + m] != 0.0;
-    c += h->touch[k] && nz;
+    for (int m = 0; v && m < h->size; ++m) nz = nz || v[m] != 0.0;
+    c += nz;
   }
   return c;
 }

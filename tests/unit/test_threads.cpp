@@ -88,7 +88,7 @@ State run(int threads, bool avx2) {
   s.id.assign(a.id.begin(), a.id.begin() + a.n);
   s.builds = d->neighbor.builds;
   if (const sable::ContactStore* h = d->pair->history())
-    for (auto t : h->touch) s.contacts += t;
+    s.contacts = h->contacts();
   return s;
 }
 
