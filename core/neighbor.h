@@ -64,6 +64,8 @@ class ContactStore {
   // Before a force pass: room for one new contact per list entry (compacts when short).
   void make_room();
   std::size_t contacts() const;  // entries in contact
+  std::size_t rows_used() const { return static_cast<std::size_t>(used_); }
+  std::size_t capacity() const { return cap_; }
   // Keep history of touching pairs across a rebuild.
   // ids[i] is the id of the atom at index i when the list was built (atoms may
   // have been deleted, inserted or sorted since).

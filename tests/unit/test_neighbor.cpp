@@ -183,3 +183,41 @@ TEST(ContactStore, HistorySurvivesRebuildSortAndPeriodicWrap) {
   s.neighbor.build(s.atoms, s.domain, &store, 20);
   EXPECT_EQ(s.neighbor.list.size(), 0u);
 }
+
+// Contacts that begin and end many times between rebuilds use up rows; the
+// compaction before a force pass must keep each entry's history and never let
+// a pass run out of rows (one new contact per entry at most).
+TEST(ContactStore, CompactionKeepsEachEntrysHistory) {
+  ContactStore s;
+  s.configure({{"a", false}, {"b", true}});
+  const std::size_t entries = 5;
+  s.resize(entries);
+  std::vector<double> expect(entries, -1.0);  // -1: not in contact
+  int compactions = 0;
+  for (int pass = 0; pass < 200; ++pass) {
+    const std::size_t before = s.rows_used();
+    s.make_room();
+    compactions += s.rows_used() < before;
+    ASSERT_LE(s.rows_used() + entries, s.capacity()) << "pass " << pass;
+    for (std::size_t k = 0; k < entries; ++k) {
+      if ((pass + k) % 3 == 0 && s.row[k] >= 0) {  // contact ends
+        s.row[k] = ContactStore::kNone;
+        expect[k] = -1.0;
+      } else if (s.row[k] < 0) {  // contact begins
+        double* h = s.begin_contact(k);
+        EXPECT_EQ(h[0], 0.0);
+        EXPECT_EQ(h[1], 0.0);
+        h[0] = h[1] = expect[k] = 100.0 * pass + k;
+      }
+    }
+    for (std::size_t k = 0; k < entries; ++k) {
+      const double* h = s.history(k);
+      ASSERT_EQ(h != nullptr, expect[k] >= 0) << "entry " << k << " pass " << pass;
+      if (h) {
+        EXPECT_EQ(h[1], expect[k]);
+      }
+    }
+  }
+  EXPECT_GT(compactions, 5);
+  EXPECT_EQ(s.contacts(), static_cast<std::size_t>(std::count_if(expect.begin(), expect.end(), [](double v) { return v >= 0; })));
+}
