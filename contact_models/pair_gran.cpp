@@ -112,7 +112,8 @@ double PairGran::contact_time(std::size_t i, std::size_t j, double v) const {
   return kernel_->contact_time({mi * mj / (mi + mj), ri * rj / (ri + rj), v, at.type[i] * (at.ntypes + 1) + at.type[j]});
 }
 
-// Rayleigh time pi r sqrt(rho/G) / (0.1631 nu + 0.8766), G = Y / (2 (1 + nu)) of the grain's type.
+// Rayleigh time pi r sqrt(rho/G) / (0.1631 nu + 0.8766), G = Y / (2 (1 + nu)) of the grain's type,
+// rho the volume density of the grain's sphere.
 // Stiffness models (kn, kt given directly) may define no youngsModulus/poissonsRatio: then
 // there is no elastic wave speed to speak of and we return +infinity, so the check rests
 // on the contact time (pi sqrt(m*/kn) for hooke/stiffness), which is the relevant bound there.
@@ -120,8 +121,12 @@ double PairGran::rayleigh_time(std::size_t i) const {
   if (shear_modulus_.empty()) return std::numeric_limits<double>::infinity();
   const Atoms& at = sim.atoms;
   const int t = at.type[i];
-  return std::numbers::pi * at.radius[i] * std::sqrt(at.density[i] / shear_modulus_[t]) /
-         (0.1631 * poisson_[t] + 0.8766);
+  const double r = at.radius[i];
+  // In 2D `density` is per area (m = pi r^2 rho): take the volume density from the mass. 3D keeps
+  // `density` bit for bit (m / (4/3 pi r^3) may differ from it in the last bit).
+  const double rho =
+      sim.domain.dimension == 2 ? at.rmass[i] / (4.0 / 3.0 * std::numbers::pi * r * r * r) : at.density[i];
+  return std::numbers::pi * r * std::sqrt(rho / shear_modulus_[t]) / (0.1631 * poisson_[t] + 0.8766);
 }
 
 std::string PairGran::describe() const {

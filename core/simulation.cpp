@@ -181,7 +181,8 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
   StepBounds b;
   if (!pair || atoms.n == 0) return b;
   const Atoms& a = atoms;
-  // Speed scale: fastest grain, fastest moving wall, free fall across the box.
+  // Speed scale: fastest grain, fastest moving wall, free fall across the box
+  // (along non-periodic axes only: a grain falling along a periodic axis hits nothing).
   double vmax = vmin, g = 0.0;
   for (std::size_t i = 0; i < a.n; ++i) {
     const double* v = &a.v[3 * i];
@@ -192,7 +193,8 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
     g = std::max(g, f->acceleration());
   }
   double hmax = 0.0;
-  for (int k = 0; k < domain.dimension; ++k) hmax = std::max(hmax, domain.length(k));
+  for (int k = 0; k < domain.dimension; ++k)
+    if (!domain.periodic[k]) hmax = std::max(hmax, domain.length(k));
   b.speed = std::max({vmax, std::sqrt(2.0 * g * hmax), 1e-3});
   // Rayleigh time per grain; Hertz time of the lightest grain hitting itself (LIGGGHTS' recipe).
   std::size_t ismall = 0;
