@@ -167,7 +167,7 @@ struct PairChunk {
   int n = 0;    // contacts to evaluate (columns 0..n-1)
   int nev = 0;  // scatter events in list order: e >= 0 column e; e < 0 precomputed cross contact ~e
   int ev[kCap];
-  int row[kCap], i[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
+  int row[kCap], i[kCap], k[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
   alignas(64) double dx[kCap], dy[kCap], dz[kCap], radi[kCap], radj[kCap], mi[kCap], mj[kCap];
   alignas(64) double vr[3][kCap], wi[3][kCap], wj[3][kCap];
   alignas(64) double h[kH > 0 ? kH : 1][kCap];
@@ -497,14 +497,9 @@ class GranKernel final : public ContactKernel {
     return {b.a.x, b.a.radius, b.jlist, b.shift, b.shift_vec, b.row, b.store, !b.keep_until_rebuild || b.rebuilt};
   }
 
-  // Stage 1 for list entry k of atom i: append to the columns (n: the chunk's
-  // count, kept in a register by the caller) if touching; a new contact takes a
-  // history row, an ended one forgets it. kEvents (threaded phase B): also
-  // record the column as a scatter event.
-  template <bool kEvents>
-  [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int& nev, int i,
-                                                         double xi, double yi, double zi, double radi, int k) {
-    const int j = L.jlist[k];
+  // x_i - (x_j + image shift of entry k).
+  [[gnu::always_inline]] static inline void separation(const ListView& L, double xi, double yi, double zi, int j, int k,
+                                                       double& dx, double& dy, double& dz) {
     const double* xj = L.x + 3 * j;
     double xj0 = xj[0], xj1 = xj[1], xj2 = xj[2];
     const std::uint8_t code = L.shift[k];
@@ -514,17 +509,28 @@ class GranKernel final : public ContactKernel {
       xj1 += sh[1];
       xj2 += sh[2];
     }
-    const double dx = xi - xj0, dy = yi - xj1, dz = zi - xj2;
+    dx = xi - xj0;
+    dy = yi - xj1;
+    dz = zi - xj2;
+  }
+
+  // Stage 1 for list entry k of atom i: append to the columns (n: the chunk's
+  // count, kept in a register by the caller) if touching; a new contact takes a
+  // history row, an ended one forgets it. kEvents (threaded phase B): also
+  // record the column as a scatter event.
+  template <bool kEvents>
+  [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int& nev, int i,
+                                                         double xi, double yi, double zi, double radi, int k) {
+    const int j = L.jlist[k];
+    double dx, dy, dz;
+    separation(L, xi, yi, zi, j, k, dx, dy, dz);
     const double rsq = dx * dx + dy * dy + dz * dz;
-    const double radj = L.radius[j], radsum = radi + radj;
+    const double radsum = radi + L.radius[j];
     const bool touching = !(rsq >= radsum * radsum);
+    // Only (i, k) per entry: the separation is recomputed for the touching ones
+    // at gather time, cheaper than storing it for every near miss.
     ch.i[n] = i;
-    ch.j[n] = j;
-    ch.dx[n] = dx;
-    ch.dy[n] = dy;
-    ch.dz[n] = dz;
-    ch.radi[n] = radi;
-    ch.radj[n] = radj;
+    ch.k[n] = k;
     if constexpr (kH > 0) {
       // Contact begun or ended. Rare, so the branch is predictable as long as
       // it does not test `touching` alone (a coin flip): hence the arithmetic.
@@ -553,10 +559,15 @@ class GranKernel final : public ContactKernel {
   template <bool kGeneral>
   void gather_columns(const PairBatch& b, Chunk& ch) const {
     const AtomView& a = b.a;
+    const ListView L = list_view(b);
     const double *v = a.v, *w = a.omega, *rmass = a.rmass;
     const int n = ch.n;
     for (int m = 0; m < n; ++m) {
-      const int i = ch.i[m], j = ch.j[m];
+      const int i = ch.i[m], k = ch.k[m], j = L.jlist[k];
+      ch.j[m] = j;
+      separation(L, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], j, k, ch.dx[m], ch.dy[m], ch.dz[m]);
+      ch.radi[m] = L.radius[i];
+      ch.radj[m] = L.radius[j];
       ch.mi[m] = rmass[i];
       ch.mj[m] = rmass[j];
       for (int d = 0; d < 3; ++d) {
