@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
-#include <unordered_map>
 
 #include "core/atoms.h"
 #include "core/domain.h"
@@ -90,31 +90,30 @@ std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& fr
   return missing;
 }
 
+// Each saved contact finds its entry in the new list directly: the half list
+// holds a pair (a, b), a < b, among the few entries of a. Rows are then taken
+// in list order.
 void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   resize(list.size());
   if (saved_.ids.empty()) return;
-  auto key = [](long a, long b) { return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b); };
-  std::unordered_map<std::uint64_t, std::size_t> where;
-  where.reserve(saved_.count() * 2);
-  for (std::size_t s = 0; s < saved_.count(); ++s) where[key(saved_.ids[2 * s], saved_.ids[2 * s + 1])] = s;
-  const std::size_t n = list.first.size() - 1;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
-      const long a = atoms.id[i], b = atoms.id[list.j[k]];
-      bool swapped = false;
-      auto it = where.find(key(a, b));
-      if (it == where.end()) {
-        it = where.find(key(b, a));
-        swapped = true;
-      }
-      if (it == where.end()) continue;
-      const std::size_t at = it->second * size;
-      double* h = begin_contact(k);  // rows in list order
-      for (int m = 0; m < size; ++m) {
-        const double v = saved_.hist[at + m];
-        h[m] = (swapped && slots[m].flip) ? -v : v;
-      }
-    }
+  std::vector<int> from(list.size(), 0);  // saved contact s of entry k: s + 1, or -(s + 1) seen reversed
+  const std::size_t listed = list.first.size() - 1;
+  for (std::size_t s = 0; s < saved_.count(); ++s) {
+    const std::size_t a = atoms.index_of(saved_.ids[2 * s]), b = atoms.index_of(saved_.ids[2 * s + 1]);
+    if (a == Atoms::npos || b == Atoms::npos || a == b) continue;
+    const std::size_t lo = std::min(a, b), hi = std::max(a, b);
+    if (lo >= listed) continue;
+    const int tag = a < b ? static_cast<int>(s) + 1 : -static_cast<int>(s) - 1;
+    for (int k = list.first[lo]; k < list.first[lo + 1]; ++k)
+      if (list.j[k] == static_cast<int>(hi)) from[k] = tag;  // later contacts (restart) win
+  }
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    if (!from[k]) continue;
+    const bool swapped = from[k] < 0;
+    const double* v = &saved_.hist[(std::abs(from[k]) - 1) * static_cast<std::size_t>(size)];
+    double* h = begin_contact(k);
+    for (int m = 0; m < size; ++m) h[m] = (swapped && slots[m].flip) ? -v[m] : v[m];
+  }
   saved_.clear();
 }
 
@@ -123,22 +122,24 @@ bool Neighbor::decide(const Atoms& atoms, long step) const {
   const long since = step - last_build_step;
   if (since < delay || (every > 0 && since % every != 0)) return false;
   if (!check) return true;
-  return max_displacement_sq(atoms) > 0.25 * skin * skin;
+  return !(max_displacement_sq(atoms) <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
 }
 
 double Neighbor::max_displacement_sq(const Atoms& atoms) const {
-  double m = 0.0;
+  double m = 0.0, nan = 0.0;
   const double* x = atoms.x.data();
   const double* xh = xhold_.data();
   const long n = static_cast<long>(atoms.n);
   // A maximum does not depend on the order: threads and SIMD give the same value.
-#pragma omp parallel for simd reduction(max : m) schedule(static) if (loop_thread_count(atoms.n, 2) > 1)
+  // A non-finite position gives NaN (a comparison alone would skip it).
+#pragma omp parallel for simd reduction(max : m) reduction(+ : nan) schedule(static) if (loop_thread_count(atoms.n, 2) > 1)
   for (long i = 0; i < n; ++i) {
     const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
     const double d2 = dx * dx + dy * dy + dz * dz;
     m = d2 > m ? d2 : m;
+    nan += d2 - d2;  // 0, or NaN for an infinite or NaN d2
   }
-  return m;
+  return m + nan;
 }
 
 void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {

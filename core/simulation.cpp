@@ -106,21 +106,30 @@ void Simulation::flush_outputs() {
   for (auto& d : dumps) d->flush();
 }
 
-// True when every position and velocity is finite. x - x is 0 for a finite x and
-// NaN otherwise, so the sum is 0 exactly when all are finite: a branch-free pass
-// (vectorised; each thread's partial sum is 0 or NaN whatever the order).
-static bool all_finite(const Atoms& a) {
+// True when every velocity (and, with `positions`, every position) is finite.
+// x - x is 0 for a finite x and NaN otherwise, so the sum is 0 exactly when all
+// are finite: a branch-free pass (vectorised; each thread's partial sum is 0 or
+// NaN whatever the order).
+static bool all_finite(const Atoms& a, bool positions) {
   const double *x = a.x.data(), *v = a.v.data();
   const long n3 = static_cast<long>(3 * a.n);
   double s = 0.0;
+  if (positions) {
 #pragma omp parallel for simd reduction(+ : s) schedule(static) if (loop_thread_count(a.n, 2) > 1)
-  for (long k = 0; k < n3; ++k) s += (x[k] - x[k]) + (v[k] - v[k]);
+    for (long k = 0; k < n3; ++k) s += (x[k] - x[k]) + (v[k] - v[k]);
+  } else {
+#pragma omp parallel for simd reduction(+ : s) schedule(static) if (loop_thread_count(a.n, 2) > 1)
+    for (long k = 0; k < n3; ++k) s += v[k] - v[k];
+  }
   return s == 0.0;
 }
 
-void Simulation::check_atoms() {
+// Every step the velocities are checked: a position only turns non-finite
+// through a velocity that was (caught the step before), or by overflow, which
+// the displacement check turns into a rebuild, where positions are checked too.
+void Simulation::check_atoms(bool positions) {
   const Atoms& a = atoms;
-  if (all_finite(a)) return;
+  if (all_finite(a, positions)) return;
   for (std::size_t i = 0; i < a.n; ++i) {
     const double* x = &a.x[3 * i];
     const double* v = &a.v[3 * i];
@@ -167,7 +176,7 @@ static void handle_lost(Simulation& sim) {
 
 void Simulation::rebuild_if_due() {
   if (!neighbor.decide(atoms, step)) return;
-  check_atoms();
+  check_atoms(true);
   handle_lost(*this);
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
 }
@@ -274,7 +283,7 @@ void Simulation::setup() {
   claim_restart_leftovers();
   handle_lost(*this);
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
-  check_atoms();
+  check_atoms(true);
   stability_check();
   force_and_history();
   for (auto& f : fixes)
@@ -314,6 +323,7 @@ void Simulation::run(long nsteps) {
     tic = now;
   };
   timers = Timers{};
+  const long builds0 = neighbor.builds;
 
   while (step < run_last) {
     ++step;
@@ -335,7 +345,7 @@ void Simulation::run(long nsteps) {
     for (Fix* f : hook[5])
       if (step % f->nevery == 0) f->end_of_step();
     lap(timers.fixes);
-    check_atoms();
+    check_atoms(false);
     if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last) thermo->line(step);
     for (auto& d : dumps)
       if (step % d->every == 0) d->write(step);
@@ -359,9 +369,14 @@ void Simulation::run(long nsteps) {
   std::snprintf(buf, sizeof buf,
                 "Loop time of %g s on 1 process for %ld steps with %zu atoms: %.3g particle-steps/s, %ld neighbor "
                 "builds\nTime split: pair %.1f%%, neigh %.1f%%, integrate %.1f%%, fixes %.1f%%, output %.1f%%",
-                timers.total, nsteps, atoms.n, atoms.n * nsteps / tot, neighbor.builds, 100 * timers.pair / tot,
-                100 * timers.neigh / tot, 100 * timers.integrate / tot, 100 * timers.fixes / tot,
-                100 * timers.output / tot);
+                timers.total, nsteps, atoms.n, atoms.n * nsteps / tot, neighbor.builds - builds0,
+                100 * timers.pair / tot, 100 * timers.neigh / tot, 100 * timers.integrate / tot,
+                100 * timers.fixes / tot, 100 * timers.output / tot);
+  print(buf);
+  // LIGGGHTS' wording (half list: each pair once; builds during this run).
+  const std::size_t entries = neighbor.list.size();
+  std::snprintf(buf, sizeof buf, "Total # of neighbors = %zu, Ave neighs/atom = %.4g, Neighbor list builds = %ld",
+                entries, atoms.n ? static_cast<double>(entries) / atoms.n : 0.0, neighbor.builds - builds0);
   print(buf);
   flush_outputs();
 }

@@ -125,7 +125,7 @@ class Simulation {
 
  private:
   void stability_check();
-  void check_atoms();  // NaN / lost atoms: stop with step, atom, cause
+  void check_atoms(bool positions);  // NaN velocities (and positions): stop with step, atom, cause
   void force_and_history();
   void rebuild_if_due();
   void claim_restart_leftovers();

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <vector>
 
 #include "core/error.h"
 #include "core/expression.h"
@@ -18,13 +20,19 @@ class SimContext : public ExprContext {
   Simulation& sim;
   const Args& where;
   std::size_t atom = Atoms::npos;  // atom index for atom-style formulas
+  // Atom-style variables met in an atom-style formula, evaluated for all atoms
+  // once per evaluation of the formula (not once per atom: nesting was O(N^2)).
+  std::map<std::string, std::vector<double>> atom_vars;
 
   bool thermo_keyword(const std::string& name, double& out) override { return sim.thermo->keyword(name, out); }
   bool variable(const std::string& name, double& out) override {
     if (atom != Atoms::npos && sim.variables->is_atom_style(name)) {
-      std::vector<double> vals;
-      sim.variables->atom_values(name, vals);
-      out = vals[atom];
+      auto it = atom_vars.find(name);
+      if (it == atom_vars.end()) {
+        it = atom_vars.emplace(name, std::vector<double>()).first;
+        sim.variables->atom_values(name, it->second);
+      }
+      out = it->second[atom];
       return true;
     }
     return sim.variables->numeric(name, out);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <tuple>
@@ -129,6 +130,13 @@ TEST(Neighbor, RebuildDecisionFollowsHalfSkin) {
   EXPECT_TRUE(s.neighbor.decide(s.atoms, 3));
   s.neighbor.delay = 10;
   EXPECT_FALSE(s.neighbor.decide(s.atoms, 3));  // within the delay
+  s.neighbor.delay = 0;
+  s.atoms.x[0] -= 0.51 * s.neighbor.skin;  // back where it was built: no rebuild ...
+  EXPECT_FALSE(s.neighbor.decide(s.atoms, 4));
+  s.atoms.x[4] = std::nan("");  // ... but a position turned NaN: rebuild (which checks positions)
+  EXPECT_TRUE(s.neighbor.decide(s.atoms, 4));
+  s.atoms.x[4] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(s.neighbor.decide(s.atoms, 5));
 }
 
 TEST(ContactStore, HistorySurvivesRebuildSortAndPeriodicWrap) {

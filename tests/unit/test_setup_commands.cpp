@@ -110,6 +110,19 @@ TEST(SetCommand, AtomStyleVariableGivesPerAtomValues) {
   for (std::size_t i = 0; i < d->atoms.n; ++i) EXPECT_DOUBLE_EQ(d->atoms.v[3 * i], 2 * d->atoms.x[3 * i]);
 }
 
+// Nested atom-style variables (LAMMPS allows v_ of an atom variable inside
+// another): each atom gets its own value at every level.
+TEST(SetCommand, NestedAtomStyleVariables) {
+  Deck d;
+  d(kBox);
+  d("variable a atom 2*x\nvariable b atom v_a+id\nvariable c atom v_b*v_a-v_a\nset group all vx v_c");
+  ASSERT_GT(d->atoms.n, 1u);
+  for (std::size_t i = 0; i < d->atoms.n; ++i) {
+    const double a = 2 * d->atoms.x[3 * i], b = a + static_cast<double>(d->atoms.id[i]);
+    EXPECT_EQ(d->atoms.v[3 * i], b * a - a) << "atom " << i;  // same operations: exact
+  }
+}
+
 TEST(SetCommand, ImageOnlyOnPeriodicAxes) {
   Deck d;
   d(R"(units si
