@@ -146,11 +146,13 @@ def parse_sable(text):
     loops = SABLE_LOOP.findall(text)
     if not loops:
         return dict(psps=None)
-    t, n, m, rate, builds = loops[-1]
-    prev_builds = int(loops[-2][4]) if len(loops) > 1 else 0
+    t, n, m, rate, builds = loops[-1]  # builds: during this run
     t, n, m = float(t), int(n), int(m)
     d = dict(loop_s=t, steps=n, atoms=m, psps=m * n / t if t > 0 else None, psps_printed=float(rate),
-             builds_total=int(builds), builds=int(builds) - prev_builds)
+             builds=int(builds))
+    nb = re.findall(r"Ave neighs/atom = ([0-9.eE+-]+)", text)
+    if nb:
+        d["neighs_per_atom"] = float(nb[-1])
     splits = SABLE_SPLIT.findall(text)
     if splits:
         d["split"] = {k: float(v) for k, v in re.findall(r"(\w+) ([0-9.]+)%", splits[-1])}
@@ -350,7 +352,8 @@ def summarize(results, threads):
             best = min(rs, key=lambda r: abs(r["psps"] - median_or_none([x["psps"] for x in rs])))
             row["sable"][t] = dict(psps=median_or_none([r["psps"] for r in rs]),
                                    spread=spread([r["psps"] for r in rs]), n=len(rs), split=best.get("split"),
-                                   maxrss_mb=max(r["maxrss_mb"] for r in rs), builds=best.get("builds"))
+                                   maxrss_mb=max(r["maxrss_mb"] for r in rs), builds=best.get("builds"),
+                                   neighs_per_atom=best.get("neighs_per_atom"))
         if l_runs:
             best = min(l_runs, key=lambda r: abs(r["psps"] - median_or_none([x["psps"] for x in l_runs])))
             row["liggghts"] = dict(psps=median_or_none([r["psps"] for r in l_runs]),
@@ -370,7 +373,7 @@ def table_md(rows, threads, info, args):
     h += ["sable PS/s %dt" % t for t in threads]
     h += ["LIGGGHTS PS/s", *["ratio %dt" % t for t in threads]]
     h += ["sable split (%)", "LIGGGHTS split (%)", "max RSS sable / LIGGGHTS (MB)",
-          "nbr builds sable / LIGGGHTS", "contacts/grain sable / LIGGGHTS", "LIGGGHTS neighs/atom"]
+          "nbr builds sable / LIGGGHTS", "contacts/grain sable / LIGGGHTS", "neighs/atom sable / LIGGGHTS"]
     out = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
     for row in rows:
         lg = row.get("liggghts") or {}
@@ -382,7 +385,7 @@ def table_md(rows, threads, info, args):
         for t in threads:
             s = row["sable"].get(t)
             c.append("%.2f" % (s["psps"] / lg["psps"]) if s and lg.get("psps") else "-")
-        tst = max(row["sable"]) if row["sable"] else None  # the split of the most threads run
+        tst = min(row["sable"]) if row["sable"] else None  # the split of the one-thread run
         st = row["sable"].get(tst)
         c.append(split_str(st and st["split"], ["pair", "neigh", "integrate", "fixes", "output"]) +
                  (" (%dt)" % tst if st and len(threads) > 1 else ""))
@@ -394,7 +397,9 @@ def table_md(rows, threads, info, args):
         ct = row["contacts"]
         c.append("%s / %s" % (("%.2f" % ct["sable"]) if ct.get("sable") is not None else "-",
                               ("%.2f" % ct["liggghts"]) if ct.get("liggghts") is not None else "-"))
-        c.append("%.2f" % lg["neighs_per_atom"] if lg.get("neighs_per_atom") is not None else "-")
+        nbs = st.get("neighs_per_atom") if st else None
+        c.append("%s / %s" % ("%.2f" % nbs if nbs is not None else "-",
+                              "%.2f" % lg["neighs_per_atom"] if lg.get("neighs_per_atom") is not None else "-"))
         out.append("| " + " | ".join(c) + " |")
     return "\n".join(out)
 
@@ -413,9 +418,9 @@ def write_report(path_md, path_json, rows, results, threads, info, args, title):
           f"- repeats: {args.repeats} (sable), {args.liggghts_repeats} (LIGGGHTS); PS/s = atoms x steps / loop "
           "time of the LAST run of the deck, median of the repeats (± half the spread)",
           "- ratio = sable PS/s / LIGGGHTS PS/s; split = each code's own timer breakdown of the timed run "
-          "(LIGGGHTS' 'Other' holds its fixes: integration, gravity, walls); nbr builds = list builds "
-          "in the timed run; contacts/grain from the final dump (distance <= ri + rj); "
-          "LIGGGHTS neighs/atom = its 'Ave neighs/atom' (newton off)", "",
+          "(sable: the one-thread run; LIGGGHTS' 'Other' holds its fixes: integration, gravity, walls); "
+          "nbr builds = list builds in the timed run; contacts/grain from the final dump "
+          "(distance <= ri + rj); neighs/atom = each code's 'Ave neighs/atom' (half lists)", "",
           table_md(rows, threads, info, args), ""]
     kept = [(k, v["measured"]) for k, v in results.items() if v.get("measured")]
     if kept:
