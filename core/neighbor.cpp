@@ -117,11 +117,12 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   saved_.clear();
 }
 
-bool Neighbor::decide(const Atoms& atoms, long step) const {
+bool Neighbor::decide(const Atoms& atoms, long step) {
   if (last_build_step < 0 || xhold_.size() != 3 * atoms.n) return true;
   const long since = step - last_build_step;
   if (since < delay || (every > 0 && since % every != 0)) return false;
   if (!check) return true;
+  positions_scanned_step = step;
   return !(max_displacement_sq(atoms) <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
 }
 

@@ -101,7 +101,10 @@ class Neighbor {
   // Rebuild now: wrap periodic atoms, bin, (sort), list, carry history.
   void build(Atoms& atoms, const Domain& domain, ContactStore* store, long step);
   // True when a rebuild is due at this step (LIGGGHTS rules).
-  bool decide(const Atoms& atoms, long step) const;
+  bool decide(const Atoms& atoms, long step);
+  // The last step at which decide() scanned every position (a NaN or infinite
+  // one there forces a rebuild, which checks the atoms).
+  long positions_scanned_step = -1;
   double max_displacement_sq(const Atoms& atoms) const;
   double cutoff() const { return cutoff_; }
   // Atom ids in index order at the last build: how to read `list` after atoms moved.

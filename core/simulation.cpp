@@ -124,9 +124,10 @@ static bool all_finite(const Atoms& a, bool positions) {
   return s == 0.0;
 }
 
-// Every step the velocities are checked: a position only turns non-finite
-// through a velocity that was (caught the step before), or by overflow, which
-// the displacement check turns into a rebuild, where positions are checked too.
+// Velocities are checked after a step (unless the rebuild check scanned the
+// positions, see run()); a position only turns non-finite through a velocity
+// that was, or by overflow, which the rebuild check catches: it treats a NaN
+// displacement as a rebuild, and rebuilds check positions too.
 void Simulation::check_atoms(bool positions) {
   const Atoms& a = atoms;
   if (all_finite(a, positions)) return;
@@ -345,7 +346,9 @@ void Simulation::run(long nsteps) {
     for (Fix* f : hook[5])
       if (step % f->nevery == 0) f->end_of_step();
     lap(timers.fixes);
-    check_atoms(false);
+    // A velocity turned non-finite now makes a position non-finite next step,
+    // which the rebuild check catches: a separate pass only when it did not scan.
+    if (neighbor.positions_scanned_step != step) check_atoms(false);
     if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last) thermo->line(step);
     for (auto& d : dumps)
       if (step % d->every == 0) d->write(step);
