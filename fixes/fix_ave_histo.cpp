@@ -53,34 +53,10 @@ class FixAveHisto : public Fix {
     }
     if (values_.empty())
       a.fail(10, "at least one value: x, y, z, vx, vy, vz, fx, fy, fz, c_ID, c_ID[I], f_ID, f_ID[I], v_name");
-    std::string file, h5file, title[3];
-    std::size_t file_at = 0;
-    bool titled[3] = {false, false, false};
-    for (; i < a.size();) {
-      const std::string& k = a[i];
-      if (k == "mode") {
-        const std::string& m = a.word(i + 1, "scalar or vector");
-        if (m != "scalar" && m != "vector") a.fail(i + 1, "scalar or vector");
-        vector_mode_ = m == "vector";
-        i += 2;
-      } else if (k == "ave") {
-        const std::string& m = a.word(i + 1, "one, running or window M");
-        if (m == "one")
-          ave_ = One;
-        else if (m == "running")
-          ave_ = Running;
-        else if (m == "window") {
-          ave_ = Window;
-          nwindow_ = a.integer(i + 2, "the window length M (outputs)");
-          if (nwindow_ <= 0) a.fail(i + 2, "a window of M > 0 outputs");
-          ++i;
-        } else
-          a.fail(i + 1, "one, running or window M");
-        i += 2;
-      } else if (k == "start") {
-        sched_.start = a.integer(i + 1, "the first step to histogram from");
-        i += 2;
-      } else if (k == "beyond") {
+    ave::Options o;
+    while (i < a.size()) {
+      if (o.parse(a, i, sched_, "the first step to histogram from")) continue;
+      if (a[i] == "beyond") {
         const std::string& m = a.word(i + 1, "ignore, end or extra");
         if (m == "ignore")
           beyond_ = Ignore;
@@ -91,28 +67,21 @@ class FixAveHisto : public Fix {
         else
           a.fail(i + 1, "ignore, end or extra");
         i += 2;
-      } else if (k == "file") {
-        file = a.word(i + 1, "a file name");
-        file_at = i + 1;
-        i += 2;
-      } else if (k == "hdf5") {
-        h5file = a.word(i + 1, "an HDF5 file name");
-        i += 2;
-      } else if (k == "overwrite") {
-        overwrite_ = true;
-        ++i;
-      } else if (k == "title1" || k == "title2" || k == "title3") {
-        const int t = k[5] - '1';
-        title[t] = a.word(i + 1, "a title string");
-        titled[t] = true;
-        i += 2;
       } else {
         a.fail(i,
                "a value or an ave/histo keyword: mode, ave, start, beyond, file, overwrite, title1, title2, "
                "title3, hdf5");
       }
     }
-    if (overwrite_ && ave_ != Running) a.fail_line("'overwrite' needs 'ave running' (as in LIGGGHTS)");
+    o.check(a);
+    vector_mode_ = o.vector_mode;
+    overwrite_ = o.overwrite;
+    ave_ = o.ave;
+    nwindow_ = o.nwindow;
+    const std::string &file = o.file, &h5file = o.h5file;
+    const std::string* title = o.title;
+    const bool* titled = o.titled;
+    const std::size_t file_at = o.file_at;
     check_values();
 
     // Bins and their centre coordinates; 'extra' adds one bin below lo and one above hi.
@@ -230,13 +199,13 @@ class FixAveHisto : public Fix {
     Fix* f = nullptr;
   };
   enum Kind { Global, PerAtom, Local };
-  enum Ave { One, Running, Window };
+  using enum ave::Ave;
   enum Beyond { Ignore, End, Extra };
   ave::Schedule sched_;
   std::vector<Value> values_;
   Kind kind_ = Global;
   bool vector_mode_ = false, overwrite_ = false;
-  Ave ave_ = One;
+  ave::Ave ave_ = One;
   Beyond beyond_ = Ignore;
   long nwindow_ = 0, iwindow_ = 0, nvalid_ = 0, irepeat_ = 0;
   bool window_full_ = false;

@@ -191,6 +191,56 @@ void H5Series::append_raw(int k, const void* row) {
 void H5Series::append(int k, const double* row) { append_raw(k, row); }
 void H5Series::append(int k, std::int64_t value) { append_raw(k, &value); }
 
+bool Options::parse(const Args& a, std::size_t& i, Schedule& sched, const char* start_what) {
+  const std::string& k = a[i];
+  if (k == "mode") {
+    const std::string& m = a.word(i + 1, "scalar or vector");
+    if (m != "scalar" && m != "vector") a.fail(i + 1, "scalar or vector");
+    vector_mode = m == "vector";
+    i += 2;
+  } else if (k == "ave") {
+    const std::string& m = a.word(i + 1, "one, running or window M");
+    if (m == "one") {
+      ave = One;
+    } else if (m == "running") {
+      ave = Running;
+    } else if (m == "window") {
+      ave = Window;
+      nwindow = a.integer(i + 2, "the window length M (outputs)");
+      if (nwindow <= 0) a.fail(i + 2, "a window of M > 0 outputs");
+      ++i;
+    } else {
+      a.fail(i + 1, "one, running or window M");
+    }
+    i += 2;
+  } else if (k == "start") {
+    sched.start = a.integer(i + 1, start_what);
+    i += 2;
+  } else if (k == "file") {
+    file = a.word(i + 1, "a file name");
+    file_at = i + 1;
+    i += 2;
+  } else if (k == "hdf5") {
+    h5file = a.word(i + 1, "an HDF5 file name");
+    i += 2;
+  } else if (k == "overwrite") {
+    overwrite = true;
+    ++i;
+  } else if (k == "title1" || k == "title2" || k == "title3") {
+    const int t = k[5] - '1';
+    title[t] = a.word(i + 1, "a title string");
+    titled[t] = true;
+    i += 2;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void Options::check(const Args& a) const {
+  if (overwrite && ave != Running) a.fail_line("'overwrite' needs 'ave running' (as in LIGGGHTS)");
+}
+
 }  // namespace ave
 
 namespace {
@@ -209,54 +259,14 @@ class FixAveTime : public Fix {
       values_.push_back(v);
     }
     if (values_.empty()) a.fail(7, "at least one value: c_ID, c_ID[I], f_ID, f_ID[I] or v_name");
-    std::string file, h5file;
-    std::size_t file_at = 0;
-    std::string title[3];
-    bool titled[3] = {false, false, false};
+    ave::Options o;
     std::vector<long> off;
-    for (; i < a.size();) {
-      const std::string& k = a[i];
-      if (k == "mode") {
-        const std::string& m = a.word(i + 1, "scalar or vector");
-        if (m != "scalar" && m != "vector") a.fail(i + 1, "scalar or vector");
-        vector_mode_ = m == "vector";
-        i += 2;
-      } else if (k == "ave") {
-        const std::string& m = a.word(i + 1, "one, running or window M");
-        if (m == "one")
-          ave_ = One;
-        else if (m == "running")
-          ave_ = Running;
-        else if (m == "window") {
-          ave_ = Window;
-          nwindow_ = a.integer(i + 2, "the window length M (outputs)");
-          if (nwindow_ <= 0) a.fail(i + 2, "a window of M > 0 outputs");
-          ++i;
-        } else
-          a.fail(i + 1, "one, running or window M");
-        i += 2;
-      } else if (k == "start") {
-        sched_.start = a.integer(i + 1, "the first step to average from");
-        i += 2;
-      } else if (k == "off") {
+    while (i < a.size()) {
+      if (o.parse(a, i, sched_, "the first step to average from")) continue;
+      if (a[i] == "off") {
         off.push_back(a.integer(i + 1, "the number of a value not to average (1..N)"));
         if (off.back() < 1 || off.back() > static_cast<long>(values_.size()))
           a.fail(i + 1, "a value number between 1 and " + std::to_string(values_.size()));
-        i += 2;
-      } else if (k == "file") {
-        file = a.word(i + 1, "a file name");
-        file_at = i + 1;
-        i += 2;
-      } else if (k == "hdf5") {
-        h5file = a.word(i + 1, "an HDF5 file name");
-        i += 2;
-      } else if (k == "overwrite") {
-        overwrite_ = true;
-        ++i;
-      } else if (k == "title1" || k == "title2" || k == "title3") {
-        const int t = k[5] - '1';
-        title[t] = a.word(i + 1, "a title string");
-        titled[t] = true;
         i += 2;
       } else {
         a.fail(i,
@@ -264,7 +274,15 @@ class FixAveTime : public Fix {
                "title1, title2, title3, hdf5");
       }
     }
-    if (overwrite_ && ave_ != Running) a.fail_line("'overwrite' needs 'ave running' (as in LIGGGHTS)");
+    o.check(a);
+    vector_mode_ = o.vector_mode;
+    overwrite_ = o.overwrite;
+    ave_ = o.ave;
+    nwindow_ = o.nwindow;
+    const std::string &file = o.file, &h5file = o.h5file;
+    const std::string* title = o.title;
+    const bool* titled = o.titled;
+    const std::size_t file_at = o.file_at;
     for (auto& v : values_) v.off = std::find(off.begin(), off.end(), &v - values_.data() + 1) != off.end();
     check_values();
     scalar_flag = !vector_mode_;
@@ -382,11 +400,11 @@ class FixAveTime : public Fix {
     Compute* c = nullptr;
     Fix* f = nullptr;
   };
-  enum Ave { One, Running, Window };
+  using enum ave::Ave;
   ave::Schedule sched_;
   std::vector<Value> values_;
   bool vector_mode_ = false, overwrite_ = false;
-  Ave ave_ = One;
+  ave::Ave ave_ = One;
   long nwindow_ = 0, iwindow_ = 0;
   bool window_full_ = false;
   int nrows_ = 1;

@@ -18,6 +18,23 @@ struct Schedule {
   long first_after(long step) const;         // the first sampling step >= step of the next average
 };
 
+enum Ave { One, Running, Window };
+
+// The keywords both fixes take: mode, ave, start, file, overwrite, hdf5,
+// title1..3 (LIGGGHTS syntax).
+struct Options {
+  bool vector_mode = false, overwrite = false;
+  Ave ave = One;
+  long nwindow = 0;  // ave window M
+  std::string file, h5file, title[3];
+  bool titled[3] = {false, false, false};
+  std::size_t file_at = 0;  // word of the file name (errors point at it)
+  // Takes the keyword at word i and its arguments (advancing i) and returns
+  // true, or returns false for a word that is none of these.
+  bool parse(const Args& a, std::size_t& i, Schedule& sched, const char* start_what);
+  void check(const Args& a) const;  // combinations LIGGGHTS refuses
+};
+
 // A text file written as LIGGGHTS writes it, one block per output. Each block
 // goes out in a single write() at once (nothing buffered), so a killed run
 // leaves only complete lines. `overwrite` keeps the header and the latest block
