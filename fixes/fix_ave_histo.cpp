@@ -78,10 +78,6 @@ class FixAveHisto : public Fix {
     overwrite_ = o.overwrite;
     ave_ = o.ave;
     nwindow_ = o.nwindow;
-    const std::string &file = o.file, &h5file = o.h5file;
-    const std::string* title = o.title;
-    const bool* titled = o.titled;
-    const std::size_t file_at = o.file_at;
     check_values();
 
     // Bins and their centre coordinates; 'extra' adds one bin below lo and one above hi.
@@ -99,16 +95,16 @@ class FixAveHisto : public Fix {
       stats_list_.assign(nwindow_ * 4, 0.0);
     }
 
-    if (!file.empty()) {
-      text_.open(file, a, file_at);
+    if (!o.file.empty()) {
+      text_.open(o.file, a, o.file_at);
       text_.overwrite = overwrite_;
       text_.header(
-          (titled[0] ? title[0] : "# Histogrammed data for fix " + id) + "\n" +
-          (titled[1] ? title[1] : "# TimeStep Number-of-bins Total-counts Missing-counts Min-value Max-value") + "\n" +
-          (titled[2] ? title[2] : "# Bin Coord Count Count/Total") + "\n");
+          o.title_or(0, "# Histogrammed data for fix " + id) + "\n" +
+          o.title_or(1, "# TimeStep Number-of-bins Total-counts Missing-counts Min-value Max-value") + "\n" +
+          o.title_or(2, "# Bin Coord Count Count/Total") + "\n");
     }
-    if (!h5file.empty()) {
-      h5_ = std::make_unique<ave::H5Series>(h5file);
+    if (!o.h5file.empty()) {
+      h5_ = std::make_unique<ave::H5Series>(o.h5file);
       std::vector<std::string> cols;
       for (auto& v : values_) cols.push_back(v.word);
       h5_->attribute("values", cols);

@@ -279,10 +279,6 @@ class FixAveTime : public Fix {
     overwrite_ = o.overwrite;
     ave_ = o.ave;
     nwindow_ = o.nwindow;
-    const std::string &file = o.file, &h5file = o.h5file;
-    const std::string* title = o.title;
-    const bool* titled = o.titled;
-    const std::size_t file_at = o.file_at;
     for (auto& v : values_) v.off = std::find(off.begin(), off.end(), &v - values_.data() + 1) != off.end();
     check_values();
     scalar_flag = !vector_mode_;
@@ -292,13 +288,13 @@ class FixAveTime : public Fix {
     total_.assign(width, 0.0);
     if (ave_ == Window) window_.assign(nwindow_ * width, 0.0);
 
-    if (!file.empty()) {
-      text_.open(file, a, file_at);
+    if (!o.file.empty()) {
+      text_.open(o.file, a, o.file_at);
       text_.overwrite = overwrite_;
-      std::string h = titled[0] ? title[0] : "# Time-averaged data for fix " + id;
+      std::string h = o.title_or(0, "# Time-averaged data for fix " + id);
       h += "\n";
-      if (titled[1])
-        h += title[1] + "\n";
+      if (o.titled[1])
+        h += o.title[1] + "\n";
       else if (!vector_mode_) {
         h += "# TimeStep";
         for (auto& v : values_) h += " " + v.word;
@@ -306,8 +302,8 @@ class FixAveTime : public Fix {
       } else
         h += "# TimeStep Number-of-rows\n";
       if (vector_mode_) {
-        if (titled[2])
-          h += title[2] + "\n";
+        if (o.titled[2])
+          h += o.title[2] + "\n";
         else {
           h += "# Row";
           for (auto& v : values_) h += " " + v.word;
@@ -316,8 +312,8 @@ class FixAveTime : public Fix {
       }
       text_.header(h);
     }
-    if (!h5file.empty()) {
-      h5_ = std::make_unique<ave::H5Series>(h5file);
+    if (!o.h5file.empty()) {
+      h5_ = std::make_unique<ave::H5Series>(o.h5file);
       std::vector<std::string> cols;
       for (auto& v : values_) cols.push_back(v.word);
       h5_->attribute("columns", cols);

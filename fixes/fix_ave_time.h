@@ -33,6 +33,7 @@ struct Options {
   // true, or returns false for a word that is none of these.
   bool parse(const Args& a, std::size_t& i, Schedule& sched, const char* start_what);
   void check(const Args& a) const;  // combinations LIGGGHTS refuses
+  std::string title_or(int t, const std::string& dflt) const { return titled[t] ? title[t] : dflt; }
 };
 
 // A text file written as LIGGGHTS writes it, one block per output. Each block
