@@ -169,7 +169,14 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
       add(i, n, vw, dist, at.radius[i] - dist);
     }
   } else {
+    // Most grains are far from the cylinder: a test on squared distances (with
+    // a margin far above round-off) skips the square root; geometry() decides.
+    const double* x = at.x.data();
+    const double* rad = at.radius.data();
     for (std::size_t i = 0; i < at.n; ++i) {
+      const double d1 = x[3 * i + a1] - c1_, d2 = x[3 * i + a2] - c2_, rho2 = d1 * d1 + d2 * d2;
+      const double in = radius_ - rad[i], out = radius_ + rad[i];
+      if ((in > 0.0 && rho2 < in * in * (1.0 - 1e-9)) || rho2 > out * out * (1.0 + 1e-9)) continue;
       if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
       double n[3], vw[3], dist = 0.0;
       if (!geometry(i, n, vw, dist)) continue;
