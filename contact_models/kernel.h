@@ -73,6 +73,7 @@ struct PairBatch {
   StepContext ctx;
   std::uint32_t groupbit = ~0u;           // records: both grains must be in this group
   long list_version = -1;                 // changes whenever the list is rebuilt (thread partition cache)
+  int span = 0;                           // NeighborList::span: j <= i + span (without image shift)
   // LIGGGHTS 3.8 mode (pair_gran.h): a separated pair keeps its history until
   // the first force pass after a neighbour rebuild (`rebuilt`), then loses it.
   bool keep_until_rebuild = false, rebuilt = false;
@@ -698,7 +699,9 @@ class GranKernel final : public ContactKernel {
     const int* first = b.first;
     int cursor = kCross ? pp->cross_first[t] : 0;  // next cross entry of this range
     int n = 0, nev = 0;
+    const int lead = prefetch_lead(b);
     for (int i = lo; i < hi; ++i) {
+      if (i + lead < hi) prefetch_atom(b.a, i + lead);
       const double xi = L.x[3 * i], yi = L.x[3 * i + 1], zi = L.x[3 * i + 2], radi = L.radius[i];
       for (int k = first[i], kend = first[i + 1]; k < kend; ++k) {
         if (kCross && L.jlist[k] >= hi) {  // cross entry: evaluated in phase A
@@ -716,6 +719,20 @@ class GranKernel final : public ContactKernel {
     }
     ch.n = n, ch.nev = nev;
     flush<kCross>(b, ch, pp);
+  }
+
+  // Partners j > i lie up to `span` atoms ahead, a slab of bins, and are read
+  // there for the first time since the last pass: irregular reads (touching
+  // pairs only) that the hardware does not prefetch, and out of cache once N
+  // outgrows it. So each atom's state is requested `lead` atoms before the
+  // first i that can need it (x and radius, read for every entry, need no help).
+  static int prefetch_lead(const PairBatch& b) { return b.span + 16; }
+  [[gnu::always_inline]] static inline void prefetch_atom(const AtomView& a, int p) {
+    __builtin_prefetch(a.v + 3 * p);
+    __builtin_prefetch(a.omega + 3 * p);
+    __builtin_prefetch(a.rmass + p);
+    __builtin_prefetch(a.f + 3 * p, 1);
+    __builtin_prefetch(a.torque + 3 * p, 1);
   }
 
   // Phase A: the cross entries of range t, into their slots.

@@ -67,6 +67,7 @@ PairBatch PairGran::batch() {
   b.a = atom_view(at, list.first.empty() ? 0 : list.first.size() - 1, freeze_bit_);
   b.first = list.first.data();
   b.jlist = list.j.data();
+  b.span = list.span;
   b.shift = list.shift.data();
   b.shift_vec = list.shift_vec;
   b.list_version = sim.neighbor.builds;

@@ -177,6 +177,16 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     inv[k] = nb[k] / L;
   }
   const int nbins = nb[0] * nb[1] * nb[2];
+  // Bin numbering: the axis with the fewest bins varies fastest, the one with
+  // the most slowest. After the sort, a grain's partners then lie within about
+  // one slab of the two shorter axes in memory (a flat bed: 15 x 72 bins
+  // instead of 72 x 72), which keeps the force pass's j-side reads in cache.
+  int ax[3] = {0, 1, 2};
+  std::stable_sort(ax, ax + 3, [&](int a, int b) { return nb[a] < nb[b]; });
+  int stride[3];
+  stride[ax[0]] = 1;
+  stride[ax[1]] = nb[ax[0]];
+  stride[ax[2]] = nb[ax[0]] * nb[ax[1]];
   bin_of_.resize(n);
   auto coord = [&](double x, int k) {
     int c = static_cast<int>(std::floor((x - domain.lo[k]) * inv[k]));
@@ -186,7 +196,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
 #pragma omp parallel for schedule(static) if (nth > 1)
   for (long i = 0; i < nl; ++i) {
     const double* xi = &xa[3 * i];
-    bin_of[i] = coord(xi[0], 0) + nb[0] * (coord(xi[1], 1) + nb[1] * coord(xi[2], 2));
+    bin_of[i] = coord(xi[0], 0) * stride[0] + coord(xi[1], 1) * stride[1] + coord(xi[2], 2) * stride[2];
   }
   // Counting sort by bin.
   bin_start_.assign(nbins + 1, 0);
@@ -217,7 +227,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   // Entries of atom i (partners j > i within the cutoff plus skin), appended to (js, shifts).
   auto scan = [&](std::size_t i, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
     const int b = bin_of_[i];
-    const int bc[3] = {b % nb[0], (b / nb[0]) % nb[1], b / (nb[0] * nb[1])};
+    const int bc[3] = {(b / stride[0]) % nb[0], (b / stride[1]) % nb[1], (b / stride[2]) % nb[2]};
     const double* xi = &x[3 * i];
     const double ri = radius[i];
     for (int oz = -zr; oz <= zr; ++oz)
@@ -240,7 +250,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
           }
           // Without wrap, a neighbouring offset outside a single-bin axis is not a new cell.
           if (!ok) continue;
-          const int nbin = nbc[0] + nb[0] * (nbc[1] + nb[1] * nbc[2]);
+          const int nbin = nbc[0] * stride[0] + nbc[1] * stride[1] + nbc[2] * stride[2];
           // Sorted atoms are in bin order: a lower bin holds only atoms j < i (none kept).
           if (sorted && nbin < b) continue;
           const int code = (sh[0] + 1) + 3 * (sh[1] + 1) + 9 * (sh[2] + 1);
@@ -298,6 +308,10 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
       }
     }
   }
+  list.span = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = list.first[i]; k < list.first[i + 1]; ++k)
+      if (list.shift[k] == NeighborList::kNoShift) list.span = std::max(list.span, list.j[k] - static_cast<int>(i));
   if (store) store->restore(list, atoms);
   ids_.assign(atoms.id.begin(), atoms.id.begin() + n);
   xhold_.assign(atoms.x.begin(), atoms.x.begin() + 3 * n);

@@ -20,6 +20,7 @@ struct NeighborList {
   std::vector<int> j;                // partner index
   std::vector<std::uint8_t> shift;   // image code, kNoShift when none
   double shift_vec[27][3] = {};      // j's image = x[j] + shift_vec[code]
+  int span = 0;                      // largest j - i of an entry without image shift
   static constexpr std::uint8_t kNoShift = 13;
   std::size_t size() const { return j.size(); }
 };

@@ -2,6 +2,7 @@
 // contact history carried across rebuilds, sorting and periodic wraps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -118,6 +119,33 @@ INSTANTIATE_TEST_SUITE_P(Boxes, NeighborVsBruteForce,
                          ::testing::Values(std::make_tuple(3, false, false, false), std::make_tuple(3, true, true, true),
                                            std::make_tuple(3, true, false, true), std::make_tuple(2, false, false, true),
                                            std::make_tuple(2, true, true, true), std::make_tuple(2, true, false, true)));
+
+// A flat periodic bed (40 x 40 x 4 bins): sorted with the short axis fastest,
+// a grain's partners lie within a 40 x 4-bin slab ahead (about n / 40 atoms),
+// not a 40 x 40-bin layer (n / 4). The force pass prefetches `span` atoms ahead.
+TEST(Neighbor, SortKeepsPartnersWithinASlabOfTheShortAxes) {
+  Scene s;
+  s.domain.periodic[0] = s.domain.periodic[1] = true;
+  s.domain.hi[0] = s.domain.hi[1] = 1.0;
+  s.domain.hi[2] = 0.1;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const double x[3] = {u(rng), u(rng), 0.1 * u(rng)};
+    s.atoms.add(i + 1, 1, x, 0.01, 2500.0);
+  }
+  s.neighbor.skin = 0.005;  // cutoff 0.025: 40 x 40 x 4 bins
+  s.neighbor.build(s.atoms, s.domain, nullptr, 0);
+  const NeighborList& l = s.neighbor.list;
+  int span = 0;
+  for (int i = 0; i < n; ++i)
+    for (int k = l.first[i]; k < l.first[i + 1]; ++k)
+      if (l.shift[k] == NeighborList::kNoShift) span = std::max(span, l.j[k] - i);
+  EXPECT_GT(l.size(), static_cast<std::size_t>(n));
+  EXPECT_EQ(l.span, span);
+  EXPECT_LT(span, n / 8) << "partners spread over a whole layer: the longest axis is not the slowest";
+}
 
 TEST(Neighbor, RebuildDecisionFollowsHalfSkin) {
   Scene s;
