@@ -57,6 +57,16 @@ class Fix {
   virtual bool write_state(std::string& /*out*/) const { return false; }
   virtual void read_state(const std::string& /*in*/) {}
 
+  // Step fusion (Simulation::run). An integrator that can_fuse() is told, step
+  // by step, to run last step's deferred final half at the start of its initial
+  // pass (fuse.final: nothing looked at the atoms in between) and to zero forces
+  // and torques at its end (fuse.clear: nothing reads them before the force
+  // pass). Either way the results are those of the separate passes, bit for bit.
+  virtual bool can_fuse() const { return false; }
+  struct Fusion {
+    bool final = false, clear = false;
+  } fuse;
+
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }
   // Acceleration this fix imposes on free grains (gravity), for the speed estimate.

@@ -119,6 +119,7 @@ class Simulation {
   StepBounds step_bounds(double vmin = 0.0) const;
 
   // Time split of the last run (seconds).
+  long fused_steps = 0;  // steps whose final half kick ran in the next initial pass (run())
   struct Timers {
     double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;
   } timers;

@@ -1,6 +1,5 @@
 // fix ID group nve/sphere: velocity Verlet for translation and rotation of
-// spheres (moment of inertia 2/5 m r^2). Rotation is skipped when no grain
-// can spin (frozen-rotation scenes pay nothing for it).
+// spheres (moment of inertia 2/5 m r^2).
 //
 // Each atom is updated on its own, so the loops are threaded (large systems)
 // and vectorised: with group all the mask test is hoisted out of the loop.
@@ -17,13 +16,26 @@ class FixNveSphere : public Fix {
     for (std::size_t i = 4; i < a.size(); ++i)
       if (a[i] != "update" && a[i] != "dipole" && a[i] != "disc") a.fail(i, "nothing (or update dipole/disc)");
   }
-  // Half kick, then drift, in one pass over the atoms.
-  void initial_integrate() override { integrate<true>(); }
-  void final_integrate() override { integrate<false>(); }
+  // Half kick, then drift, in one pass over the atoms; fused (Simulation::run)
+  // with last step's final half kick before it and the force clear after it.
+  void initial_integrate() override {
+    const unsigned m = kDrift | (fuse.final ? kFinalFirst : 0u) | (fuse.clear ? kClear : 0u);
+    switch (m) {
+      case kDrift: return integrate<kDrift>();
+      case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>();
+      case kDrift | kClear: return integrate<kDrift | kClear>();
+      default: return integrate<kDrift | kFinalFirst | kClear>();
+    }
+  }
+  void final_integrate() override { integrate<0>(); }
+  // Fusion needs every atom integrated (the clear must reach them all).
+  bool can_fuse() const override { return groupbit == 1u; }
 
  private:
+  static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4;
+
   // Half-step velocity and spin update from force and torque (and the drift x += dt v).
-  template <bool kDrift>
+  template <unsigned kMode>
   void integrate() {
     Atoms& at = sim.atoms;
     const std::size_t n = at.n;
@@ -36,30 +48,41 @@ class FixNveSphere : public Fix {
     const bool threads = loop_thread_count(n, 8) > 1;
     if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
 #pragma omp parallel for schedule(static) if (threads)
-      for (long i = 0; i < nn; ++i) step<kDrift>(p, i, dt, h);
+      for (long i = 0; i < nn; ++i) step<kMode>(p, i, dt, h);
     } else {
 #pragma omp parallel for schedule(static) if (threads)
       for (long i = 0; i < nn; ++i)
-        if (mask[i] & bit) step<kDrift>(p, i, dt, h);
+        if (mask[i] & bit) step<kMode>(p, i, dt, h);
     }
   }
   struct Arrays {
     double* __restrict x;
     double* __restrict v;
     double* __restrict w;
-    const double* __restrict f;
-    const double* __restrict t;
+    double* __restrict f;
+    double* __restrict t;
     const double* __restrict rmass;
     const double* __restrict radius;
   };
-  template <bool kDrift>
+  // kFinalFirst: the same two additions as a final pass followed by an initial
+  // one (same forces, same order), so the same bits.
+  template <unsigned kMode>
   [[gnu::always_inline]] static inline void step(const Arrays& p, long i, double dt, double h) {
     const double m = p.rmass[i], r = p.radius[i];
     const double hm = h / m, hi = h / (0.4 * m * r * r);
     for (int k = 0; k < 3; ++k) {
-      p.v[3 * i + k] += hm * p.f[3 * i + k];
-      p.w[3 * i + k] += hi * p.t[3 * i + k];
-      if constexpr (kDrift) p.x[3 * i + k] += dt * p.v[3 * i + k];
+      const double f = p.f[3 * i + k], t = p.t[3 * i + k];
+      double v = p.v[3 * i + k], w = p.w[3 * i + k];
+      if constexpr ((kMode & kFinalFirst) != 0) {
+        v += hm * f;
+        w += hi * t;
+      }
+      v += hm * f;
+      w += hi * t;
+      p.v[3 * i + k] = v;
+      p.w[3 * i + k] = w;
+      if constexpr ((kMode & kDrift) != 0) p.x[3 * i + k] += dt * v;
+      if constexpr ((kMode & kClear) != 0) p.f[3 * i + k] = p.t[3 * i + k] = 0.0;
     }
   }
 };

@@ -3,6 +3,7 @@
 // GranKernel::pair_forces). The size thresholds are lowered so a small system
 // takes every threaded path: the pair pass (ranges, cross entries, incoming
 // lists), the neighbour build, the integrator, gravity and the checks.
+// Step fusion (Simulation::run) must give the bits of the separate passes too.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -52,7 +53,7 @@ run 1500
 struct State {
   std::vector<double> x, v, omega, f, torque;
   std::vector<long> id;
-  long builds = 0;
+  long builds = 0, fused_steps = 0;
   std::size_t contacts = 0;  // touching pair entries at the end
   bool operator==(const State& o) const {
     auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
@@ -63,7 +64,8 @@ struct State {
   }
 };
 
-State run(int threads, bool avx2) {
+// `before_run`: commands inserted before the run (thermo output stops fusion).
+State run(int threads, bool avx2, const std::string& before_run = "") {
   sable::ThreadSettings& ts = sable::thread_settings();
   const sable::ThreadSettings saved = ts;
   ts.pair_atoms = ts.pair_entries = ts.loop_work = 0;  // every loop threaded
@@ -72,8 +74,10 @@ State run(int threads, bool avx2) {
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
 #endif
+  std::string deck = kDeck;
+  deck.insert(deck.find("run 1500"), before_run);
   Deck d;
-  d(kDeck);
+  d(deck);
   ts = saved;
 #ifdef _OPENMP
   omp_set_num_threads(before);
@@ -87,6 +91,7 @@ State run(int threads, bool avx2) {
   s.torque.assign(a.torque.begin(), a.torque.begin() + 3 * a.n);
   s.id.assign(a.id.begin(), a.id.begin() + a.n);
   s.builds = d->neighbor.builds;
+  s.fused_steps = d->fused_steps;
   if (const sable::ContactStore* h = d->pair->history())
     s.contacts = h->contacts();
   return s;
@@ -105,4 +110,21 @@ TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
   EXPECT_TRUE(run(3, true) == serial) << "3 threads differ from 1";
   EXPECT_TRUE(run(2, true) == run(2, true)) << "2 threads differ run to run";
 #endif
+}
+
+// A final half kick deferred into the next initial pass, and forces zeroed by
+// the integrator: the same bits as with thermo output on every step (which
+// keeps every pass separate).
+TEST(StepFusion, SameBitsAsSeparatePasses) {
+  const State separate = run(1, true, "thermo 1\n");
+  const State fused = run(1, true);
+  EXPECT_EQ(separate.fused_steps, 0);
+  EXPECT_EQ(fused.fused_steps, 1499);  // all but the last step
+  EXPECT_TRUE(fused == separate) << "fused and separate passes differ";
+#ifdef _OPENMP
+  EXPECT_TRUE(run(2, true) == separate) << "fused passes on 2 threads differ";
+#endif
+  const State some = run(1, true, "thermo 100\n");  // fused except around output steps
+  EXPECT_EQ(some.fused_steps, 1485);
+  EXPECT_TRUE(some == separate);
 }
