@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -282,6 +283,11 @@ struct PairPartition {
   std::vector<int> in_first, in_slot;    // per atom: incoming cross entries, in list order
   std::vector<double> val;               // 9 per cross entry: force on i, torque on i, torque on j
   std::vector<std::uint8_t> on;          // cross entry touching this step
+  // Balance from measured time (the results do not depend on the split):
+  std::vector<double> cum;               // n + 1: cumulative work weight by atom
+  std::vector<double> seg_u, seg_d;      // cost profile: range bounds as weight fractions, seconds per weight
+  std::vector<double> busy;              // per range: seconds in phase B since the split
+  int calls = 0;                         // force passes since the split
 };
 
 class ContactKernel {
@@ -468,15 +474,19 @@ class GranKernel final : public ContactKernel {
 #ifdef _OPENMP
     plan_partition(b, nparts);
     PairPartition& pp = part_;
+    ++pp.calls;
 #pragma omp parallel num_threads(nparts)
     {
       const int nt = omp_get_num_threads(), tid = omp_get_thread_num();
       Chunk ch;
-      for (int t = tid; t < nparts; t += nt) cross_range(b, pp, t, ch);
+      const int ncross = pp.cross_first[nparts];  // shared evenly: each has its own slot
+      cross_range(b, pp, ncross * tid / nt, ncross * (tid + 1) / nt, ch);
 #pragma omp barrier
       for (int t = tid; t < nparts; t += nt) {
+        const double t0 = omp_get_wtime();
         apply_incoming(b, pp, t);
         pair_range<true>(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
+        pp.busy[t] += omp_get_wtime() - t0;
       }
     }
 #endif
@@ -735,11 +745,11 @@ class GranKernel final : public ContactKernel {
     __builtin_prefetch(a.torque + 3 * p, 1);
   }
 
-  // Phase A: the cross entries of range t, into their slots.
-  void cross_range(const PairBatch& b, PairPartition& pp, int t, Chunk& ch) const {
+  // Phase A: cross entries [s0, s1), into their slots.
+  void cross_range(const PairBatch& b, PairPartition& pp, int s0, int s1, Chunk& ch) const {
     const ListView L = list_view(b);
     int n = 0, nev = 0;
-    for (int s = pp.cross_first[t]; s < pp.cross_first[t + 1]; ++s) {
+    for (int s = s0; s < s1; ++s) {
       const int i = pp.cross_i[s], k = pp.cross_k[s];
       const int before = n;
       filter_entry<false>(L, ch, n, nev, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
@@ -787,30 +797,87 @@ class GranKernel final : public ContactKernel {
       }
   }
 
-  // Ranges balanced by work (entries, touching ones counting 3 more), cross
-  // entries and the per-atom incoming lists; redone after each rebuild.
+  // Ranges balanced by work: entries, touching ones counting 3 more, weighted
+  // by the cost per weight each range took last time (cache misses, threads
+  // slowed by the machine), re-split every 50 passes while unbalanced. Then the
+  // cross entries and the per-atom incoming lists. Any split gives the same bits.
   void plan_partition(const PairBatch& b, int nparts) {
     PairPartition& pp = part_;
     const std::size_t n = b.a.n, ne = static_cast<std::size_t>(b.first[n]);
-    if (pp.version == b.list_version && pp.nparts == nparts && pp.natoms == n && pp.nentries == ne) return;
+    const bool same_list = pp.version == b.list_version && pp.nparts == nparts && pp.natoms == n && pp.nentries == ne;
+    if (same_list && !(pp.calls >= 50 && unbalanced(pp))) return;
+    learn_costs(pp);
     pp.version = b.list_version;
     pp.nparts = nparts;
     pp.natoms = n;
     pp.nentries = ne;
-    std::vector<double> cum(n + 1, 0.0);
+    if (!same_list) {
+      pp.cum.assign(n + 1, 0.0);
+      for (std::size_t i = 0; i < n; ++i) {
+        double w = 1.0 + (b.first[i + 1] - b.first[i]);
+        if constexpr (kH > 0)
+          for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * (b.row[k] >= 0);
+        pp.cum[i + 1] = pp.cum[i] + w;
+      }
+    }
+    split(pp, nparts);
+    cross_lists(b, pp);
+    pp.busy.assign(nparts, 0.0);
+    pp.calls = 0;
+  }
+
+  static bool unbalanced(const PairPartition& pp) {
+    const auto [lo, hi] = std::minmax_element(pp.busy.begin(), pp.busy.end());
+    return *hi > 1.03 * *lo;
+  }
+
+  // Seconds per unit of weight in each range since the last split.
+  static void learn_costs(PairPartition& pp) {
+    const int np = static_cast<int>(pp.busy.size());
+    if (pp.calls < 10 || np != pp.nparts || pp.cum.size() != pp.natoms + 1 || pp.cum.back() <= 0.0) return;
+    const double total = pp.cum.back();
+    pp.seg_u.assign(np + 1, 1.0);
+    pp.seg_d.assign(np, 0.0);
+    for (int t = 0; t < np; ++t) {
+      const double w = pp.cum[pp.lo[t + 1]] - pp.cum[pp.lo[t]];
+      pp.seg_u[t] = pp.cum[pp.lo[t]] / total;
+      pp.seg_d[t] = w > 0.0 ? pp.busy[t] / w : 0.0;
+    }
+    const double mean = std::accumulate(pp.busy.begin(), pp.busy.end(), 0.0) / total;
+    for (double& d : pp.seg_d) d = d > 0.0 ? d : mean;  // an empty range: no measurement
+    if (mean <= 0.0) pp.seg_u.clear();
+  }
+
+  // Range bounds with equal predicted time: weight times the learned cost of
+  // its place (as a fraction of the total weight); equal weight before any.
+  static void split(PairPartition& pp, int nparts) {
+    const std::size_t n = pp.natoms;
+    const double total = pp.cum[n];
+    const bool learned = pp.seg_u.size() >= 2;
+    std::vector<double> time(n + 1, 0.0);  // predicted time of atoms [0, i)
+    std::size_t seg = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      double w = 1.0 + (b.first[i + 1] - b.first[i]);
-      if constexpr (kH > 0)
-        for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * (b.row[k] >= 0);
-      cum[i + 1] = cum[i] + w;
+      double d = 1.0;
+      if (learned && total > 0.0) {
+        const double u = pp.cum[i] / total;
+        while (seg + 1 < pp.seg_d.size() && u >= pp.seg_u[seg + 1]) ++seg;
+        d = pp.seg_d[seg];
+      }
+      time[i + 1] = time[i] + d * (pp.cum[i + 1] - pp.cum[i]);
     }
     pp.lo.assign(nparts + 1, 0);
     for (int t = 1; t < nparts; ++t) {
-      const double target = cum[n] * t / nparts;
-      pp.lo[t] = static_cast<int>(std::lower_bound(cum.begin(), cum.end(), target) - cum.begin());
+      const double target = time[n] * t / nparts;
+      pp.lo[t] = static_cast<int>(std::lower_bound(time.begin(), time.end(), target) - time.begin());
       pp.lo[t] = std::max(pp.lo[t], pp.lo[t - 1]);
     }
     pp.lo[nparts] = static_cast<int>(n);
+  }
+
+  // Cross entries (j in a later range) of each range and the per-atom incoming lists.
+  static void cross_lists(const PairBatch& b, PairPartition& pp) {
+    const int nparts = pp.nparts;
+    const std::size_t n = pp.natoms;
     pp.cross_first.assign(nparts + 1, 0);
     pp.cross_k.clear();
     pp.cross_i.clear();
