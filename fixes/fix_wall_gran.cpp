@@ -156,11 +156,11 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
     }
   };
   const std::uint32_t bits = groupbit;
+  refresh_near();
   if (shape_ == Shape::Plane) {
-    // Most grains are far from a plane: one subtraction and compare each.
     const double* x = at.x.data();
     const double* rad = at.radius.data();
-    for (std::size_t i = 0; i < at.n; ++i) {
+    for (const int i : near_) {
       const double overlap = rad[i] - std::fabs(x[3 * i + axis_] - pos);
       if (overlap <= 0.0) continue;
       if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
@@ -173,7 +173,7 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
     // a margin far above round-off) skips the square root; geometry() decides.
     const double* x = at.x.data();
     const double* rad = at.radius.data();
-    for (std::size_t i = 0; i < at.n; ++i) {
+    for (const int i : near_) {
       const double d1 = x[3 * i + a1] - c1_, d2 = x[3 * i + a2] - c2_, rho2 = d1 * d1 + d2 * d2;
       const double in = radius_ - rad[i], out = radius_ + rad[i];
       if ((in > 0.0 && rho2 < in * in * (1.0 - 1e-9)) || rho2 > out * out * (1.0 + 1e-9)) continue;
@@ -218,6 +218,30 @@ void FixWallGran::collect(std::uint32_t also, bool zero_history) {
   prev_atoms_ = atom_;
   prev_builds_ = sim.neighbor.builds;
   prev_n_ = at.n;
+}
+
+// Between rebuilds no grain moves more than skin/2 (the rebuild rule) and a
+// wiggling plane at most |A| from POS: a grain whose gap to the wall at POS
+// was skin + |A| or more at the rebuild cannot touch it before the next one.
+void FixWallGran::refresh_near() {
+  const Atoms& at = sim.atoms;
+  if (near_builds_ == sim.neighbor.builds && near_n_ == at.n) return;
+  near_builds_ = sim.neighbor.builds;
+  near_n_ = at.n;
+  near_.clear();
+  const double reach = sim.neighbor.skin + std::fabs(wiggle_amp_);
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
+  for (std::size_t i = 0; i < at.n; ++i) {
+    const double* x = &at.x[3 * i];
+    double dist;
+    if (shape_ == Shape::Plane) {
+      dist = std::fabs(x[axis_] - pos0_);
+    } else {
+      const double d1 = x[a1] - c1_, d2 = x[a2] - c2_;
+      dist = std::fabs(std::sqrt(d1 * d1 + d2 * d2) - radius_);
+    }
+    if (dist - at.radius[i] < reach) near_.push_back(static_cast<int>(i));
+  }
 }
 
 WallBatch FixWallGran::batch() {

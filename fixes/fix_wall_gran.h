@@ -59,6 +59,13 @@ class FixWallGran : public Fix {
   long prev_builds_ = -1;
   std::size_t prev_n_ = 0;
 
+  // Grains that can reach the wall before the next neighbour rebuild (indices
+  // hold until then): the per-step search looks at these only.
+  std::vector<int> near_;
+  long near_builds_ = -1;
+  std::size_t near_n_ = 0;
+  void refresh_near();
+
   // Finds the overlapping grains of the fix group that also match `also`; zeroes
   // the history of the others when asked.
   void collect(std::uint32_t also, bool zero_history);

@@ -154,6 +154,25 @@ fix i all nve/sphere)");
   EXPECT_LT(worst, 0.01 * A);
 }
 
+// The wall looks only at grains near it, chosen at each neighbour rebuild. A
+// grain at rest never triggers one, so a wiggling plane that starts 2 skins
+// below it (amplitude 4 skins) must find it through the amplitude in the reach.
+TEST(WallGran, WigglingPlaneReachesAGrainThatNeverMoved) {
+  Deck d;
+  d(kHead);
+  d("create_atoms 1 single 0 0 0 units box");
+  grains(d);
+  d->atoms.x[2] = kR + 2 * 0.0005;  // bottom two skins above the plane's centre position
+  const double z0 = d->atoms.x[2];
+  d(R"(fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0 wiggle amplitude 0.002 period 0.01
+fix i all nve/sphere
+run 800)");  // the plane reaches z = 0.001 at t = 0.01 asin(1/2) / (2 pi) = 0.83 ms
+  EXPECT_EQ(d->neighbor.builds, 1) << "the grain moved before the plane reached it";
+  EXPECT_EQ(d->atoms.x[2], z0);
+  d("run 2200");
+  EXPECT_GT(d->atoms.x[2], z0 + 1e-4) << "the plane passed through the grain";
+}
+
 // A spinning cylinder (shear x V on a zcylinder) moves at V e_z x r_radial at
 // the contact, r_radial the grain centre's radial vector (LIGGGHTS' code: V is
 // an angular velocity there, despite its documentation). Read back through
