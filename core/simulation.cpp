@@ -330,8 +330,11 @@ void Simulation::run(long nsteps) {
   // half kick waits for the next initial pass on steps where nobody looks at
   // the atoms in between (no output, no end-of-step fix, not the last step),
   // and it zeroes the forces itself when no fix runs between it and the force
-  // pass. Two passes over every grain fewer; the same bits.
-  Fix* fused = hook[0].size() == 1 && hook[4].size() == 1 && hook[0][0] == hook[4][0] && hook[0][0]->can_fuse()
+  // pass. Two passes over every grain fewer; the same bits. (Measuring the
+  // displacements for the rebuild check there too was slower: the separate
+  // pass leaves x in cache for the force pass.)
+  Fix* fused = step_fusion && hook[0].size() == 1 && hook[4].size() == 1 && hook[0][0] == hook[4][0] &&
+                       hook[0][0]->can_fuse()
                    ? hook[0][0]
                    : nullptr;
   const bool clear_in_integrate = fused && hook[1].empty() && hook[2].empty();

@@ -118,8 +118,9 @@ class Simulation {
   };
   StepBounds step_bounds(double vmin = 0.0) const;
 
+  bool step_fusion = true;  // let the integrator fuse passes (run()); off: every pass separate (tests)
+  long fused_steps = 0;     // steps whose final half kick ran in the next initial pass (run())
   // Time split of the last run (seconds).
-  long fused_steps = 0;  // steps whose final half kick ran in the next initial pass (run())
   struct Timers {
     double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;
   } timers;

@@ -64,8 +64,9 @@ struct State {
   }
 };
 
-// `before_run`: commands inserted before the run (thermo output stops fusion).
-State run(int threads, bool avx2, const std::string& before_run = "") {
+// `before_run`: commands inserted before the run (thermo output stops the
+// deferred final half kick); `fusion` false: every pass separate.
+State run(int threads, bool avx2, const std::string& before_run = "", bool fusion = true) {
   sable::ThreadSettings& ts = sable::thread_settings();
   const sable::ThreadSettings saved = ts;
   ts.pair_atoms = ts.pair_entries = ts.loop_work = 0;  // every loop threaded
@@ -77,6 +78,7 @@ State run(int threads, bool avx2, const std::string& before_run = "") {
   std::string deck = kDeck;
   deck.insert(deck.find("run 1500"), before_run);
   Deck d;
+  d->step_fusion = fusion;
   d(deck);
   ts = saved;
 #ifdef _OPENMP
@@ -112,14 +114,15 @@ TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
 #endif
 }
 
-// A final half kick deferred into the next initial pass, and forces zeroed by
-// the integrator: the same bits as with thermo output on every step (which
-// keeps every pass separate).
+// A final half kick deferred into the next initial pass and forces zeroed by
+// the integrator: the same bits (and the same rebuilds) as separate passes.
 TEST(StepFusion, SameBitsAsSeparatePasses) {
-  const State separate = run(1, true, "thermo 1\n");
+  const State separate = run(1, true, "", false);
   const State fused = run(1, true);
   EXPECT_EQ(separate.fused_steps, 0);
+  EXPECT_EQ(run(1, true, "thermo 1\n").fused_steps, 0);  // output every step: no deferred kick
   EXPECT_EQ(fused.fused_steps, 1499);  // all but the last step
+  EXPECT_EQ(fused.builds, separate.builds);
   EXPECT_TRUE(fused == separate) << "fused and separate passes differ";
 #ifdef _OPENMP
   EXPECT_TRUE(run(2, true) == separate) << "fused passes on 2 threads differ";
