@@ -65,6 +65,7 @@ class FixWallGran : public Fix {
   long near_builds_ = -1;
   std::size_t near_n_ = 0;
   void refresh_near();
+  void prefetch_near(std::size_t c) const;
 
   // Finds the overlapping grains of the fix group that also match `also`; zeroes
   // the history of the others when asked.
