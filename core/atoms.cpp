@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/threads.h"
+
 namespace sable {
 
 Atoms::Atoms() = default;
@@ -60,9 +62,12 @@ void Atoms::remove_if(const std::vector<char>& doomed) {
 
 void Atoms::permute(const std::vector<std::size_t>& order) {
   const std::size_t m = order.size();
+  const long ml = static_cast<long>(m);
+  const bool threads = loop_thread_count(m, 4) > 1;  // a copy per array: the rebuild's largest serial part
   for_each_array([&](auto& vec, int stride) {
     std::remove_reference_t<decltype(vec)> out(m * stride);
-    for (std::size_t i = 0; i < m; ++i)
+#pragma omp parallel for schedule(static) if (threads)
+    for (long i = 0; i < ml; ++i)
       for (int k = 0; k < stride; ++k) out[i * stride + k] = vec[order[i] * stride + k];
     vec.swap(out);
   });

@@ -4,6 +4,7 @@
 // it should be the last fix defined; a post-force fix defined after it is warned about.
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -26,9 +27,13 @@ class FixEnforce2d : public Fix {
       if (f.get() == this) after = true;
     }
   }
+  // Threaded like the pair pass before it, so each thread finds its grains'
+  // forces in its own cache (one thread here made the step slower with two).
   void post_force() override {
     Atoms& at = sim.atoms;
-    for (std::size_t i = 0; i < at.n; ++i) {
+    const long n = static_cast<long>(at.n);
+#pragma omp parallel for schedule(static) if (loop_thread_count(at.n, 2) > 1)
+    for (long i = 0; i < n; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       at.v[3 * i + 2] = at.f[3 * i + 2] = 0;
       at.omega[3 * i] = at.omega[3 * i + 1] = 0;
