@@ -132,7 +132,8 @@ double Neighbor::max_displacement_sq(const Atoms& atoms) const {
   const long n = static_cast<long>(atoms.n);
   // A maximum does not depend on the order: threads and SIMD give the same value.
   // A non-finite position gives NaN (a comparison alone would skip it). Kept
-  // in kLanes independent lanes, so the loop vectorises without reassociating.
+  // in kLanes independent lanes: one chain of dependent maxima and sums made
+  // this pass latency-bound.
   constexpr int kLanes = 8;
   double m = 0.0, nan = 0.0;
 #pragma omp parallel for reduction(max : m) reduction(+ : nan) schedule(static) if (loop_thread_count(atoms.n, 2) > 1)
