@@ -25,6 +25,7 @@ struct ThreadSettings {
   std::size_t pair_atoms = 4096;    // pair pass threaded from this many grains ...
   std::size_t pair_entries = 8192;  // ... and list entries
   std::size_t loop_work = 32768;    // per-atom loops: atoms x cost units
+  std::size_t wall_block = 512;     // wall grains searched and evaluated per block (FixWallGran)
   bool avx2 = true;                 // allow the AVX2 contact loops (also off with SABLE_NO_AVX2 set)
 };
 ThreadSettings& thread_settings();

@@ -1,5 +1,6 @@
 #include "fixes/fix_wall_gran.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -8,6 +9,7 @@
 #include "contact_models/registry.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -99,127 +101,133 @@ double FixWallGran::max_speed() const {
   return v;
 }
 
-void FixWallGran::collect(std::uint32_t also, bool zero_history) {
-  const Atoms& at = sim.atoms;
-  atom_.clear();
-  hidx_.clear();
-  deltan_.clear();
-  en_.clear();
-  vwall_.clear();
-  point_.clear();
-  // Wall position and velocity now (wiggle); shear velocity for planes and axial cylinders.
-  double pos = pos0_, vnormal = 0.0;
+void FixWallGran::Staged::clear() {
+  atom.clear();
+  deltan.clear();
+  en.clear();
+  vwall.clear();
+  point.clear();
+}
+
+FixWallGran::Now FixWallGran::now() const {
+  Now w{pos0_, 0.0};
   if (wiggle_period_ > 0) {
-    const double w = 2.0 * std::numbers::pi / wiggle_period_, t = (sim.step - wiggle_step0_) * sim.dt;
-    pos += wiggle_amp_ * std::sin(w * t);
-    vnormal = wiggle_amp_ * w * std::cos(w * t);
+    const double om = 2.0 * std::numbers::pi / wiggle_period_, t = (sim.step - wiggle_step0_) * sim.dt;
+    w.pos += wiggle_amp_ * std::sin(om * t);
+    w.vnormal = wiggle_amp_ * om * std::cos(om * t);
   }
-  const bool spin = shape_ == Shape::Cylinder && shear_dim_ >= 0 && shear_dim_ != axis_;
-  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;  // cylinder cross-section axes (LIGGGHTS' Dim<>)
-  // Unit normal (wall -> grain), wall velocity at the grain and centre distance of grain i;
-  // false for a grain on a cylinder's axis (no defined normal).
-  auto geometry = [&](std::size_t i, double n[3], double vw[3], double& dist) {
-    const double* x = &at.x[3 * i];
-    n[0] = n[1] = n[2] = 0.0;
-    vw[0] = vw[1] = vw[2] = 0.0;
-    if (shape_ == Shape::Plane) {
-      const double d = x[axis_] - pos;
-      n[axis_] = d > 0 ? 1.0 : -1.0;  // grains on either side, pushed away from the plane
-      dist = std::fabs(d);
-      vw[axis_] = vnormal;
-      if (shear_dim_ >= 0) vw[shear_dim_] = vshear_;
-      return true;
-    }
-    const double d1 = x[a1] - c1_, d2 = x[a2] - c2_, rho = std::sqrt(d1 * d1 + d2 * d2);
-    if (rho == 0.0) return false;
-    const double sgn = rho > radius_ ? 1.0 : -1.0;  // outside: pushed outward; inside: towards the axis
-    n[a1] = sgn * d1 / rho;
-    n[a2] = sgn * d2 / rho;
-    dist = std::fabs(rho - radius_);
-    if (spin) {  // (vshear e_axis) x r_radial, r_radial = (d1, d2) in the cross-section
-      vw[a1] = -vshear_ * d2;
-      vw[a2] = vshear_ * d1;
-    } else if (shear_dim_ >= 0) {
-      vw[shear_dim_] = vshear_;
-    }
+  return w;
+}
+
+// Unit normal (wall -> grain), wall velocity at the grain and centre distance of
+// grain i; false for a grain on a cylinder's axis (no defined normal).
+bool FixWallGran::geometry(std::size_t i, const Now& w, double n[3], double vw[3], double& dist) const {
+  const double* x = &sim.atoms.x[3 * i];
+  n[0] = n[1] = n[2] = 0.0;
+  vw[0] = vw[1] = vw[2] = 0.0;
+  if (shape_ == Shape::Plane) {
+    const double d = x[axis_] - w.pos;
+    n[axis_] = d > 0 ? 1.0 : -1.0;  // grains on either side, pushed away from the plane
+    dist = std::fabs(d);
+    vw[axis_] = w.vnormal;
+    if (shear_dim_ >= 0) vw[shear_dim_] = vshear_;
     return true;
-  };
+  }
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;  // cylinder cross-section axes (LIGGGHTS' Dim<>)
+  const double d1 = x[a1] - c1_, d2 = x[a2] - c2_, rho = std::sqrt(d1 * d1 + d2 * d2);
+  if (rho == 0.0) return false;
+  const double sgn = rho > radius_ ? 1.0 : -1.0;  // outside: pushed outward; inside: towards the axis
+  n[a1] = sgn * d1 / rho;
+  n[a2] = sgn * d2 / rho;
+  dist = std::fabs(rho - radius_);
+  if (shear_dim_ >= 0 && shear_dim_ != axis_) {  // spin: (vshear e_axis) x r_radial, r_radial = (d1, d2)
+    vw[a1] = -vshear_ * d2;
+    vw[a2] = vshear_ * d1;
+  } else if (shear_dim_ >= 0) {
+    vw[shear_dim_] = vshear_;
+  }
+  return true;
+}
+
+void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, const Now& w, Staged& out) const {
+  const Atoms& at = sim.atoms;
   auto add = [&](std::size_t i, const double n[3], const double vw[3], double dist, double overlap) {
     const double* x = &at.x[3 * i];
-    atom_.push_back(static_cast<int>(i));
-    hidx_.push_back(static_cast<int>(i));
-    deltan_.push_back(overlap);
+    out.atom.push_back(static_cast<int>(i));
+    out.deltan.push_back(overlap);
     for (int k = 0; k < 3; ++k) {
-      en_.push_back(n[k]);
-      vwall_.push_back(vw[k]);
-      point_.push_back(x[k] - n[k] * dist);
+      out.en.push_back(n[k]);
+      out.vwall.push_back(vw[k]);
+      out.point.push_back(x[k] - n[k] * dist);
     }
   };
   const std::uint32_t bits = groupbit;
-  refresh_near();
+  const double* x = at.x.data();
+  const double* rad = at.radius.data();
   if (shape_ == Shape::Plane) {
-    const double* x = at.x.data();
-    const double* rad = at.radius.data();
-    for (std::size_t c = 0; c < near_.size(); ++c) {
+    for (std::size_t c = c0; c < c1; ++c) {
       const int i = near_[c];
       prefetch_near(c + 16);
-      const double overlap = rad[i] - std::fabs(x[3 * i + axis_] - pos);
+      const double overlap = rad[i] - std::fabs(x[3 * i + axis_] - w.pos);
       if (overlap <= 0.0) continue;
       if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
       double n[3], vw[3], dist = 0.0;
-      geometry(i, n, vw, dist);
+      geometry(i, w, n, vw, dist);
       add(i, n, vw, dist, at.radius[i] - dist);
     }
-  } else {
-    // Most grains are far from the cylinder: a test on squared distances (with
-    // a margin far above round-off) skips the square root; geometry() decides.
-    const double* x = at.x.data();
-    const double* rad = at.radius.data();
-    for (std::size_t c = 0; c < near_.size(); ++c) {
-      const int i = near_[c];
-      prefetch_near(c + 16);
-      const double d1 = x[3 * i + a1] - c1_, d2 = x[3 * i + a2] - c2_, rho2 = d1 * d1 + d2 * d2;
-      const double in = radius_ - rad[i], out = radius_ + rad[i];
-      if ((in > 0.0 && rho2 < in * in * (1.0 - 1e-9)) || rho2 > out * out * (1.0 + 1e-9)) continue;
-      if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
-      double n[3], vw[3], dist = 0.0;
-      if (!geometry(i, n, vw, dist)) continue;
-      const double overlap = at.radius[i] - dist;
-      if (overlap > 0.0) add(i, n, vw, dist, overlap);
-    }
+    return;
   }
-  if (!zero_history || hist_col_ < 0) return;
-  // History of the grains that left the wall is reset. Between neighbour
-  // rebuilds atoms keep their indices, so only last step's contacts can have
-  // left (a merge of two sorted lists); after a rebuild or an insertion every
-  // grain of the group is checked.
+  // Most grains are far from the cylinder: a test on squared distances (with
+  // a margin far above round-off) skips the square root; geometry() decides.
+  const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
+  for (std::size_t c = c0; c < c1; ++c) {
+    const int i = near_[c];
+    prefetch_near(c + 16);
+    const double d1 = x[3 * i + a1] - c1_, d2 = x[3 * i + a2] - c2_, rho2 = d1 * d1 + d2 * d2;
+    const double in = radius_ - rad[i], out_r = radius_ + rad[i];
+    if ((in > 0.0 && rho2 < in * in * (1.0 - 1e-9)) || rho2 > out_r * out_r * (1.0 + 1e-9)) continue;
+    if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
+    double n[3], vw[3], dist = 0.0;
+    if (!geometry(i, w, n, vw, dist)) continue;
+    const double overlap = at.radius[i] - dist;
+    if (overlap > 0.0) add(i, n, vw, dist, overlap);
+  }
+}
+
+// History of the grains that left the wall is reset. Between neighbour
+// rebuilds atoms keep their indices, so only last step's contacts can have
+// left (a merge of two sorted lists); after a rebuild or an insertion every
+// grain of the group is checked. atoms_now_: this pass's contacts, sorted.
+void FixWallGran::forget_departed(const Now& w) {
+  const Atoms& at = sim.atoms;
   double* hist = sim.atoms.column(hist_col_).data();
   auto forget = [&](std::size_t i) {
     double n[3], vw[3], dist = 0.0;
-    if (!geometry(i, n, vw, dist)) return;  // on a cylinder's axis: left as it was
+    if (!geometry(i, w, n, vw, dist)) return;  // on a cylinder's axis: left as it was
     for (int m = 0; m < hist_size_; ++m) hist[i * hist_size_ + m] = 0.0;
   };
+  const std::vector<int>& now = atoms_now_;
   if (prev_builds_ == sim.neighbor.builds && prev_n_ == at.n) {
     std::size_t c = 0;
     for (int i : prev_atoms_) {
-      while (c < atom_.size() && atom_[c] < i) ++c;
-      if (c < atom_.size() && atom_[c] == i) continue;
+      while (c < now.size() && now[c] < i) ++c;
+      if (c < now.size() && now[c] == i) continue;
       forget(static_cast<std::size_t>(i));
     }
   } else {
     std::size_t c = 0;
     for (std::size_t i = 0; i < at.n; ++i) {
-      if (c < atom_.size() && atom_[c] == static_cast<int>(i)) {
+      if (c < now.size() && now[c] == static_cast<int>(i)) {
         ++c;
         continue;
       }
-      if (!(at.mask[i] & bits)) continue;
+      if (!(at.mask[i] & groupbit)) continue;
       bool nonzero = false;
       for (int m = 0; m < hist_size_; ++m) nonzero |= hist[i * hist_size_ + m] != 0.0;
       if (nonzero) forget(i);
     }
   }
-  prev_atoms_ = atom_;
+  prev_atoms_.swap(atoms_now_);
   prev_builds_ = sim.neighbor.builds;
   prev_n_ = at.n;
 }
@@ -267,18 +275,18 @@ void FixWallGran::refresh_near() {
   }
 }
 
-WallBatch FixWallGran::batch() {
+WallBatch FixWallGran::batch(const Staged& st) {
   Atoms& at = sim.atoms;
   WallBatch b;
   b.a = atom_view(at, at.n, freeze_bit_);
-  b.n = atom_.size();
-  b.atom = atom_.data();
-  b.deltan = deltan_.data();
-  b.en = en_.data();
-  b.vwall = vwall_.data();
-  if (hist_col_ >= 0) {
+  b.n = st.atom.size();
+  b.atom = st.atom.data();
+  b.deltan = st.deltan.data();
+  b.en = st.en.data();
+  b.vwall = st.vwall.data();
+  if (hist_col_ >= 0) {  // per-atom history: the row of contact k is its atom
     b.hist = at.column(hist_col_).data();
-    b.hist_index = hidx_.data();
+    b.hist_index = st.atom.data();
     b.hist_stride = hist_size_;
   }
   b.wall_type = type_;
@@ -286,20 +294,46 @@ WallBatch FixWallGran::batch() {
   return b;
 }
 
+// Blocks touch disjoint grains (near_ holds each grain once), so they can run
+// on any thread; ContactKernel::wall_forces keeps no state between calls.
 void FixWallGran::post_force() {
-  collect(~0u, true);
-  WallBatch b = batch();
-  b.ctx.update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
+  refresh_near();
+  const Now w = now();
+  const bool update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
-  const Vec3 on_grains = kernel_->wall_forces(b);
+  const std::size_t block = std::max<std::size_t>(thread_settings().wall_block, 1);
+  const std::size_t nb = (near_.size() + block - 1) / block;
+  if (blocks_.size() < nb) blocks_.resize(nb);
+  block_sum_.resize(nb);
+  const long nbl = static_cast<long>(nb);
+#pragma omp parallel for schedule(static) if (loop_thread_count(near_.size(), 64) > 1)
+  for (long k = 0; k < nbl; ++k) {
+    Staged& st = blocks_[k];
+    st.clear();
+    collect(k * block, std::min(near_.size(), (k + 1) * block), ~0u, w, st);
+    WallBatch b = batch(st);
+    b.ctx.update = update;
+    block_sum_[k] = kernel_->wall_forces(b);
+  }
+  Vec3 on_grains{0.0, 0.0, 0.0};
+  atoms_now_.clear();
+  for (std::size_t k = 0; k < nb; ++k) {
+    on_grains.x += block_sum_[k].x;
+    on_grains.y += block_sum_[k].y;
+    on_grains.z += block_sum_[k].z;
+    atoms_now_.insert(atoms_now_.end(), blocks_[k].atom.begin(), blocks_[k].atom.end());
+  }
+  if (hist_col_ >= 0) forget_departed(w);
   force_[0] = 0.0 - on_grains.x;  // (0.0 - x, not -x: no "-0" in thermo output)
   force_[1] = 0.0 - on_grains.y;
   force_[2] = 0.0 - on_grains.z;
 }
 
 void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {
-  collect(bits, false);
-  WallBatch b = batch();
+  refresh_near();
+  records_.clear();
+  collect(0, near_.size(), bits, now(), records_);
+  WallBatch b = batch(records_);
   b.ctx.update = false;
   kernel_->wall_records(b, out);
 }

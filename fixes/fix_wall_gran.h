@@ -35,8 +35,8 @@ class FixWallGran : public Fix {
   // Per-contact records at the current state (no force or history change). The
   // wall velocity and the wall point of record r are vwall(r.shift), point(r.shift).
   void records(std::uint32_t groupbit, ContactRecords& out);
-  const double* vwall(int k) const { return &vwall_[3 * k]; }
-  const double* point(int k) const { return &point_[3 * k]; }
+  const double* vwall(int k) const { return &records_.vwall[3 * k]; }
+  const double* point(int k) const { return &records_.point[3 * k]; }
 
  private:
   std::unique_ptr<ContactKernel> kernel_;
@@ -52,10 +52,26 @@ class FixWallGran : public Fix {
   bool setup_pass_ = true;
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
-  std::vector<int> atom_, hidx_;
-  std::vector<double> deltan_, en_, vwall_, point_;
+  // Overlapping grains found by one search: atom index, overlap, unit normal,
+  // wall velocity and wall point per contact.
+  struct Staged {
+    std::vector<int> atom;
+    std::vector<double> deltan, en, vwall, point;
+    void clear();
+  };
+  // Wall position along its normal and normal velocity at this step (wiggle).
+  struct Now {
+    double pos, vnormal;
+  };
+  // The force pass searches and evaluates fixed blocks of the near list (in
+  // parallel when large): each block's force sum is kept apart and the sums
+  // are added in block order, so the result does not depend on the threads
+  // (block size: ThreadSettings::wall_block).
+  std::vector<Staged> blocks_;
+  std::vector<Vec3> block_sum_;
+  Staged records_;  // the contacts of the last records() call
   // Contacts of the last force pass (atom indices), valid while no rebuild or insertion changed the indices.
-  std::vector<int> prev_atoms_;
+  std::vector<int> prev_atoms_, atoms_now_;
   long prev_builds_ = -1;
   std::size_t prev_n_ = 0;
 
@@ -67,10 +83,13 @@ class FixWallGran : public Fix {
   void refresh_near();
   void prefetch_near(std::size_t c) const;
 
-  // Finds the overlapping grains of the fix group that also match `also`; zeroes
-  // the history of the others when asked.
-  void collect(std::uint32_t also, bool zero_history);
-  WallBatch batch();
+  Now now() const;
+  bool geometry(std::size_t i, const Now& w, double n[3], double vw[3], double& dist) const;
+  // Appends the overlapping grains of near_[c0, c1) in the fix group that also match `also`.
+  void collect(std::size_t c0, std::size_t c1, std::uint32_t also, const Now& w, Staged& out) const;
+  // Zeroes the history of the grains that left the wall since the last force pass.
+  void forget_departed(const Now& w);
+  WallBatch batch(const Staged& s);
 };
 
 }  // namespace sable

@@ -2,7 +2,8 @@
 // thread count and whether the contact loops run as AVX2 or SSE2 (core/threads.h,
 // GranKernel::pair_forces). The size thresholds are lowered so a small system
 // takes every threaded path: the pair pass (ranges, cross entries, incoming
-// lists), the neighbour build, the integrator, gravity and the checks.
+// lists), the neighbour build, the integrator, gravity, the wall (in blocks of
+// 16 grains) and the checks.
 // Step fusion (Simulation::run) must give the bits of the separate passes too.
 #include <gtest/gtest.h>
 
@@ -55,11 +56,12 @@ struct State {
   std::vector<long> id;
   long builds = 0, fused_steps = 0;
   std::size_t contacts = 0;  // touching pair entries at the end
+  double floor_force[3] = {0, 0, 0};
   bool operator==(const State& o) const {
     auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
       return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
     };
-    return id == o.id && same(x, o.x) && same(v, o.v) && same(omega, o.omega) && same(f, o.f) &&
+    return id == o.id && std::memcmp(floor_force, o.floor_force, sizeof floor_force) == 0 && same(x, o.x) && same(v, o.v) && same(omega, o.omega) && same(f, o.f) &&
            same(torque, o.torque);
   }
 };
@@ -70,6 +72,7 @@ State run(int threads, bool avx2, const std::string& before_run = "", bool fusio
   sable::ThreadSettings& ts = sable::thread_settings();
   const sable::ThreadSettings saved = ts;
   ts.pair_atoms = ts.pair_entries = ts.loop_work = 0;  // every loop threaded
+  ts.wall_block = 16;
   ts.avx2 = avx2;
 #ifdef _OPENMP
   const int before = omp_get_max_threads();
@@ -93,6 +96,7 @@ State run(int threads, bool avx2, const std::string& before_run = "", bool fusio
   s.torque.assign(a.torque.begin(), a.torque.begin() + 3 * a.n);
   s.id.assign(a.id.begin(), a.id.begin() + a.n);
   s.builds = d->neighbor.builds;
+  for (int k = 0; k < 3; ++k) s.floor_force[k] = d->find_fix("floor")->compute_vector(k + 1);
   s.fused_steps = d->fused_steps;
   if (const sable::ContactStore* h = d->pair->history())
     s.contacts = h->contacts();
@@ -106,6 +110,7 @@ TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
   ASSERT_GT(serial.id.size(), 1000u);
   ASSERT_GT(serial.builds, 3);             // history carried across rebuilds
   ASSERT_GT(serial.contacts, 300u);        // a scene with many contacts
+  ASSERT_LT(serial.floor_force[2], 0.0);   // grains press on the floor (in several wall blocks)
   EXPECT_TRUE(run(1, false) == serial) << "SSE2 and AVX2 contact loops differ";
 #ifdef _OPENMP
   EXPECT_TRUE(run(2, true) == serial) << "2 threads differ from 1";
