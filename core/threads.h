@@ -11,7 +11,9 @@
 // When the cores are shared (other jobs, ctest -j), libgomp's default
 // spin-waiting at barriers can cost whole scheduler time slices per step:
 // there, run with OMP_WAIT_POLICY=passive (or one thread).
+#include <array>
 #include <cstddef>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -25,7 +27,7 @@ struct ThreadSettings {
   std::size_t pair_atoms = 4096;    // pair pass threaded from this many grains ...
   std::size_t pair_entries = 8192;  // ... and list entries
   std::size_t loop_work = 32768;    // per-atom loops: atoms x cost units
-  std::size_t wall_block = 512;     // wall grains searched and evaluated per block (FixWallGran)
+  std::size_t wall_block = 256;     // wall grains searched and evaluated per block (FixWallGran)
   bool avx2 = true;                 // allow the AVX2 contact loops (also off with SABLE_NO_AVX2 set)
 };
 ThreadSettings& thread_settings();
@@ -35,6 +37,27 @@ int pair_thread_count(std::size_t natoms, std::size_t entries);
 
 // Threads for a loop over `n` items of about `cost` cheap operations each (1: serial).
 int loop_thread_count(std::size_t n, std::size_t cost = 1);
+
+// Runs body(b, lo, hi, sum) on the blocks [lo, hi) = [b block, (b + 1) block)
+// of n items (threaded when n x cost is large) and returns the blocks' 3-vector
+// sums added in block order: the same bits for any thread count.
+template <class Body>
+std::array<double, 3> block_sum3(std::size_t n, std::size_t block, std::size_t cost, Body&& body) {
+  const std::size_t nb = (n + block - 1) / block;
+  std::vector<std::array<double, 3>> part(nb, {0.0, 0.0, 0.0});
+  const long nbl = static_cast<long>(nb);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) if (loop_thread_count(n, cost) > 1)
+#endif
+  for (long b = 0; b < nbl; ++b) {
+    const std::size_t lo = static_cast<std::size_t>(b) * block;
+    body(static_cast<std::size_t>(b), lo, lo + block < n ? lo + block : n, part[b].data());
+  }
+  std::array<double, 3> sum = {0.0, 0.0, 0.0};
+  for (const auto& p : part)
+    for (int k = 0; k < 3; ++k) sum[k] += p[k];
+  return sum;
+}
 
 // True when the contact loops use their AVX2 variant (the CPU has it, it is
 // allowed, SABLE_NO_AVX2 is not set). Both variants give identical results:

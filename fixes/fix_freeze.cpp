@@ -6,6 +6,7 @@
 
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -44,17 +45,21 @@ class FixFreeze : public Fix {
                " frozen grains have a velocity or spin and keep it (as in LIGGGHTS); use 'velocity " +
                sim.groups.name(group) + " set 0 0 0' to hold them still");
   }
+  // Summed in fixed blocks (block_sum3): the same f_ID for any thread count.
   void post_force() override {
     Atoms& at = sim.atoms;
-    f0_[0] = f0_[1] = f0_[2] = 0;
-    for (std::size_t i = 0; i < at.n; ++i) {
-      if (!(at.mask[i] & groupbit)) continue;
-      for (int k = 0; k < 3; ++k) {
-        f0_[k] += at.f[3 * i + k];
-        at.f[3 * i + k] = 0;
-        at.torque[3 * i + k] = 0;
+    const std::uint32_t bit = groupbit;
+    const auto f0 = block_sum3(at.n, 4096, 2, [&](std::size_t, std::size_t lo, std::size_t hi, double* sum) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        if (!(at.mask[i] & bit)) continue;
+        for (int k = 0; k < 3; ++k) {
+          sum[k] += at.f[3 * i + k];
+          at.f[3 * i + k] = 0;
+          at.torque[3 * i + k] = 0;
+        }
       }
-    }
+    });
+    for (int k = 0; k < 3; ++k) f0_[k] = f0[k];
   }
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? f0_[i - 1] : 0.0; }
 

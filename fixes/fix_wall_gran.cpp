@@ -304,29 +304,21 @@ void FixWallGran::post_force() {
   const std::size_t block = std::max<std::size_t>(thread_settings().wall_block, 1);
   const std::size_t nb = (near_.size() + block - 1) / block;
   if (blocks_.size() < nb) blocks_.resize(nb);
-  block_sum_.resize(nb);
-  const long nbl = static_cast<long>(nb);
-#pragma omp parallel for schedule(static) if (loop_thread_count(near_.size(), 64) > 1)
-  for (long k = 0; k < nbl; ++k) {
+  const auto on_grains = block_sum3(near_.size(), block, 128, [&](std::size_t k, std::size_t lo, std::size_t hi, double* sum) {
     Staged& st = blocks_[k];
     st.clear();
-    collect(k * block, std::min(near_.size(), (k + 1) * block), ~0u, w, st);
+    collect(lo, hi, ~0u, w, st);
     WallBatch b = batch(st);
     b.ctx.update = update;
-    block_sum_[k] = kernel_->wall_forces(b);
-  }
-  Vec3 on_grains{0.0, 0.0, 0.0};
+    const Vec3 f = kernel_->wall_forces(b);
+    sum[0] = f.x;
+    sum[1] = f.y;
+    sum[2] = f.z;
+  });
   atoms_now_.clear();
-  for (std::size_t k = 0; k < nb; ++k) {
-    on_grains.x += block_sum_[k].x;
-    on_grains.y += block_sum_[k].y;
-    on_grains.z += block_sum_[k].z;
-    atoms_now_.insert(atoms_now_.end(), blocks_[k].atom.begin(), blocks_[k].atom.end());
-  }
+  for (std::size_t k = 0; k < nb; ++k) atoms_now_.insert(atoms_now_.end(), blocks_[k].atom.begin(), blocks_[k].atom.end());
   if (hist_col_ >= 0) forget_departed(w);
-  force_[0] = 0.0 - on_grains.x;  // (0.0 - x, not -x: no "-0" in thermo output)
-  force_[1] = 0.0 - on_grains.y;
-  force_[2] = 0.0 - on_grains.z;
+  for (int k = 0; k < 3; ++k) force_[k] = 0.0 - on_grains[k];  // (0.0 - x, not -x: no "-0" in thermo output)
 }
 
 void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {

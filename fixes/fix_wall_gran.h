@@ -68,7 +68,6 @@ class FixWallGran : public Fix {
   // are added in block order, so the result does not depend on the threads
   // (block size: ThreadSettings::wall_block).
   std::vector<Staged> blocks_;
-  std::vector<Vec3> block_sum_;
   Staged records_;  // the contacts of the last records() call
   // Contacts of the last force pass (atom indices), valid while no rebuild or insertion changed the indices.
   std::vector<int> prev_atoms_, atoms_now_;

@@ -7,6 +7,9 @@
 // Step fusion (Simulation::run) must give the bits of the separate passes too.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -135,4 +138,33 @@ TEST(StepFusion, SameBitsAsSeparatePasses) {
   const State some = run(1, true, "thermo 100\n");  // fused except around output steps
   EXPECT_EQ(some.fused_steps, 1485);
   EXPECT_TRUE(some == separate);
+}
+
+// Block sums (walls, freeze): the blocks' sums added in block order, whatever
+// the thread count; values spread over 12 decades so any other order rounds
+// differently.
+TEST(Threads, BlockSumAddsBlocksInOrder) {
+  std::vector<double> v(10007);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::ldexp(0.6180339887 * ((i * 7919) % 1000 + 1), (i * 31) % 40);
+  auto sum = [&] {
+    return sable::block_sum3(v.size(), 64, 1000, [&](std::size_t, std::size_t lo, std::size_t hi, double* s) {
+      for (std::size_t i = lo; i < hi; ++i) s[i % 3] += v[i];
+    });
+  };
+  std::array<double, 3> expect = {0, 0, 0};
+  for (std::size_t lo = 0; lo < v.size(); lo += 64) {
+    double s[3] = {0, 0, 0};
+    for (std::size_t i = lo; i < std::min(v.size(), lo + 64); ++i) s[i % 3] += v[i];
+    for (int k = 0; k < 3; ++k) expect[k] += s[k];
+  }
+#ifdef _OPENMP
+  const int before = omp_get_max_threads();
+  for (int t = 1; t <= 3; ++t) {
+    omp_set_num_threads(t);
+    EXPECT_TRUE(sum() == expect) << t << " threads";
+  }
+  omp_set_num_threads(before);
+#else
+  EXPECT_TRUE(sum() == expect);
+#endif
 }
