@@ -812,14 +812,20 @@ class GranKernel final : public ContactKernel {
     pp.nparts = nparts;
     pp.natoms = n;
     pp.nentries = ne;
-    if (!same_list) {
-      pp.cum.assign(n + 1, 0.0);
-      for (std::size_t i = 0; i < n; ++i) {
+    if (!same_list) {  // weights in parallel, then their running sum
+      pp.cum.resize(n + 1);
+      pp.cum[0] = 0.0;
+      const long nl = static_cast<long>(n);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nparts)
+#endif
+      for (long i = 0; i < nl; ++i) {
         double w = 1.0 + (b.first[i + 1] - b.first[i]);
         if constexpr (kH > 0)
           for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * (b.row[k] >= 0);
-        pp.cum[i + 1] = pp.cum[i] + w;
+        pp.cum[i + 1] = w;
       }
+      for (std::size_t i = 0; i < n; ++i) pp.cum[i + 1] += pp.cum[i];
     }
     split(pp, nparts);
     cross_lists(b, pp);
@@ -875,26 +881,43 @@ class GranKernel final : public ContactKernel {
     pp.lo[nparts] = static_cast<int>(n);
   }
 
-  // Cross entries (j in a later range) of each range and the per-atom incoming lists.
+  // Cross entries (j in a later range) of each range and the per-atom incoming
+  // lists. The entries are found in parallel over blocks of atoms (joined in
+  // atom order: the serial order); the last range has none.
   static void cross_lists(const PairBatch& b, PairPartition& pp) {
     const int nparts = pp.nparts;
     const std::size_t n = pp.natoms;
-    pp.cross_first.assign(nparts + 1, 0);
-    pp.cross_k.clear();
-    pp.cross_i.clear();
-    pp.in_first.assign(n + 1, 0);
-    for (int t = 0; t < nparts; ++t) {
-      pp.cross_first[t] = static_cast<int>(pp.cross_k.size());
-      for (int i = pp.lo[t]; i < pp.lo[t + 1]; ++i)
+    const int last = pp.lo[nparts - 1];
+    std::vector<std::vector<int>> bk(nparts), bi(nparts);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static, 1) num_threads(nparts)
+#endif
+    for (int c = 0; c < nparts; ++c) {
+      const int i0 = static_cast<int>(static_cast<long>(last) * c / nparts);
+      const int i1 = static_cast<int>(static_cast<long>(last) * (c + 1) / nparts);
+      int t = static_cast<int>(std::upper_bound(pp.lo.begin(), pp.lo.end(), i0) - pp.lo.begin()) - 1;
+      for (int i = i0; i < i1; ++i) {
+        while (i >= pp.lo[t + 1]) ++t;
         for (int k = b.first[i]; k < b.first[i + 1]; ++k)
           if (b.jlist[k] >= pp.lo[t + 1]) {
-            pp.cross_k.push_back(k);
-            pp.cross_i.push_back(i);
-            ++pp.in_first[b.jlist[k] + 1];
+            bk[c].push_back(k);
+            bi[c].push_back(i);
           }
+      }
+    }
+    pp.cross_k.clear();
+    pp.cross_i.clear();
+    for (int c = 0; c < nparts; ++c) {
+      pp.cross_k.insert(pp.cross_k.end(), bk[c].begin(), bk[c].end());
+      pp.cross_i.insert(pp.cross_i.end(), bi[c].begin(), bi[c].end());
     }
     const int ncross = static_cast<int>(pp.cross_k.size());
-    pp.cross_first[nparts] = ncross;
+    pp.cross_first.assign(nparts + 1, 0);  // per range, then offsets
+    for (int s = 0; s < ncross; ++s)
+      ++pp.cross_first[std::upper_bound(pp.lo.begin(), pp.lo.end(), pp.cross_i[s]) - pp.lo.begin()];
+    std::partial_sum(pp.cross_first.begin(), pp.cross_first.end(), pp.cross_first.begin());
+    pp.in_first.assign(n + 1, 0);
+    for (int s = 0; s < ncross; ++s) ++pp.in_first[b.jlist[pp.cross_k[s]] + 1];
     for (std::size_t a = 0; a < n; ++a) pp.in_first[a + 1] += pp.in_first[a];
     pp.in_slot.assign(ncross, 0);
     std::vector<int> fill(pp.in_first.begin(), pp.in_first.end() - 1);

@@ -50,18 +50,32 @@ std::size_t ContactStore::contacts() const {
   return static_cast<std::size_t>(std::count_if(row.begin(), row.end(), [](int r) { return r >= 0; }));
 }
 
+// In blocks of atoms, in parallel for large lists, joined in atom order.
 SavedContacts ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
-  SavedContacts out;
-  if (row.empty() || row.size() != list.size()) return out;
+  if (row.empty() || row.size() != list.size()) return {};
   const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
-      const double* h = history(k);
-      if (!h) continue;
-      out.ids.push_back(ids[i]);
-      out.ids.push_back(ids[list.j[k]]);
-      out.hist.insert(out.hist.end(), h, h + size);
-    }
+  const int nth = loop_thread_count(list.size(), 2);
+  struct alignas(64) Part {  // own cache lines: the vectors' ends move at every contact
+    SavedContacts c;
+  };
+  std::vector<Part> part(nth);
+#pragma omp parallel for schedule(static, 1) num_threads(nth) if (nth > 1)
+  for (int t = 0; t < nth; ++t) {
+    SavedContacts& out = part[t].c;
+    for (std::size_t i = n * t / nth; i < n * (t + 1) / nth; ++i)
+      for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
+        const double* h = history(k);
+        if (!h) continue;
+        out.ids.push_back(ids[i]);
+        out.ids.push_back(ids[list.j[k]]);
+        out.hist.insert(out.hist.end(), h, h + size);
+      }
+  }
+  SavedContacts out = std::move(part[0].c);
+  for (int t = 1; t < nth; ++t) {
+    out.ids.insert(out.ids.end(), part[t].c.ids.begin(), part[t].c.ids.end());
+    out.hist.insert(out.hist.end(), part[t].c.hist.begin(), part[t].c.hist.end());
+  }
   return out;
 }
 
@@ -90,30 +104,58 @@ std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& fr
   return missing;
 }
 
-// Each saved contact finds its entry in the new list directly: the half list
-// holds a pair (a, b), a < b, among the few entries of a. Rows are then taken
-// in list order.
+// Each saved contact finds its entries in the new list directly: the half list
+// holds a pair (a, b), a < b, among the few entries of a; where two saved
+// contacts name the same entry, the later one (a restart's) wins. Rows are
+// then taken in list order. Both passes run in parallel for large lists and
+// give the serial result.
 void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   resize(list.size());
   if (saved_.ids.empty()) return;
-  std::vector<int> from(list.size(), 0);  // saved contact s of entry k: s + 1, or -(s + 1) seen reversed
-  const std::size_t listed = list.first.size() - 1;
-  for (std::size_t s = 0; s < saved_.count(); ++s) {
+  const std::size_t entries = list.size(), listed = list.first.size() - 1, count = saved_.count();
+  // Entry k <- saved contact s: from[k] = 2 (s + 1) + (pair seen reversed), 0 for none.
+  std::vector<int> from(entries, 0);
+  atoms.index_of(saved_.ids[0]);  // builds the id map here, before the threads read it
+  const long nc = static_cast<long>(count);
+#pragma omp parallel for schedule(static) if (loop_thread_count(count, 8) > 1)
+  for (long s = 0; s < nc; ++s) {
     const std::size_t a = atoms.index_of(saved_.ids[2 * s]), b = atoms.index_of(saved_.ids[2 * s + 1]);
     if (a == Atoms::npos || b == Atoms::npos || a == b) continue;
     const std::size_t lo = std::min(a, b), hi = std::max(a, b);
     if (lo >= listed) continue;
-    const int tag = a < b ? static_cast<int>(s) + 1 : -static_cast<int>(s) - 1;
+    const int tag = 2 * static_cast<int>(s + 1) + (a > b);
     for (int k = list.first[lo]; k < list.first[lo + 1]; ++k)
-      if (list.j[k] == static_cast<int>(hi)) from[k] = tag;  // later contacts (restart) win
+      if (list.j[k] == static_cast<int>(hi)) {
+        std::atomic_ref<int> f(from[k]);
+        int cur = f.load(std::memory_order_relaxed);
+        while (cur < tag && !f.compare_exchange_weak(cur, tag, std::memory_order_relaxed)) {
+        }
+      }
   }
-  for (std::size_t k = 0; k < from.size(); ++k) {
-    if (!from[k]) continue;
-    const bool swapped = from[k] < 0;
-    const double* v = &saved_.hist[(std::abs(from[k]) - 1) * static_cast<std::size_t>(size)];
-    double* h = begin_contact(k);
-    for (int m = 0; m < size; ++m) h[m] = (swapped && slots[m].flip) ? -v[m] : v[m];
+  // Rows in list order: each block counts its contacts, then fills its rows.
+  const int nth = loop_thread_count(entries, 2);
+  std::vector<int> base(nth + 1, 0);
+#pragma omp parallel num_threads(nth) if (nth > 1)
+  {
+#pragma omp for schedule(static, 1)
+    for (int t = 0; t < nth; ++t)
+      base[t + 1] = static_cast<int>(
+          std::count_if(from.begin() + entries * t / nth, from.begin() + entries * (t + 1) / nth, [](int v) { return v; }));
+#pragma omp single
+    std::partial_sum(base.begin(), base.end(), base.begin());
+#pragma omp for schedule(static, 1)
+    for (int t = 0; t < nth; ++t) {
+      int r = base[t];
+      for (std::size_t k = entries * t / nth; k < entries * (t + 1) / nth; ++k) {
+        if (!from[k]) continue;
+        const bool swapped = from[k] & 1;
+        const double* v = &saved_.hist[(from[k] / 2 - 1) * static_cast<std::size_t>(size)];
+        double* h = buf_.get() + static_cast<std::size_t>(row[k] = r++) * size;
+        for (int m = 0; m < size; ++m) h[m] = (swapped && slots[m].flip) ? -v[m] : v[m];
+      }
+    }
   }
+  used_ = base[nth];
   saved_.clear();
 }
 
@@ -289,34 +331,43 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
           }
         }
   };
+  // Atoms [lo, hi) appended to (js, shifts), first[i + 1] = js.size() after atom i;
+  // returns the largest j - i of an entry without image shift.
+  auto scan_range = [&](std::size_t lo, std::size_t hi, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
+    int span = 0;
+    for (std::size_t i = lo; i < hi; ++i) {
+      const std::size_t k0 = js.size();
+      scan(i, js, shifts);
+      for (std::size_t k = k0; k < js.size(); ++k)
+        if (shifts[k] == NeighborList::kNoShift) span = std::max(span, js[k] - static_cast<int>(i));
+      list.first[i + 1] = static_cast<int>(js.size());
+    }
+    return span;
+  };
   list.first.assign(n + 1, 0);
   if (nth <= 1) {
     list.j.clear();
     list.shift.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      scan(i, list.j, list.shift);
-      list.first[i + 1] = static_cast<int>(list.j.size());
-    }
+    list.span = scan_range(0, n, list.j, list.shift);
   } else {
-    // One block of atoms per thread; first[i + 1] holds the count within the block until the join.
-    std::vector<std::vector<int>> bj(nth);
-    std::vector<std::vector<std::uint8_t>> bs(nth);
+    // One block of atoms per thread; first[i + 1] holds the count within the
+    // block until the join. Each block's vectors sit on their own cache lines
+    // (their end pointers change at every entry) and are kept between builds.
+    if (blocks_.size() < static_cast<std::size_t>(nth)) blocks_.resize(nth);
     std::vector<std::size_t> base(nth + 1, 0);
-#pragma omp parallel num_threads(nth)
+    int span = 0;
+#pragma omp parallel num_threads(nth) reduction(max : span)
     {
 #pragma omp for schedule(static, 1)
       for (int t = 0; t < nth; ++t) {
-        const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
-        bj[t].reserve((hi - lo) * 8);
-        bs[t].reserve((hi - lo) * 8);
-        for (std::size_t i = lo; i < hi; ++i) {
-          scan(i, bj[t], bs[t]);
-          list.first[i + 1] = static_cast<int>(bj[t].size());
-        }
+        ScanBlock& bk = blocks_[t];
+        bk.j.clear();
+        bk.shift.clear();
+        span = std::max(span, scan_range(n * t / nth, n * (t + 1) / nth, bk.j, bk.shift));
       }
 #pragma omp single
       {
-        for (int t = 0; t < nth; ++t) base[t + 1] = base[t] + bj[t].size();
+        for (int t = 0; t < nth; ++t) base[t + 1] = base[t] + blocks_[t].j.size();
         list.j.resize(base[nth]);
         list.shift.resize(base[nth]);
       }
@@ -324,15 +375,12 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
       for (int t = 0; t < nth; ++t) {
         const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
         for (std::size_t i = lo; i < hi; ++i) list.first[i + 1] += static_cast<int>(base[t]);
-        std::copy(bj[t].begin(), bj[t].end(), list.j.begin() + base[t]);
-        std::copy(bs[t].begin(), bs[t].end(), list.shift.begin() + base[t]);
+        std::copy(blocks_[t].j.begin(), blocks_[t].j.end(), list.j.begin() + base[t]);
+        std::copy(blocks_[t].shift.begin(), blocks_[t].shift.end(), list.shift.begin() + base[t]);
       }
     }
+    list.span = span;
   }
-  list.span = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = list.first[i]; k < list.first[i + 1]; ++k)
-      if (list.shift[k] == NeighborList::kNoShift) list.span = std::max(list.span, list.j[k] - static_cast<int>(i));
   if (store) store->restore(list, atoms);
   ids_.assign(atoms.id.begin(), atoms.id.begin() + n);
   xhold_.assign(atoms.x.begin(), atoms.x.begin() + 3 * n);

@@ -116,6 +116,11 @@ class Neighbor {
   std::vector<long> ids_;  // atom ids at the last build, to read the old list
   double cutoff_ = 0.0;
   std::vector<int> bin_of_, bin_start_, bin_atoms_;
+  struct alignas(64) ScanBlock {
+    std::vector<int> j;
+    std::vector<std::uint8_t> shift;
+  };
+  std::vector<ScanBlock> blocks_;  // per-thread list parts of a threaded build
 };
 
 }  // namespace sable
