@@ -178,7 +178,7 @@ double Neighbor::max_displacement_sq(const Atoms& atoms) const {
   // this pass latency-bound.
   constexpr int kLanes = 8;
   double m = 0.0, nan = 0.0;
-#pragma omp parallel for reduction(max : m) reduction(+ : nan) schedule(static) if (loop_thread_count(atoms.n, 2) > 1)
+#pragma omp parallel for reduction(max : m) reduction(+ : nan) schedule(static) if (atom_pass_threaded(atoms.n))
   for (long b = 0; b < (n + kLanes - 1) / kLanes; ++b) {
     double ml[kLanes] = {}, nl[kLanes] = {};
     const long i0 = b * kLanes;

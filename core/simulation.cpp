@@ -115,10 +115,10 @@ static bool all_finite(const Atoms& a, bool positions) {
   const long n3 = static_cast<long>(3 * a.n);
   double s = 0.0;
   if (positions) {
-#pragma omp parallel for simd reduction(+ : s) schedule(static) if (loop_thread_count(a.n, 2) > 1)
+#pragma omp parallel for simd reduction(+ : s) schedule(static) if (atom_pass_threaded(a.n))
     for (long k = 0; k < n3; ++k) s += (x[k] - x[k]) + (v[k] - v[k]);
   } else {
-#pragma omp parallel for simd reduction(+ : s) schedule(static) if (loop_thread_count(a.n, 2) > 1)
+#pragma omp parallel for simd reduction(+ : s) schedule(static) if (atom_pass_threaded(a.n))
     for (long k = 0; k < n3; ++k) s += v[k] - v[k];
   }
   return s == 0.0;
@@ -296,7 +296,7 @@ void Simulation::setup() {
 static void clear_forces_threaded(Atoms& a) {
   double *f = a.f.data(), *t = a.torque.data();
   const long n3 = static_cast<long>(3 * a.n);
-#pragma omp parallel for simd schedule(static) if (loop_thread_count(a.n, 2) > 1)
+#pragma omp parallel for simd schedule(static) if (atom_pass_threaded(a.n))
   for (long k = 0; k < n3; ++k) f[k] = t[k] = 0.0;
 }
 

@@ -38,6 +38,12 @@ int pair_thread_count(std::size_t natoms, std::size_t entries);
 // Threads for a loop over `n` items of about `cost` cheap operations each (1: serial).
 int loop_thread_count(std::size_t n, std::size_t cost = 1);
 
+// Threading of a pass over every atom (integrator, force fixes, checks). All
+// such passes take the integrator's decision and static split, so each thread
+// meets the atoms whose cache lines it touched last: a serial gravity pass
+// between threaded ones made the other thread's integrator half 2x slower.
+inline bool atom_pass_threaded(std::size_t n) { return loop_thread_count(n, 8) > 1; }
+
 // Runs body(b, lo, hi, sum) on the blocks [lo, hi) = [b block, (b + 1) block)
 // of n items (threaded when n x cost is large) and returns the blocks' 3-vector
 // sums added in block order: the same bits for any thread count.

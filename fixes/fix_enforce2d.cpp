@@ -32,7 +32,7 @@ class FixEnforce2d : public Fix {
   void post_force() override {
     Atoms& at = sim.atoms;
     const long n = static_cast<long>(at.n);
-#pragma omp parallel for schedule(static) if (loop_thread_count(at.n, 2) > 1)
+#pragma omp parallel for schedule(static) if (atom_pass_threaded(at.n))
     for (long i = 0; i < n; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       at.v[3 * i + 2] = at.f[3 * i + 2] = 0;

@@ -45,11 +45,12 @@ class FixFreeze : public Fix {
                " frozen grains have a velocity or spin and keep it (as in LIGGGHTS); use 'velocity " +
                sim.groups.name(group) + " set 0 0 0' to hold them still");
   }
-  // Summed in fixed blocks (block_sum3): the same f_ID for any thread count.
+  // Summed in fixed blocks (block_sum3): the same f_ID for any thread count;
+  // small blocks keep each thread near its integrator half (atom_pass_threaded).
   void post_force() override {
     Atoms& at = sim.atoms;
     const std::uint32_t bit = groupbit;
-    const auto f0 = block_sum3(at.n, 4096, 2, [&](std::size_t, std::size_t lo, std::size_t hi, double* sum) {
+    const auto f0 = block_sum3(at.n, 1024, 8, [&](std::size_t, std::size_t lo, std::size_t hi, double* sum) {
       for (std::size_t i = lo; i < hi; ++i) {
         if (!(at.mask[i] & bit)) continue;
         for (int k = 0; k < 3; ++k) {

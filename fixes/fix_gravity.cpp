@@ -30,7 +30,7 @@ class FixGravity : public Fix {
     const bool all = bit == 1u;  // group all: the mask test leaves the loop, which vectorises
     const double a0 = acc_[0], a1 = acc_[1], a2 = acc_[2];
     const long n = static_cast<long>(at.n);
-#pragma omp parallel for schedule(static) if (loop_thread_count(at.n, 2) > 1)
+#pragma omp parallel for schedule(static) if (atom_pass_threaded(at.n))
     for (long i = 0; i < n; ++i) {
       if (!all && !(mask[i] & bit)) continue;
       f[3 * i] += rmass[i] * a0;

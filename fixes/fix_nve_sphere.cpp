@@ -45,7 +45,7 @@ class FixNveSphere : public Fix {
     const std::uint32_t* mask = at.mask.data();
     const std::uint32_t bit = groupbit;
     const long nn = static_cast<long>(n);
-    const bool threads = loop_thread_count(n, 8) > 1;
+    const bool threads = atom_pass_threaded(n);
     if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
 #pragma omp parallel for schedule(static) if (threads)
       for (long i = 0; i < nn; ++i) step<kMode>(p, i, dt, h);
