@@ -53,8 +53,9 @@ class FixWallGran : public Fix {
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
   // Overlapping grains found by one search: atom index, overlap, unit normal,
-  // wall velocity and wall point per contact.
-  struct Staged {
+  // wall velocity and wall point per contact. Own cache lines: neighbouring
+  // blocks grow their vectors on different threads.
+  struct alignas(64) Staged {
     std::vector<int> atom;
     std::vector<double> deltan, en, vwall, point;
     void clear();
