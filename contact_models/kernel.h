@@ -162,13 +162,12 @@ struct ContactParts {
 };
 
 // Touching contacts of a stretch of the half list, gathered into columns
-// (see GranKernel::pair_forces), and what the scatter applies, in list order.
+// (see GranKernel::pair_forces), scattered in list order.
 template <int kH>
 struct PairChunk {
   static constexpr int kCap = 64;
-  int n = 0;    // contacts to evaluate (columns 0..n-1)
-  int nev = 0;  // scatter events in list order: e >= 0 column e; e < 0 precomputed cross contact ~e
-  int ev[kCap];
+  int n = 0;      // contacts to evaluate (columns 0..n-1)
+  int slot[kCap]; // threaded phase A: the cross slot of column m
   int row[kCap], i[kCap], k[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
   alignas(64) double dx[kCap], dy[kCap], dz[kCap], radi[kCap], radj[kCap], mi[kCap], mj[kCap];
   alignas(64) double vr[3][kCap], wi[3][kCap], wj[3][kCap];
@@ -459,17 +458,20 @@ class GranKernel final : public ContactKernel {
   // balanced by work. A contact whose j lies in a later range (a "cross" entry)
   // is evaluated first, into its own slot (phase A); after a barrier each thread
   // adds, for each of its atoms, the slots aimed at it, then runs its range
-  // (phase B), taking cross entries from their slots in list order. Every atom
-  // thus receives exactly the serial sequence of additions: j-side
-  // contributions by increasing list entry (all from lower atoms), then its own
-  // entries in list order. The result is bit-identical to the serial pass for
-  // any thread count, with no atomics and no per-thread force copies.
+  // (phase B) and adds the slots of its own cross entries last. An atom's
+  // entries are sorted by j (Neighbor::build), so its cross entries are the
+  // last of them and phase B runs the serial loop on the rest. Every atom thus
+  // receives exactly the serial sequence of additions: j-side contributions by
+  // increasing list entry (all from lower atoms), then its own entries in list
+  // order (nothing else adds to an atom once its own entries are done). The
+  // result is bit-identical to the serial pass for any thread count, with no
+  // atomics and no per-thread force copies.
 
   void pair_forces_staged(const PairBatch& b) {
     const int nparts = pair_thread_count(b.a.n, b.a.n ? static_cast<std::size_t>(b.first[b.a.n]) : 0);
     if (nparts <= 1) {
       Chunk ch;
-      pair_range<false>(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
+      pair_range(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
       return;
     }
 #ifdef _OPENMP
@@ -486,7 +488,7 @@ class GranKernel final : public ContactKernel {
       for (int t = tid; t < nparts; t += nt) {
         const double t0 = omp_get_wtime();
         apply_incoming(b, pp, t);
-        pair_range<true>(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
+        pair_range(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
         pp.busy[t] += omp_get_wtime() - t0;
       }
     }
@@ -528,11 +530,9 @@ class GranKernel final : public ContactKernel {
 
   // Stage 1 for list entry k of atom i: append to the columns (n: the chunk's
   // count, kept in a register by the caller) if touching; a new contact takes a
-  // history row, an ended one forgets it. kEvents (threaded phase B): also
-  // record the column as a scatter event.
-  template <bool kEvents>
-  [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int& nev, int i,
-                                                         double xi, double yi, double zi, double radi, int k) {
+  // history row, an ended one forgets it.
+  [[gnu::always_inline]] static inline void filter_entry(const ListView& L, Chunk& ch, int& n, int i, double xi,
+                                                         double yi, double zi, double radi, int k) {
     const int j = L.jlist[k];
     double dx, dy, dz;
     separation(L, xi, yi, zi, j, k, dx, dy, dz);
@@ -551,10 +551,6 @@ class GranKernel final : public ContactKernel {
       if (__builtin_expect(((t & !has) | (gone & static_cast<unsigned>(L.forget))) != 0, 0))
         L.row[k] = r = t ? L.store->new_row() : ContactStore::kNone;
       ch.row[n] = r;
-    }
-    if constexpr (kEvents) {
-      ch.ev[nev] = n;
-      nev += touching;
     }
     n += touching;
   }
@@ -646,48 +642,35 @@ class GranKernel final : public ContactKernel {
     evaluate_columns_base(ch, dt, update);
   }
 
-  // Stages 1b-3 for the chunk; `pp` given: cross contacts come from their slots.
-  // Not inlined into the filter loop, which then keeps its values in registers.
-  // kCross: threaded phase B, where the events interleave cross contacts.
-  template <bool kCross>
-  [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch, const PairPartition* pp) const {
+  // Stages 1b-3 for the chunk. Not inlined into the filter loop, which then
+  // keeps its values in registers.
+  [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch) const {
     gather(b, ch);
     evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
     if (b.ctx.update)
-      scatter<true, kCross>(b, ch, pp);
+      scatter<true>(b, ch);
     else
-      scatter<false, kCross>(b, ch, pp);
-    ch.n = ch.nev = 0;
+      scatter<false>(b, ch);
+    ch.n = 0;
   }
 
   // Stage 3: forces and torques onto the grains in list order; history back.
-  template <bool kUpdate, bool kCross>
-  void scatter(const PairBatch& b, const Chunk& ch, const PairPartition* pp) const {
+  template <bool kUpdate>
+  void scatter(const PairBatch& b, const Chunk& ch) const {
     double* f = b.a.f;
     double* t = b.a.torque;
     [[maybe_unused]] double* hist = b.hist;
-    const int nev = kCross ? ch.nev : ch.n;
-    for (int q = 0; q < nev; ++q) {
-      const int e = kCross ? ch.ev[q] : q;
-      if (e >= 0) {
-        const int i = ch.i[e], j = ch.j[e];
-        for (int d = 0; d < 3; ++d) {
-          f[3 * i + d] += ch.f[d][e];
-          f[3 * j + d] -= ch.f[d][e];
-          t[3 * i + d] += ch.ti[d][e];
-          t[3 * j + d] += ch.tj[d][e];
-        }
-        if constexpr (kH > 0 && kUpdate) {
-          const std::size_t r = static_cast<std::size_t>(ch.row[e]);
-          for (int c = 0; c < kH; ++c) hist[r * kH + c] = ch.h[c][e];
-        }
-      } else if constexpr (kCross) {
-        const int s = ~e, i = pp->cross_i[s];
-        const double* val = &pp->val[9 * static_cast<std::size_t>(s)];
-        for (int d = 0; d < 3; ++d) {
-          f[3 * i + d] += val[d];
-          t[3 * i + d] += val[3 + d];
-        }
+    for (int e = 0; e < ch.n; ++e) {
+      const int i = ch.i[e], j = ch.j[e];
+      for (int d = 0; d < 3; ++d) {
+        f[3 * i + d] += ch.f[d][e];
+        f[3 * j + d] -= ch.f[d][e];
+        t[3 * i + d] += ch.ti[d][e];
+        t[3 * j + d] += ch.tj[d][e];
+      }
+      if constexpr (kH > 0 && kUpdate) {
+        const std::size_t r = static_cast<std::size_t>(ch.row[e]);
+        for (int c = 0; c < kH; ++c) hist[r * kH + c] = ch.h[c][e];
       }
     }
   }
@@ -702,34 +685,34 @@ class GranKernel final : public ContactKernel {
     }
   }
 
-  // Phase B (or the whole serial pass): the entries of atoms [lo, hi) in list order.
-  // kCross = (pp != nullptr): threaded, entries whose j lies beyond `hi` come from phase A.
-  template <bool kCross>
+  // Phase B (or the whole serial pass, pp null): the entries of atoms [lo, hi)
+  // in list order. Threaded, an atom's entries with j >= hi (its last ones,
+  // the list being sorted by j) were evaluated in phase A: their slots are
+  // added after the range, when each atom's own entries are done.
   void pair_range(const PairBatch& b, int lo, int hi, const PairPartition* pp, int t, Chunk& ch) const {
     const ListView L = list_view(b);
     const int* first = b.first;
-    int cursor = kCross ? pp->cross_first[t] : 0;  // next cross entry of this range
-    int n = 0, nev = 0;
+    int n = 0;
     const int lead = prefetch_lead(b);
     for (int i = lo; i < hi; ++i) {
       if (i + lead < hi) prefetch_atom(b.a, i + lead);
       const double xi = L.x[3 * i], yi = L.x[3 * i + 1], zi = L.x[3 * i + 2], radi = L.radius[i];
-      for (int k = first[i], kend = first[i + 1]; k < kend; ++k) {
-        if (kCross && L.jlist[k] >= hi) {  // cross entry: evaluated in phase A
-          const int s = cursor++;
-          if (pp->on[s]) ch.ev[nev++] = ~s;
-        } else {
-          filter_entry<kCross>(L, ch, n, nev, i, xi, yi, zi, radi, k);
-        }
-        if ((kCross ? nev : n) == Chunk::kCap) {
-          ch.n = n, ch.nev = nev;
-          flush<kCross>(b, ch, pp);
-          n = nev = 0;
+      const int k0 = first[i];
+      int kend = first[i + 1];
+      if (pp)
+        while (kend > k0 && L.jlist[kend - 1] >= hi) --kend;
+      for (int k = k0; k < kend; ++k) {
+        filter_entry(L, ch, n, i, xi, yi, zi, radi, k);
+        if (n == Chunk::kCap) {
+          ch.n = n;
+          flush(b, ch);
+          n = 0;
         }
       }
     }
-    ch.n = n, ch.nev = nev;
-    flush<kCross>(b, ch, pp);
+    ch.n = n;
+    flush(b, ch);
+    if (pp) apply_outgoing(b, *pp, t);
   }
 
   // Partners j > i lie up to `span` atoms ahead, a slab of bins, and are read
@@ -749,21 +732,20 @@ class GranKernel final : public ContactKernel {
   // Phase A: cross entries [s0, s1), into their slots.
   void cross_range(const PairBatch& b, PairPartition& pp, int s0, int s1, Chunk& ch) const {
     const ListView L = list_view(b);
-    int n = 0, nev = 0;
+    int n = 0;
     for (int s = s0; s < s1; ++s) {
       const int i = pp.cross_i[s], k = pp.cross_k[s];
       const int before = n;
-      filter_entry<false>(L, ch, n, nev, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
+      filter_entry(L, ch, n, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
       pp.on[s] = static_cast<std::uint8_t>(n != before);
-      ch.ev[before] = s;  // phase A: event m names the slot of column m
-      nev = n;
+      ch.slot[before] = s;
       if (n == Chunk::kCap) {
-        ch.n = n, ch.nev = nev;
+        ch.n = n;
         cross_flush(b, pp, ch);
-        n = nev = 0;
+        n = 0;
       }
     }
-    ch.n = n, ch.nev = nev;
+    ch.n = n;
     cross_flush(b, pp, ch);
   }
 
@@ -771,7 +753,7 @@ class GranKernel final : public ContactKernel {
     gather(b, ch);
     evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
     for (int m = 0; m < ch.n; ++m) {
-      double* val = &pp.val[9 * static_cast<std::size_t>(ch.ev[m])];
+      double* val = &pp.val[9 * static_cast<std::size_t>(ch.slot[m])];
       for (int d = 0; d < 3; ++d) {
         val[d] = ch.f[d][m];
         val[3 + d] = ch.ti[d][m];
@@ -779,7 +761,22 @@ class GranKernel final : public ContactKernel {
       }
     }
     store_history(b, ch);
-    ch.n = ch.nev = 0;
+    ch.n = 0;
+  }
+
+  // Phase B, last: the i-side of range t's own cross entries, in list order.
+  void apply_outgoing(const PairBatch& b, const PairPartition& pp, int t) const {
+    double* f = b.a.f;
+    double* tq = b.a.torque;
+    for (int s = pp.cross_first[t]; s < pp.cross_first[t + 1]; ++s) {
+      if (!pp.on[s]) continue;
+      const int i = pp.cross_i[s];
+      const double* val = &pp.val[9 * static_cast<std::size_t>(s)];
+      for (int d = 0; d < 3; ++d) {
+        f[3 * i + d] += val[d];
+        tq[3 * i + d] += val[3 + d];
+      }
+    }
   }
 
   // Phase B, first: j-side contributions of cross entries to the atoms of range t.

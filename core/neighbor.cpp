@@ -206,6 +206,23 @@ double Neighbor::max_displacement_sq(const Atoms& atoms) const {
   return m + nan;
 }
 
+// One atom's entries by partner index, then image code (insertion sort: a
+// few entries). The threaded force pass relies on it: the entries whose
+// partner lies in a later thread's range are then the atom's last ones.
+static void sort_entries(int* j, std::uint8_t* shift, std::size_t n) {
+  for (std::size_t a = 1; a < n; ++a) {
+    const int jj = j[a];
+    const std::uint8_t sh = shift[a];
+    std::size_t b = a;
+    for (; b > 0 && (j[b - 1] > jj || (j[b - 1] == jj && shift[b - 1] > sh)); --b) {
+      j[b] = j[b - 1];
+      shift[b] = shift[b - 1];
+    }
+    j[b] = jj;
+    shift[b] = sh;
+  }
+}
+
 void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {
   if (store) store->save(list, ids_);
   const std::size_t n = atoms.n;
@@ -338,6 +355,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     for (std::size_t i = lo; i < hi; ++i) {
       const std::size_t k0 = js.size();
       scan(i, js, shifts);
+      sort_entries(js.data() + k0, shifts.data() + k0, js.size() - k0);
       for (std::size_t k = k0; k < js.size(); ++k)
         if (shifts[k] == NeighborList::kNoShift) span = std::max(span, js[k] - static_cast<int>(i));
       list.first[i + 1] = static_cast<int>(js.size());

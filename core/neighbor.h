@@ -17,7 +17,7 @@ class Domain;
 
 struct NeighborList {
   std::vector<int> first;            // n+1 offsets
-  std::vector<int> j;                // partner index
+  std::vector<int> j;                // partner index (each atom's entries sorted by j, then shift)
   std::vector<std::uint8_t> shift;   // image code, kNoShift when none
   double shift_vec[27][3] = {};      // j's image = x[j] + shift_vec[code]
   int span = 0;                      // largest j - i of an entry without image shift

@@ -1,5 +1,6 @@
-// The half Verlet list against an O(N^2) search over periodic images, and
-// contact history carried across rebuilds, sorting and periodic wraps.
+// The half Verlet list against an O(N^2) search over periodic images (and the
+// order of each atom's entries), and contact history carried across rebuilds,
+// sorting and periodic wraps.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -111,6 +112,13 @@ TEST_P(NeighborVsBruteForce, SamePairsAfterRandomMoves) {
     const auto expected = brute(s);
     EXPECT_GT(expected.size(), 50u) << "scene too sparse to test anything";
     EXPECT_EQ(listed(s), expected) << "round " << round;
+    // Each atom's entries by partner, then image: the threaded force pass takes
+    // an atom's entries into a later thread's range as its last ones.
+    const NeighborList& l = s.neighbor.list;
+    for (std::size_t i = 0; i < s.atoms.n; ++i)
+      for (int k = l.first[i] + 1; k < l.first[i + 1]; ++k)
+        ASSERT_TRUE(l.j[k - 1] < l.j[k] || (l.j[k - 1] == l.j[k] && l.shift[k - 1] < l.shift[k]))
+            << "atom " << i << " entries " << k - 1 << ", " << k << " out of order (round " << round << ")";
     random_moves(s, 100 + round, 0.05);
   }
 }
