@@ -74,6 +74,7 @@ struct PairBatch {
   StepContext ctx;
   std::uint32_t groupbit = ~0u;           // records: both grains must be in this group
   long list_version = -1;                 // changes whenever the list is rebuilt (thread partition cache)
+  AtomSplit* split = nullptr;             // receives the threads' atom ranges (per-atom passes follow them)
   int span = 0;                           // NeighborList::span: j <= i + span (without image shift)
   // LIGGGHTS 3.8 mode (pair_gran.h): a separated pair keeps its history until
   // the first force pass after a neighbour rebuild (`rebuilt`), then loses it.
@@ -470,6 +471,7 @@ class GranKernel final : public ContactKernel {
   void pair_forces_staged(const PairBatch& b) {
     const int nparts = pair_thread_count(b.a.n, b.a.n ? static_cast<std::size_t>(b.first[b.a.n]) : 0);
     if (nparts <= 1) {
+      if (b.split) b.split->n = 0;
       Chunk ch;
       pair_range(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
       return;
@@ -478,6 +480,10 @@ class GranKernel final : public ContactKernel {
     plan_partition(b, nparts);
     PairPartition& pp = part_;
     ++pp.calls;
+    if (b.split) {
+      b.split->n = b.a.n;
+      b.split->lo = pp.lo;
+    }
 #pragma omp parallel num_threads(nparts)
     {
       const int nt = omp_get_num_threads(), tid = omp_get_thread_num();

@@ -71,6 +71,7 @@ PairBatch PairGran::batch() {
   b.shift = list.shift.data();
   b.shift_vec = list.shift_vec;
   b.list_version = sim.neighbor.builds;
+  b.split = &at.split;
   if (history()) {
     b.store = &store_;
     b.row = store_.row.data();

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/threads.h"
+
 namespace sable {
 
 class Atoms {
@@ -22,6 +24,13 @@ class Atoms {
 
   int ntypes = 1;
   long max_id = 0;
+  AtomSplit split;  // thread ranges of the per-atom passes (set by the pair pass)
+
+  // Runs body(t, lo, hi) on each thread's range of the atoms (core/threads.h).
+  template <class Body>
+  void for_ranges(Body&& body) const {
+    for_atom_ranges(split, n, body);
+  }
 
   // Append one atom, returns its index. Mass from density and radius (3D sphere).
   std::size_t add(long id, int type, const double xyz[3], double radius, double density);

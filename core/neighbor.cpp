@@ -171,37 +171,35 @@ bool Neighbor::decide(const Atoms& atoms, long step) {
 double Neighbor::max_displacement_sq(const Atoms& atoms) const {
   const double* x = atoms.x.data();
   const double* xh = xhold_.data();
-  const long n = static_cast<long>(atoms.n);
   // A maximum does not depend on the order: threads and SIMD give the same value.
   // A non-finite position gives NaN (a comparison alone would skip it). Kept
   // in kLanes independent lanes: one chain of dependent maxima and sums made
   // this pass latency-bound.
-  constexpr int kLanes = 8;
-  double m = 0.0, nan = 0.0;
-#pragma omp parallel for reduction(max : m) reduction(+ : nan) schedule(static) if (atom_pass_threaded(atoms.n))
-  for (long b = 0; b < (n + kLanes - 1) / kLanes; ++b) {
+  constexpr long kLanes = 8;
+  std::vector<double> part(atom_pass_threads(), 0.0);
+  atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
     double ml[kLanes] = {}, nl[kLanes] = {};
-    const long i0 = b * kLanes;
-    if (i0 + kLanes <= n) {
-      for (int l = 0; l < kLanes; ++l) {
-        const long i = i0 + l;
-        const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        ml[l] = d2 > ml[l] ? d2 : ml[l];
-        nl[l] += d2 - d2;  // 0, or NaN for an infinite or NaN d2
-      }
-    } else {
-      for (long i = i0; i < n; ++i) {
-        const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        ml[0] = d2 > ml[0] ? d2 : ml[0];
-        nl[0] += d2 - d2;
-      }
-    }
-    for (int l = 0; l < kLanes; ++l) {
+    auto lane = [&](long l, long i) {
+      const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      ml[l] = d2 > ml[l] ? d2 : ml[l];
+      nl[l] += d2 - d2;  // 0, or NaN for an infinite or NaN d2
+    };
+    long i = static_cast<long>(lo);
+    for (; i + kLanes <= static_cast<long>(hi); i += kLanes)
+      for (long l = 0; l < kLanes; ++l) lane(l, i + l);
+    for (; i < static_cast<long>(hi); ++i) lane(0, i);
+    double m = 0.0, nan = 0.0;
+    for (long l = 0; l < kLanes; ++l) {
       m = ml[l] > m ? ml[l] : m;
       nan += nl[l];
     }
+    part[t] = m + nan;
+  });
+  double m = 0.0, nan = 0.0;
+  for (double p : part) {
+    m = p > m ? p : m;
+    nan += p - p;
   }
   return m + nan;
 }

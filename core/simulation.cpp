@@ -112,16 +112,21 @@ void Simulation::flush_outputs() {
 // NaN whatever the order).
 static bool all_finite(const Atoms& a, bool positions) {
   const double *x = a.x.data(), *v = a.v.data();
-  const long n3 = static_cast<long>(3 * a.n);
-  double s = 0.0;
-  if (positions) {
-#pragma omp parallel for simd reduction(+ : s) schedule(static) if (atom_pass_threaded(a.n))
-    for (long k = 0; k < n3; ++k) s += (x[k] - x[k]) + (v[k] - v[k]);
-  } else {
-#pragma omp parallel for simd reduction(+ : s) schedule(static) if (atom_pass_threaded(a.n))
-    for (long k = 0; k < n3; ++k) s += v[k] - v[k];
-  }
-  return s == 0.0;
+  std::vector<double> part(atom_pass_threads(), 0.0);
+  a.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+    double s = 0.0;
+    if (positions) {
+#pragma omp simd reduction(+ : s)
+      for (std::size_t k = 3 * lo; k < 3 * hi; ++k) s += (x[k] - x[k]) + (v[k] - v[k]);
+    } else {
+#pragma omp simd reduction(+ : s)
+      for (std::size_t k = 3 * lo; k < 3 * hi; ++k) s += v[k] - v[k];
+    }
+    part[t] = s;
+  });
+  for (double s : part)
+    if (s != 0.0) return false;
+  return true;
 }
 
 // Velocities are checked after a step (unless the rebuild check scanned the
@@ -295,9 +300,10 @@ void Simulation::setup() {
 // Atoms::clear_forces, threaded for large systems (the step loop's only other per-atom pass).
 static void clear_forces_threaded(Atoms& a) {
   double *f = a.f.data(), *t = a.torque.data();
-  const long n3 = static_cast<long>(3 * a.n);
-#pragma omp parallel for simd schedule(static) if (atom_pass_threaded(a.n))
-  for (long k = 0; k < n3; ++k) f[k] = t[k] = 0.0;
+  a.for_ranges([&](int, std::size_t lo, std::size_t hi) {
+#pragma omp simd
+    for (std::size_t k = 3 * lo; k < 3 * hi; ++k) f[k] = t[k] = 0.0;
+  });
 }
 
 void Simulation::run(long nsteps) {

@@ -39,10 +39,55 @@ int pair_thread_count(std::size_t natoms, std::size_t entries);
 int loop_thread_count(std::size_t n, std::size_t cost = 1);
 
 // Threading of a pass over every atom (integrator, force fixes, checks). All
-// such passes take the integrator's decision and static split, so each thread
-// meets the atoms whose cache lines it touched last: a serial gravity pass
-// between threaded ones made the other thread's integrator half 2x slower.
+// such passes take the same decision and the same split (AtomSplit), so each
+// thread meets the atoms whose cache lines it touched last: a serial gravity
+// pass between threaded ones made the other thread's integrator half 2x slower.
 inline bool atom_pass_threaded(std::size_t n) { return loop_thread_count(n, 8) > 1; }
+
+// The atom ranges of the threads in per-atom passes: those of the threaded
+// pair pass (balanced by its measured work) while they describe n atoms and
+// the thread count, else equal parts. Any split gives the same results.
+struct AtomSplit {
+  std::size_t n = 0;
+  std::vector<int> lo;  // threads + 1 bounds
+  // Range [lo, hi) of thread t of nt over n atoms.
+  void range(std::size_t natoms, int t, int nt, std::size_t& a, std::size_t& b) const {
+    if (n == natoms && lo.size() == static_cast<std::size_t>(nt) + 1) {
+      a = static_cast<std::size_t>(lo[t]);
+      b = static_cast<std::size_t>(lo[t + 1]);
+    } else {
+      a = natoms * t / nt;
+      b = natoms * (t + 1) / nt;
+    }
+  }
+};
+
+// Runs body(t, lo, hi) once per thread t on its range [lo, hi) of the n atoms
+// (one call, t = 0, over all of them when the pass is not threaded).
+template <class Body>
+void for_atom_ranges(const AtomSplit& split, std::size_t n, Body&& body) {
+#ifdef _OPENMP
+  if (atom_pass_threaded(n)) {
+#pragma omp parallel
+    {
+      std::size_t lo, hi;
+      split.range(n, omp_get_thread_num(), omp_get_num_threads(), lo, hi);
+      body(omp_get_thread_num(), lo, hi);
+    }
+    return;
+  }
+#endif
+  body(0, std::size_t{0}, n);
+}
+
+// Threads a for_atom_ranges pass may use (size of per-thread result arrays).
+inline int atom_pass_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
 
 // Runs body(b, lo, hi, sum) on the blocks [lo, hi) = [b block, (b + 1) block)
 // of n items (threaded when n x cost is large) and returns the blocks' 3-vector

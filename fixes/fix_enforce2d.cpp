@@ -27,18 +27,18 @@ class FixEnforce2d : public Fix {
       if (f.get() == this) after = true;
     }
   }
-  // Threaded like the pair pass before it, so each thread finds its grains'
+  // Threaded on the pair pass's atom ranges, so each thread finds its grains'
   // forces in its own cache (one thread here made the step slower with two).
   void post_force() override {
     Atoms& at = sim.atoms;
-    const long n = static_cast<long>(at.n);
-#pragma omp parallel for schedule(static) if (atom_pass_threaded(at.n))
-    for (long i = 0; i < n; ++i) {
-      if (!(at.mask[i] & groupbit)) continue;
-      at.v[3 * i + 2] = at.f[3 * i + 2] = 0;
-      at.omega[3 * i] = at.omega[3 * i + 1] = 0;
-      at.torque[3 * i] = at.torque[3 * i + 1] = 0;
-    }
+    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        if (!(at.mask[i] & groupbit)) continue;
+        at.v[3 * i + 2] = at.f[3 * i + 2] = 0;
+        at.omega[3 * i] = at.omega[3 * i + 1] = 0;
+        at.torque[3 * i] = at.torque[3 * i + 1] = 0;
+      }
+    });
   }
 };
 

@@ -29,14 +29,14 @@ class FixGravity : public Fix {
     const std::uint32_t bit = groupbit;
     const bool all = bit == 1u;  // group all: the mask test leaves the loop, which vectorises
     const double a0 = acc_[0], a1 = acc_[1], a2 = acc_[2];
-    const long n = static_cast<long>(at.n);
-#pragma omp parallel for schedule(static) if (atom_pass_threaded(at.n))
-    for (long i = 0; i < n; ++i) {
-      if (!all && !(mask[i] & bit)) continue;
-      f[3 * i] += rmass[i] * a0;
-      f[3 * i + 1] += rmass[i] * a1;
-      f[3 * i + 2] += rmass[i] * a2;
-    }
+    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        if (!all && !(mask[i] & bit)) continue;
+        f[3 * i] += rmass[i] * a0;
+        f[3 * i + 1] += rmass[i] * a1;
+        f[3 * i + 2] += rmass[i] * a2;
+      }
+    });
   }
   double acceleration() const override { return std::fabs(g_); }
 

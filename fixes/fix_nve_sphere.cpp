@@ -38,22 +38,19 @@ class FixNveSphere : public Fix {
   template <unsigned kMode>
   void integrate() {
     Atoms& at = sim.atoms;
-    const std::size_t n = at.n;
     const double dt = sim.dt, h = 0.5 * sim.dt;
     Arrays p{at.x.data(), at.v.data(), at.omega.data(), at.f.data(), at.torque.data(), at.rmass.data(),
              at.radius.data()};
     const std::uint32_t* mask = at.mask.data();
     const std::uint32_t bit = groupbit;
-    const long nn = static_cast<long>(n);
-    const bool threads = atom_pass_threaded(n);
-    if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
-#pragma omp parallel for schedule(static) if (threads)
-      for (long i = 0; i < nn; ++i) step<kMode>(p, i, dt, h);
-    } else {
-#pragma omp parallel for schedule(static) if (threads)
-      for (long i = 0; i < nn; ++i)
-        if (mask[i] & bit) step<kMode>(p, i, dt, h);
-    }
+    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
+      if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
+        for (std::size_t i = lo; i < hi; ++i) step<kMode>(p, i, dt, h);
+      } else {
+        for (std::size_t i = lo; i < hi; ++i)
+          if (mask[i] & bit) step<kMode>(p, i, dt, h);
+      }
+    });
   }
   struct Arrays {
     double* __restrict x;
@@ -67,7 +64,7 @@ class FixNveSphere : public Fix {
   // kFinalFirst: the same two additions as a final pass followed by an initial
   // one (same forces, same order), so the same bits.
   template <unsigned kMode>
-  [[gnu::always_inline]] static inline void step(const Arrays& p, long i, double dt, double h) {
+  [[gnu::always_inline]] static inline void step(const Arrays& p, std::size_t i, double dt, double h) {
     const double m = p.rmass[i], r = p.radius[i];
     const double hm = h / m, hi = h / (0.4 * m * r * r);
     for (int k = 0; k < 3; ++k) {

@@ -3,7 +3,7 @@
 // GranKernel::pair_forces). The size thresholds are lowered so a small system
 // takes every threaded path: the pair pass (ranges, cross entries, incoming
 // lists), the neighbour build, the integrator, gravity, the wall (in blocks of
-// 16 grains) and the checks.
+// 16 grains) and the checks, the per-atom passes on the pair pass's ranges.
 // Step fusion (Simulation::run) must give the bits of the separate passes too.
 #include <gtest/gtest.h>
 
@@ -167,4 +167,44 @@ TEST(Threads, BlockSumAddsBlocksInOrder) {
 #else
   EXPECT_TRUE(sum() == expect);
 #endif
+}
+
+// Per-atom passes run on the pair pass's atom ranges while these describe the
+// atoms and the thread count, else on equal parts; either way every atom once.
+TEST(Threads, AtomPassesFollowThePairSplit) {
+  sable::ThreadSettings& ts = sable::thread_settings();
+  const sable::ThreadSettings saved = ts;
+  ts.loop_work = 0;  // threaded at any size
+  const std::size_t n = 1000;
+  auto ranges = [&](const sable::AtomSplit& split) {
+    std::vector<int> seen(n, 0);
+    std::vector<std::array<std::size_t, 2>> r(sable::atom_pass_threads(), {0, 0});
+    sable::for_atom_ranges(split, n, [&](int t, std::size_t lo, std::size_t hi) {
+      r[t] = {lo, hi};
+      for (std::size_t i = lo; i < hi; ++i) ++seen[i];
+    });
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; })) << "an atom missed or repeated";
+    return r;
+  };
+#ifdef _OPENMP
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  sable::AtomSplit split;
+  split.n = n;
+  split.lo = {0, 700, static_cast<int>(n)};
+  auto r = ranges(split);
+  EXPECT_EQ(r[0][1], 700u);
+  EXPECT_EQ(r[1][0], 700u);
+  split.n = n + 1;  // stale: describes other atoms
+  r = ranges(split);
+  EXPECT_EQ(r[0][1], n / 2);
+  omp_set_num_threads(3);  // stale: another thread count
+  split.n = n;
+  r = ranges(split);
+  EXPECT_EQ(r[1][0], n / 3);
+  omp_set_num_threads(before);
+#else
+  ranges(sable::AtomSplit{});
+#endif
+  ts = saved;
 }
