@@ -477,6 +477,7 @@ class GranKernel final : public ContactKernel {
       return;
     }
 #ifdef _OPENMP
+    const double w0 = omp_get_wtime();
     plan_partition(b, nparts);
     PairPartition& pp = part_;
     ++pp.calls;
@@ -484,20 +485,29 @@ class GranKernel final : public ContactKernel {
       b.split->n = b.a.n;
       b.split->lo = pp.lo;
     }
+    ThreadBalance& tb = thread_balance(PassKind::Pair);
+    tb.begin(nparts);
 #pragma omp parallel num_threads(nparts)
     {
       const int nt = omp_get_num_threads(), tid = omp_get_thread_num();
       Chunk ch;
       const int ncross = pp.cross_first[nparts];  // shared evenly: each has its own slot
+      const double a0 = omp_get_wtime();
       cross_range(b, pp, ncross * tid / nt, ncross * (tid + 1) / nt, ch);
+      double busy = omp_get_wtime() - a0;
 #pragma omp barrier
       for (int t = tid; t < nparts; t += nt) {
         const double t0 = omp_get_wtime();
         apply_incoming(b, pp, t);
         pair_range(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
-        pp.busy[t] += omp_get_wtime() - t0;
+        const double dt = omp_get_wtime() - t0;
+        pp.busy[t] += dt;
+        busy += dt;
       }
+      tb.busy[tid] += busy;
     }
+    tb.wall += omp_get_wtime() - w0;
+    ++tb.calls;
 #endif
   }
 

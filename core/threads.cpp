@@ -31,6 +31,11 @@ int loop_thread_count(std::size_t n, std::size_t cost) {
   return max_threads();
 }
 
+ThreadBalance& thread_balance(PassKind k) {
+  static ThreadBalance pair, atoms;
+  return k == PassKind::Pair ? pair : atoms;
+}
+
 bool simd_avx2() {
 #if defined(__x86_64__) && defined(__GNUC__)
   static const bool cpu = __builtin_cpu_supports("avx2") && !std::getenv("SABLE_NO_AVX2");

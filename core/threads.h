@@ -62,18 +62,42 @@ struct AtomSplit {
   }
 };
 
+// How evenly the threads shared the threaded passes of one kind during a run:
+// each thread's busy seconds and the passes' wall seconds (the rest of the
+// wall time a thread waited for the others). The run summary prints them.
+struct ThreadBalance {
+  std::vector<double> busy;  // per thread
+  double wall = 0.0;
+  long calls = 0;
+  void clear() { *this = ThreadBalance{}; }
+  // Before a region of `threads` threads (each then adds to its own slot).
+  void begin(int threads) {
+    if (busy.size() < static_cast<std::size_t>(threads)) busy.resize(threads, 0.0);
+  }
+};
+enum class PassKind { Pair, Atoms };
+ThreadBalance& thread_balance(PassKind k);
+
 // Runs body(t, lo, hi) once per thread t on its range [lo, hi) of the n atoms
 // (one call, t = 0, over all of them when the pass is not threaded).
 template <class Body>
 void for_atom_ranges(const AtomSplit& split, std::size_t n, Body&& body) {
 #ifdef _OPENMP
   if (atom_pass_threaded(n)) {
+    ThreadBalance& tb = thread_balance(PassKind::Atoms);
+    tb.begin(omp_get_max_threads());
+    const double t0 = omp_get_wtime();
 #pragma omp parallel
     {
+      const int t = omp_get_thread_num();
       std::size_t lo, hi;
-      split.range(n, omp_get_thread_num(), omp_get_num_threads(), lo, hi);
-      body(omp_get_thread_num(), lo, hi);
+      split.range(n, t, omp_get_num_threads(), lo, hi);
+      const double s0 = omp_get_wtime();
+      body(t, lo, hi);
+      tb.busy[t] += omp_get_wtime() - s0;
     }
+    tb.wall += omp_get_wtime() - t0;
+    ++tb.calls;
     return;
   }
 #endif

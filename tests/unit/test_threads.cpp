@@ -208,3 +208,24 @@ TEST(Threads, AtomPassesFollowThePairSplit) {
 #endif
   ts = saved;
 }
+
+// The run summary's thread balance: every pair pass of the run counted, each
+// thread busy for part of the passes' wall time, never more.
+TEST(Threads, BalanceCountsEveryThreadedPass) {
+#ifdef _OPENMP
+  run(2, true);
+  const sable::ThreadBalance& p = sable::thread_balance(sable::PassKind::Pair);
+  const sable::ThreadBalance& a = sable::thread_balance(sable::PassKind::Atoms);
+  EXPECT_EQ(p.calls, 1500);  // one per step (the setup pass is before the count starts)
+  EXPECT_GE(a.calls, 3 * 1500 - 10);  // fused integrate, displacement check, gravity per step
+  for (const sable::ThreadBalance* b : {&p, &a}) {
+    ASSERT_EQ(b->busy.size(), 2u);
+    for (double s : b->busy) {
+      EXPECT_GT(s, 0.0);
+      EXPECT_LE(s, b->wall * (1 + 1e-9) + 1e-6);
+    }
+  }
+#else
+  GTEST_SKIP() << "built without OpenMP";
+#endif
+}
