@@ -58,6 +58,8 @@ SABLE_LOOP = re.compile(
     r"Loop time of ([0-9.eE+-]+) s on \d+ process(?:es)? for (\d+) steps with (\d+) atoms: "
     r"([0-9.eE+-]+) particle-steps/s, (\d+) neighbor builds")
 SABLE_SPLIT = re.compile(r"Time split: (.*)")
+# "Thread balance (2 threads, busy min / mean / max): pair 0.95 / 0.96 / 0.97 s of 1.08 s (89%); per-atom ..."
+SABLE_BALANCE = re.compile(r"(pair|per-atom passes) ([0-9.eE+-]+) / ([0-9.eE+-]+) / ([0-9.eE+-]+) s of ([0-9.eE+-]+) s")
 LIG_LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 LIG_TIME = re.compile(r"^(\w+)\s+time \(%\) = ([0-9.eE+-]+) \(([0-9.eE+-]+)\)", re.M)
 
@@ -156,6 +158,11 @@ def parse_sable(text):
     splits = SABLE_SPLIT.findall(text)
     if splits:
         d["split"] = {k: float(v) for k, v in re.findall(r"(\w+) ([0-9.]+)%", splits[-1])}
+    bal = [l for l in text.splitlines() if l.startswith("Thread balance")]
+    if bal:  # the timed run's: the last one
+        d["balance"] = {("pair" if k == "pair" else "atoms"): dict(min=float(a), mean=float(b), max=float(c),
+                                                                 wall=float(w))
+                        for k, a, b, c, w in SABLE_BALANCE.findall(bal[-1])}
     return d
 
 
@@ -335,6 +342,19 @@ def spread(xs):
     return " (±%.0f%%)" % (100.0 * (max(xs) - min(xs)) / 2 / m) if m else ""
 
 
+def paired_speedup(runs, t, t1):
+    """Median over repeats of PS/s with t threads / PS/s with t1 threads in the same repeat (run one
+    after the other): less sensitive to the slow drifts of a shared machine than a ratio of medians."""
+    by = {(r["repeat"], r["threads"]): r["psps"] for r in runs if r.get("psps")}
+    q = [by[(k, t)] / by[(k, t1)] for (k, tt) in by if tt == t and (k, t1) in by]
+    return dict(median=statistics.median(q), all=q) if q and t != t1 else None
+
+
+def busy_pct(run, kind):
+    b = (run.get("balance") or {}).get(kind)
+    return 100.0 * b["mean"] / b["wall"] if b and b["wall"] > 0 else None
+
+
 def summarize(results, threads):
     rows = []
     for name, res in results.items():
@@ -353,7 +373,9 @@ def summarize(results, threads):
             row["sable"][t] = dict(psps=median_or_none([r["psps"] for r in rs]),
                                    spread=spread([r["psps"] for r in rs]), n=len(rs), split=best.get("split"),
                                    maxrss_mb=max(r["maxrss_mb"] for r in rs), builds=best.get("builds"),
-                                   neighs_per_atom=best.get("neighs_per_atom"))
+                                   neighs_per_atom=best.get("neighs_per_atom"),
+                                   paired=paired_speedup(s_runs, t, min(threads)),
+                                   pair_busy=median_or_none([busy_pct(r, "pair") for r in rs]))
         if l_runs:
             best = min(l_runs, key=lambda r: abs(r["psps"] - median_or_none([x["psps"] for x in l_runs])))
             row["liggghts"] = dict(psps=median_or_none([r["psps"] for r in l_runs]),
@@ -372,6 +394,8 @@ def table_md(rows, threads, info, args):
     h = ["case", "atoms", "steps"]
     h += ["sable PS/s %dt" % t for t in threads]
     h += ["LIGGGHTS PS/s", *["ratio %dt" % t for t in threads]]
+    multi = [t for t in threads if t != min(threads)]
+    h += ["%dt / %dt paired (pair busy)" % (t, min(threads)) for t in multi]
     h += ["sable split (%)", "LIGGGHTS split (%)", "max RSS sable / LIGGGHTS (MB)",
           "nbr builds sable / LIGGGHTS", "contacts/grain sable / LIGGGHTS", "neighs/atom sable / LIGGGHTS"]
     out = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
@@ -385,6 +409,11 @@ def table_md(rows, threads, info, args):
         for t in threads:
             s = row["sable"].get(t)
             c.append("%.2f" % (s["psps"] / lg["psps"]) if s and lg.get("psps") else "-")
+        for t in multi:
+            s = row["sable"].get(t) or {}
+            p = s.get("paired")
+            c.append(("%.2f" % p["median"] + " (" + ", ".join("%.2f" % q for q in p["all"]) + ")" if p else "-") +
+                     (" (%.0f%%)" % s["pair_busy"] if s.get("pair_busy") is not None else ""))
         tst = min(row["sable"]) if row["sable"] else None  # the split of the one-thread run
         st = row["sable"].get(tst)
         c.append(split_str(st and st["split"], ["pair", "neigh", "integrate", "fixes", "output"]) +
@@ -420,7 +449,10 @@ def write_report(path_md, path_json, rows, results, threads, info, args, title):
           "- ratio = sable PS/s / LIGGGHTS PS/s; split = each code's own timer breakdown of the timed run "
           "(sable: the one-thread run; LIGGGHTS' 'Other' holds its fixes: integration, gravity, walls); "
           "nbr builds = list builds in the timed run; contacts/grain from the final dump "
-          "(distance <= ri + rj); neighs/atom = each code's 'Ave neighs/atom' (half lists)", "",
+          "(distance <= ri + rj); neighs/atom = each code's 'Ave neighs/atom' (half lists); "
+          "Nt / 1t paired = median over repeats of the speed-up between the runs of one repeat (each one's in "
+          "brackets), pair busy = median share of the pair passes' wall time each thread was busy (the rest it "
+          "waited for the other; sable's 'Thread balance' line)", "",
           table_md(rows, threads, info, args), ""]
     kept = [(k, v["measured"]) for k, v in results.items() if v.get("measured")]
     if kept:
