@@ -3,7 +3,9 @@
 // quantity). Fixes may attach extra per-atom columns; every column follows the
 // atoms through sorting, deletion and growth.
 #include <cstdint>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/threads.h"
@@ -62,6 +64,10 @@ class Atoms {
     std::vector<double> data;
   };
   std::vector<Column> extra_;
+  // permute()'s buffers, by element type and stride
+  std::tuple<std::map<int, std::vector<long>>, std::map<int, std::vector<int>>,
+             std::map<int, std::vector<std::uint32_t>>, std::map<int, std::vector<double>>>
+      scratch_;
   mutable std::vector<std::size_t> map_;  // id -> index
   mutable bool map_valid_ = false;
   void invalidate() { map_valid_ = false; }
