@@ -302,12 +302,17 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   const bool sorted = sort && n > 0;
   const double* x = atoms.x.data();  // after the sort
   radius = atoms.radius.data();
-  // Entries of atom i (partners j > i within the cutoff plus skin), appended to (js, shifts).
-  auto scan = [&](std::size_t i, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
-    const int b = bin_of_[i];
+  // The bins around bin b with the image code of each (through a periodic
+  // axis of one or two bins a bin can come twice, as two images). Sorted atoms
+  // are in bin order, so a lower bin holds only atoms j < i: left out.
+  struct Stencil {
+    int n = 0;
+    int bin[27];
+    std::uint8_t code[27];
+  };
+  auto stencil = [&](int b, Stencil& st) {
     const int bc[3] = {(b / stride[0]) % nb[0], (b / stride[1]) % nb[1], (b / stride[2]) % nb[2]};
-    const double* xi = &x[3 * i];
-    const double ri = radius[i];
+    st.n = 0;
     for (int oz = -zr; oz <= zr; ++oz)
       for (int oy = -1; oy <= 1; ++oy)
         for (int ox = -1; ox <= 1; ++ox) {
@@ -329,30 +334,48 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
           // Without wrap, a neighbouring offset outside a single-bin axis is not a new cell.
           if (!ok) continue;
           const int nbin = nbc[0] * stride[0] + nbc[1] * stride[1] + nbc[2] * stride[2];
-          // Sorted atoms are in bin order: a lower bin holds only atoms j < i (none kept).
           if (sorted && nbin < b) continue;
-          const int code = (sh[0] + 1) + 3 * (sh[1] + 1) + 9 * (sh[2] + 1);
-          const double* sv = list.shift_vec[code];
-          for (int s = bin_start_[nbin]; s < bin_start_[nbin + 1]; ++s) {
-            const int j = bin_atoms_[s];
-            if (j <= static_cast<int>(i)) continue;
-            const double* xj = &x[3 * j];
-            const double dx = xj[0] + sv[0] - xi[0], dy = xj[1] + sv[1] - xi[1], dz = xj[2] + sv[2] - xi[2];
-            const double cut = ri + radius[j] + skin;
-            if (dx * dx + dy * dy + dz * dz < cut * cut) {
-              js.push_back(j);
-              shifts.push_back(static_cast<std::uint8_t>(code));
-            }
-          }
+          st.bin[st.n] = nbin;
+          st.code[st.n++] = static_cast<std::uint8_t>((sh[0] + 1) + 3 * (sh[1] + 1) + 9 * (sh[2] + 1));
         }
   };
+  // Entries of atom i (partners j > i within the cutoff plus skin) in the bins
+  // of `st`, appended to (js, shifts).
+  auto scan = [&](std::size_t i, const Stencil& st, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
+    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2], ri = radius[i];
+    const int ii = static_cast<int>(i);
+    for (int q = 0; q < st.n; ++q) {
+      const int nbin = st.bin[q];
+      const std::uint8_t code = st.code[q];
+      const double* sv = list.shift_vec[code];
+      const double s0 = sv[0], s1 = sv[1], s2 = sv[2];
+      auto test = [&](int j) {
+        const double dx = x[3 * j] + s0 - xi0, dy = x[3 * j + 1] + s1 - xi1, dz = x[3 * j + 2] + s2 - xi2;
+        const double cut = ri + radius[j] + skin;
+        if (dx * dx + dy * dy + dz * dz < cut * cut) {
+          js.push_back(j);
+          shifts.push_back(code);
+        }
+      };
+      if (sorted) {  // a bin's atoms are consecutive indices
+        for (int j = std::max(bin_start_[nbin], ii + 1); j < bin_start_[nbin + 1]; ++j) test(j);
+      } else {
+        for (int s = bin_start_[nbin]; s < bin_start_[nbin + 1]; ++s)
+          if (bin_atoms_[s] > ii) test(bin_atoms_[s]);
+      }
+    }
+  };
   // Atoms [lo, hi) appended to (js, shifts), first[i + 1] = js.size() after atom i;
-  // returns the largest j - i of an entry without image shift.
+  // returns the largest j - i of an entry without image shift. The stencil is
+  // found once per bin (sorted atoms come bin after bin).
   auto scan_range = [&](std::size_t lo, std::size_t hi, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
     int span = 0;
+    Stencil st;
+    int st_bin = -1;
     for (std::size_t i = lo; i < hi; ++i) {
+      if (bin_of_[i] != st_bin) stencil(st_bin = bin_of_[i], st);
       const std::size_t k0 = js.size();
-      scan(i, js, shifts);
+      scan(i, st, js, shifts);
       sort_entries(js.data() + k0, shifts.data() + k0, js.size() - k0);
       for (std::size_t k = k0; k < js.size(); ++k)
         if (shifts[k] == NeighborList::kNoShift) span = std::max(span, js[k] - static_cast<int>(i));
