@@ -50,31 +50,41 @@ std::size_t ContactStore::contacts() const {
   return static_cast<std::size_t>(std::count_if(row.begin(), row.end(), [](int r) { return r >= 0; }));
 }
 
-// In blocks of atoms, in parallel for large lists, joined in atom order.
+// In blocks of atoms, in parallel for large lists: each block counts its
+// contacts, then writes them at its offset (atom order, as a serial pass).
 SavedContacts ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
   if (row.empty() || row.size() != list.size()) return {};
   const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
   const int nth = loop_thread_count(list.size(), 2);
-  struct alignas(64) Part {  // own cache lines: the vectors' ends move at every contact
-    SavedContacts c;
-  };
-  std::vector<Part> part(nth);
-#pragma omp parallel for schedule(static, 1) num_threads(nth) if (nth > 1)
-  for (int t = 0; t < nth; ++t) {
-    SavedContacts& out = part[t].c;
-    for (std::size_t i = n * t / nth; i < n * (t + 1) / nth; ++i)
-      for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
-        const double* h = history(k);
-        if (!h) continue;
-        out.ids.push_back(ids[i]);
-        out.ids.push_back(ids[list.j[k]]);
-        out.hist.insert(out.hist.end(), h, h + size);
-      }
-  }
-  SavedContacts out = std::move(part[0].c);
-  for (int t = 1; t < nth; ++t) {
-    out.ids.insert(out.ids.end(), part[t].c.ids.begin(), part[t].c.ids.end());
-    out.hist.insert(out.hist.end(), part[t].c.hist.begin(), part[t].c.hist.end());
+  std::vector<std::size_t> base(nth + 1, 0);
+  SavedContacts out;
+  auto entries = [&](int t) { return std::pair(list.first[n * t / nth], list.first[n * (t + 1) / nth]); };
+#pragma omp parallel num_threads(nth) if (nth > 1)
+  {
+#pragma omp for schedule(static, 1)
+    for (int t = 0; t < nth; ++t) {
+      const auto [k0, k1] = entries(t);
+      base[t + 1] = static_cast<std::size_t>(std::count_if(row.begin() + k0, row.begin() + k1, [](int r) { return r >= 0; }));
+    }
+#pragma omp single
+    {
+      std::partial_sum(base.begin(), base.end(), base.begin());
+      out.ids.resize(2 * base[nth]);
+      out.hist.resize(base[nth] * size);
+    }
+#pragma omp for schedule(static, 1)
+    for (int t = 0; t < nth; ++t) {
+      std::size_t c = base[t];
+      for (std::size_t i = n * t / nth; i < n * (t + 1) / nth; ++i)
+        for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
+          const double* h = history(k);
+          if (!h) continue;
+          out.ids[2 * c] = ids[i];
+          out.ids[2 * c + 1] = ids[list.j[k]];
+          for (int m = 0; m < size; ++m) out.hist[c * size + m] = h[m];
+          ++c;
+        }
+    }
   }
   return out;
 }
