@@ -450,9 +450,9 @@ class GranKernel final : public ContactKernel {
   //      forgets its history); the state of the touching pairs is copied into
   //      columns;
   //   2. evaluate: all sub-models on every column, a loop over independent
-  //      contacts without branches that the compiler vectorises (AVX2 where the
-  //      CPU has it, SSE2 otherwise: the same operations lane by lane, so the
-  //      same bits);
+  //      contacts without branches that the compiler vectorises (AVX-512 or
+  //      AVX2 where the CPU has it, SSE2 otherwise: the same operations lane by
+  //      lane, so the same bits);
   //   3. scatter: forces and torques added to the grains in list order.
   //
   // Threads (OpenMP, when the list is long enough) own contiguous atom ranges
@@ -642,6 +642,14 @@ class GranKernel final : public ContactKernel {
     else
       evaluate_columns<false>(ch, dt);
   }
+  template <class Cols>
+  [[gnu::target("avx512f,avx512dq"), gnu::flatten]] void evaluate_columns_avx512(Cols& ch, double dt,
+                                                                                 bool update) const {
+    if (update)
+      evaluate_columns<true>(ch, dt);
+    else
+      evaluate_columns<false>(ch, dt);
+  }
 #endif
   template <class Cols>
   [[gnu::flatten]] void evaluate_columns_base(Cols& ch, double dt, bool update) const {
@@ -653,7 +661,11 @@ class GranKernel final : public ContactKernel {
   template <class Cols>
   void evaluate_columns_any(Cols& ch, double dt, bool update) const {
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (simd_avx2()) return evaluate_columns_avx2(ch, dt, update);
+    switch (simd_level()) {
+      case Simd::AVX512: return evaluate_columns_avx512(ch, dt, update);
+      case Simd::AVX2: return evaluate_columns_avx2(ch, dt, update);
+      case Simd::SSE2: break;
+    }
 #endif
     evaluate_columns_base(ch, dt, update);
   }

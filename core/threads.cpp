@@ -1,6 +1,8 @@
 #include "core/threads.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <string>
 
 namespace sable {
 
@@ -36,13 +38,24 @@ ThreadBalance& thread_balance(PassKind k) {
   return k == PassKind::Pair ? pair : atoms;
 }
 
-bool simd_avx2() {
+// The CPU's widest variant, capped by SABLE_SIMD.
+static Simd simd_available() {
+  Simd s = Simd::SSE2;
 #if defined(__x86_64__) && defined(__GNUC__)
-  static const bool cpu = __builtin_cpu_supports("avx2") && !std::getenv("SABLE_NO_AVX2");
-  return cpu && thread_settings().avx2;
-#else
-  return false;
+  if (__builtin_cpu_supports("avx2")) s = Simd::AVX2;
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) s = Simd::AVX512;
 #endif
+  if (const char* e = std::getenv("SABLE_SIMD")) {
+    const std::string w = e;
+    const Simd cap = w == "sse2" ? Simd::SSE2 : w == "avx2" ? Simd::AVX2 : Simd::AVX512;
+    s = std::min(s, cap);
+  }
+  return s;
+}
+
+Simd simd_level() {
+  static const Simd cpu = simd_available();
+  return std::min(cpu, thread_settings().simd);
 }
 
 }  // namespace sable

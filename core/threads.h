@@ -21,14 +21,17 @@
 
 namespace sable {
 
+// Vector width of the contact loops (GranKernel::evaluate_columns).
+enum class Simd { SSE2, AVX2, AVX512 };
+
 // Size thresholds and the SIMD switch. Tests lower the thresholds to run the
-// threaded paths on small systems and switch AVX2 off to compare the variants.
+// threaded paths on small systems and narrow the SIMD width to compare the variants.
 struct ThreadSettings {
   std::size_t pair_atoms = 4096;    // pair pass threaded from this many grains ...
   std::size_t pair_entries = 8192;  // ... and list entries
   std::size_t loop_work = 32768;    // per-atom loops: atoms x cost units
   std::size_t wall_block = 256;     // wall grains searched and evaluated per block (FixWallGran)
-  bool avx2 = true;                 // allow the AVX2 contact loops (also off with SABLE_NO_AVX2 set)
+  Simd simd = Simd::AVX512;         // widest contact loops allowed (the CPU and SABLE_SIMD may allow less)
 };
 ThreadSettings& thread_settings();
 
@@ -134,9 +137,10 @@ std::array<double, 3> block_sum3(std::size_t n, std::size_t block, std::size_t c
   return sum;
 }
 
-// True when the contact loops use their AVX2 variant (the CPU has it, it is
-// allowed, SABLE_NO_AVX2 is not set). Both variants give identical results:
-// they differ in vector width only (no FMA contraction, no reassociation).
-bool simd_avx2();
+// The contact loops' variant: the widest that the CPU has and that
+// thread_settings().simd and the environment (SABLE_SIMD=sse2|avx2|avx512)
+// allow. All give identical results: they differ in vector width only (no FMA
+// contraction, -ffp-contract=off; no reassociation).
+Simd simd_level();
 
 }  // namespace sable

@@ -1,5 +1,5 @@
 // Deterministic threading: the same deck gives the same bits whatever the
-// thread count and whether the contact loops run as AVX2 or SSE2 (core/threads.h,
+// thread count and whether the contact loops run as AVX-512, AVX2 or SSE2 (core/threads.h,
 // GranKernel::pair_forces). The size thresholds are lowered so a small system
 // takes every threaded path: the pair pass (ranges, cross entries, incoming
 // lists), the neighbour build, the integrator, gravity, the wall (in blocks of
@@ -18,6 +18,7 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+constexpr sable::Simd kWide = sable::Simd::AVX512;  // the widest the CPU has (simd_level())
 
 namespace {
 
@@ -71,12 +72,12 @@ struct State {
 
 // `before_run`: commands inserted before the run (thermo output stops the
 // deferred final half kick); `fusion` false: every pass separate.
-State run(int threads, bool avx2, const std::string& before_run = "", bool fusion = true) {
+State run(int threads, sable::Simd simd, const std::string& before_run = "", bool fusion = true) {
   sable::ThreadSettings& ts = sable::thread_settings();
   const sable::ThreadSettings saved = ts;
   ts.pair_atoms = ts.pair_entries = ts.loop_work = 0;  // every loop threaded
   ts.wall_block = 16;
-  ts.avx2 = avx2;
+  ts.simd = simd;
 #ifdef _OPENMP
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
@@ -109,33 +110,35 @@ State run(int threads, bool avx2, const std::string& before_run = "", bool fusio
 }  // namespace
 
 TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
-  const State serial = run(1, true);
+  const State serial = run(1, kWide);
   ASSERT_GT(serial.id.size(), 1000u);
   ASSERT_GT(serial.builds, 3);             // history carried across rebuilds
   ASSERT_GT(serial.contacts, 300u);        // a scene with many contacts
   ASSERT_LT(serial.floor_force[2], 0.0);   // grains press on the floor (in several wall blocks)
-  EXPECT_TRUE(run(1, false) == serial) << "SSE2 and AVX2 contact loops differ";
+  // The widest variant the CPU has (kWide) against the narrower ones.
+  EXPECT_TRUE(run(1, sable::Simd::SSE2) == serial) << "SSE2 and the widest contact loops differ";
+  EXPECT_TRUE(run(1, sable::Simd::AVX2) == serial) << "AVX2 and the widest contact loops differ";
 #ifdef _OPENMP
-  EXPECT_TRUE(run(2, true) == serial) << "2 threads differ from 1";
-  EXPECT_TRUE(run(3, true) == serial) << "3 threads differ from 1";
-  EXPECT_TRUE(run(2, true) == run(2, true)) << "2 threads differ run to run";
+  EXPECT_TRUE(run(2, kWide) == serial) << "2 threads differ from 1";
+  EXPECT_TRUE(run(3, kWide) == serial) << "3 threads differ from 1";
+  EXPECT_TRUE(run(2, kWide) == run(2, kWide)) << "2 threads differ run to run";
 #endif
 }
 
 // A final half kick deferred into the next initial pass and forces zeroed by
 // the integrator: the same bits (and the same rebuilds) as separate passes.
 TEST(StepFusion, SameBitsAsSeparatePasses) {
-  const State separate = run(1, true, "", false);
-  const State fused = run(1, true);
+  const State separate = run(1, kWide, "", false);
+  const State fused = run(1, kWide);
   EXPECT_EQ(separate.fused_steps, 0);
-  EXPECT_EQ(run(1, true, "thermo 1\n").fused_steps, 0);  // output every step: no deferred kick
+  EXPECT_EQ(run(1, kWide, "thermo 1\n").fused_steps, 0);  // output every step: no deferred kick
   EXPECT_EQ(fused.fused_steps, 1499);  // all but the last step
   EXPECT_EQ(fused.builds, separate.builds);
   EXPECT_TRUE(fused == separate) << "fused and separate passes differ";
 #ifdef _OPENMP
-  EXPECT_TRUE(run(2, true) == separate) << "fused passes on 2 threads differ";
+  EXPECT_TRUE(run(2, kWide) == separate) << "fused passes on 2 threads differ";
 #endif
-  const State some = run(1, true, "thermo 100\n");  // fused except around output steps
+  const State some = run(1, kWide, "thermo 100\n");  // fused except around output steps
   EXPECT_EQ(some.fused_steps, 1485);
   EXPECT_TRUE(some == separate);
 }
@@ -213,7 +216,7 @@ TEST(Threads, AtomPassesFollowThePairSplit) {
 // thread busy for part of the passes' wall time, never more.
 TEST(Threads, BalanceCountsEveryThreadedPass) {
 #ifdef _OPENMP
-  run(2, true);
+  run(2, kWide);
   const sable::ThreadBalance& p = sable::thread_balance(sable::PassKind::Pair);
   const sable::ThreadBalance& a = sable::thread_balance(sable::PassKind::Atoms);
   EXPECT_EQ(p.calls, 1500);  // one per step (the setup pass is before the count starts)
