@@ -30,6 +30,10 @@
 #include "core/neighbor.h"
 #include "core/threads.h"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 namespace sable {
 
 // Raw views of the atom arrays a loop reads and writes.
@@ -718,6 +722,28 @@ class GranKernel final : public ContactKernel {
   // the list being sorted by j) were evaluated in phase A: their slots are
   // added after the range, when each atom's own entries are done.
   void pair_range(const PairBatch& b, int lo, int hi, const PairPartition* pp, int t, Chunk& ch) const {
+    ch.n = 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (simd_level() == Simd::AVX512)
+      pair_entries_avx512(b, lo, hi, pp != nullptr, ch);
+    else
+#endif
+      pair_entries(b, lo, hi, pp != nullptr, ch);
+    flush(b, ch);
+    if (pp) apply_outgoing(b, *pp, t);
+  }
+
+  // Atom i's entries in phase B: all, or (`trim`) those with j < hi.
+  static int entries_end(const ListView& L, const int* first, int i, int hi, bool trim) {
+    int kend = first[i + 1];
+    if (trim)
+      while (kend > first[i] && L.jlist[kend - 1] >= hi) --kend;
+    return kend;
+  }
+
+  // Stage 1 over the entries of atoms [lo, hi), flushing full chunks; the last,
+  // partial chunk is left in `ch`.
+  void pair_entries(const PairBatch& b, int lo, int hi, bool trim, Chunk& ch) const {
     const ListView L = list_view(b);
     const int* first = b.first;
     int n = 0;
@@ -725,11 +751,7 @@ class GranKernel final : public ContactKernel {
     for (int i = lo; i < hi; ++i) {
       if (i + lead < hi) prefetch_atom(b.a, i + lead);
       const double xi = L.x[3 * i], yi = L.x[3 * i + 1], zi = L.x[3 * i + 2], radi = L.radius[i];
-      const int k0 = first[i];
-      int kend = first[i + 1];
-      if (pp)
-        while (kend > k0 && L.jlist[kend - 1] >= hi) --kend;
-      for (int k = k0; k < kend; ++k) {
+      for (int k = first[i], kend = entries_end(L, first, i, hi, trim); k < kend; ++k) {
         filter_entry(L, ch, n, i, xi, yi, zi, radi, k);
         if (n == Chunk::kCap) {
           ch.n = n;
@@ -739,9 +761,88 @@ class GranKernel final : public ContactKernel {
       }
     }
     ch.n = n;
-    flush(b, ch);
-    if (pp) apply_outgoing(b, *pp, t);
   }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+  // pair_entries eight entries at a time (AVX-512): partners' positions and
+  // radii gathered, the touching lanes compressed into the columns. The same
+  // arithmetic and tests as filter_entry, so the same contacts in the same
+  // order; periodic images and contacts that begin or end (rare) are handled
+  // lane by lane, in list order (history rows are taken in the same order).
+  // The lanes of `m` packed to the front of 8 ints at p (all 8 written: the
+  // chunk keeps room; a compressing store to memory is much slower).
+  [[gnu::target("avx512f,avx512vl"), gnu::always_inline]] static inline void put8(int* p, __mmask8 m, __m256i v) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_maskz_compress_epi32(m, v));
+  }
+  [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw")]] void pair_entries_avx512(const PairBatch& b, int lo, int hi,
+                                                                                bool trim, Chunk& ch) const {
+    const ListView L = list_view(b);
+    const int* first = b.first;
+    int n = 0;
+    const int lead = prefetch_lead(b);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m128i noshift = _mm_set1_epi8(static_cast<char>(NeighborList::kNoShift));
+    const __m512d zero = _mm512_setzero_pd();
+    for (int i = lo; i < hi; ++i) {
+      if (i + lead < hi) prefetch_atom(b.a, i + lead);
+      const int kend = entries_end(L, first, i, hi, trim);
+      if (first[i] == kend) continue;
+      const __m512d xi = _mm512_set1_pd(L.x[3 * i]), yi = _mm512_set1_pd(L.x[3 * i + 1]);
+      const __m512d zi = _mm512_set1_pd(L.x[3 * i + 2]), radi = _mm512_set1_pd(L.radius[i]);
+      for (int k = first[i]; k < kend; k += 8) {
+        if (n > Chunk::kCap - 8) {
+          ch.n = n;
+          flush(b, ch);
+          n = 0;
+        }
+        const int cnt = std::min(8, kend - k);
+        const __mmask8 m = static_cast<__mmask8>((1u << cnt) - 1);
+        const __m256i j = _mm256_maskz_loadu_epi32(m, L.jlist + k);
+        const __m256i j3 = _mm256_add_epi32(j, _mm256_add_epi32(j, j));
+        __m512d xj = _mm512_mask_i32gather_pd(zero, m, j3, L.x, 8);
+        __m512d yj = _mm512_mask_i32gather_pd(zero, m, j3, L.x + 1, 8);
+        __m512d zj = _mm512_mask_i32gather_pd(zero, m, j3, L.x + 2, 8);
+        const __m128i code = _mm_maskz_loadu_epi8(m, L.shift + k);
+        if (_mm_mask_cmpneq_epi8_mask(m, code, noshift)) {  // periodic images: x_j + shift, lane by lane
+          alignas(64) double px[8], py[8], pz[8];
+          _mm512_store_pd(px, xj);
+          _mm512_store_pd(py, yj);
+          _mm512_store_pd(pz, zj);
+          for (int l = 0; l < cnt; ++l)
+            if (L.shift[k + l] != NeighborList::kNoShift) {
+              const double* sh = L.shift_vec[L.shift[k + l]];
+              px[l] += sh[0];
+              py[l] += sh[1];
+              pz[l] += sh[2];
+            }
+          xj = _mm512_load_pd(px);
+          yj = _mm512_load_pd(py);
+          zj = _mm512_load_pd(pz);
+        }
+        const __m512d dx = _mm512_sub_pd(xi, xj), dy = _mm512_sub_pd(yi, yj), dz = _mm512_sub_pd(zi, zj);
+        const __m512d rsq =
+            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+        const __m512d radsum = _mm512_add_pd(radi, _mm512_mask_i32gather_pd(zero, m, j, L.radius, 8));
+        const __mmask8 touch = _mm512_mask_cmp_pd_mask(m, rsq, _mm512_mul_pd(radsum, radsum), _CMP_NGE_UQ);
+        if constexpr (kH > 0) {
+          __m256i r = _mm256_maskz_loadu_epi32(m, L.row + k);
+          const __mmask8 has = _mm256_mask_cmpge_epi32_mask(m, r, _mm256_setzero_si256());
+          const __mmask8 change = (touch & ~has) | (L.forget ? (m & ~touch & has) : 0);
+          if (change) {  // contacts begin (a new, zeroed row) or end (no row)
+            for (int l = 0; l < cnt; ++l)
+              if ((change >> l) & 1) L.row[k + l] = ((touch >> l) & 1) ? L.store->new_row() : ContactStore::kNone;
+            r = _mm256_maskz_loadu_epi32(m, L.row + k);
+          }
+          put8(ch.row + n, touch, r);
+        }
+        put8(ch.i + n, touch, _mm256_set1_epi32(i));
+        put8(ch.k + n, touch, _mm256_add_epi32(_mm256_set1_epi32(k), lane));
+        n += __builtin_popcount(touch);
+      }
+    }
+    ch.n = n;
+  }
+#endif
 
   // Partners j > i lie up to `span` atoms ahead, a slab of bins, and are read
   // there for the first time since the last pass: irregular reads (touching

@@ -43,7 +43,9 @@ static Simd simd_available() {
   Simd s = Simd::SSE2;
 #if defined(__x86_64__) && defined(__GNUC__)
   if (__builtin_cpu_supports("avx2")) s = Simd::AVX2;
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) s = Simd::AVX512;
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512bw"))
+    s = Simd::AVX512;
 #endif
   if (const char* e = std::getenv("SABLE_SIMD")) {
     const std::string w = e;
