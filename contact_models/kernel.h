@@ -172,6 +172,7 @@ template <int kH>
 struct PairChunk {
   static constexpr int kCap = 64;
   int n = 0;      // contacts to evaluate (columns 0..n-1)
+  int tp0 = -1;   // >= 0: every column's type pair (the loop then reads its coefficients once)
   int slot[kCap]; // threaded phase A: the cross slot of column m
   int row[kCap], i[kCap], k[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
   alignas(64) double dx[kCap], dy[kCap], dz[kCap], radi[kCap], radj[kCap], mi[kCap], mj[kCap];
@@ -248,6 +249,7 @@ template <int kH>
 struct WallChunk {
   static constexpr int kCap = 64;
   int n = 0;
+  int tp0 = -1;  // as PairChunk::tp0
   int itype[kCap], jtype[kCap], tp[kCap];
   alignas(64) double en[3][kCap], deltan[kCap], radi[kCap], mi[kCap], vr[3][kCap], wi[3][kCap];
   alignas(64) double h[kH > 0 ? kH : 1][kCap];
@@ -579,6 +581,7 @@ class GranKernel final : public ContactKernel {
   // Specialised for the common scene: no frozen grains, one atom type.
   void gather(const PairBatch& b, Chunk& ch) const {
     const bool frozen = b.a.freeze_bit != 0, types = b.a.stride > 2;
+    ch.tp0 = types ? -1 : b.a.stride + 1;  // one atom type: one type pair
     if (frozen || types)
       gather_columns<true>(b, ch);
     else
@@ -622,14 +625,17 @@ class GranKernel final : public ContactKernel {
 
   // Stage 2 (see above). Columns in, force/torque columns and new history out.
   // Cols: PairChunk or WallChunk (their contact() builds the kinematics).
-  template <bool kUpdate, class Cols>
+  // kUniform: one type pair (ch.tp0) for all, so each coefficient is one
+  // loaded value, not a per-lane table lookup.
+  template <bool kUpdate, bool kUniform, class Cols>
   [[gnu::always_inline]] inline void evaluate_columns(Cols& ch, double dt) const {
     const StepContext ctx{dt, kUpdate};
-    const int n = ch.n;
+    const int n = ch.n, tp0 = ch.tp0;
 #pragma GCC ivdep
     for (int m = 0; m < n; ++m) {
       Contact c;
       ch.contact(m, c);
+      if constexpr (kUniform) c.tp = tp0;
       double h[kH > 0 ? kH : 1];
       for (int q = 0; q < kH; ++q) h[q] = ch.h[q][m];
       const Parts p = evaluate(c, h, ctx);
@@ -638,29 +644,33 @@ class GranKernel final : public ContactKernel {
       ch.store(m, p);
     }
   }
+  // The four (update, uniform) instantiations, chosen per chunk.
+  template <class Cols>
+  [[gnu::always_inline]] inline void evaluate_columns_all(Cols& ch, double dt, bool update) const {
+    const bool uniform = ch.tp0 >= 0;
+    if (update && uniform)
+      evaluate_columns<true, true>(ch, dt);
+    else if (update)
+      evaluate_columns<true, false>(ch, dt);
+    else if (uniform)
+      evaluate_columns<false, true>(ch, dt);
+    else
+      evaluate_columns<false, false>(ch, dt);
+  }
 #if defined(__x86_64__) && defined(__GNUC__)
   template <class Cols>
   [[gnu::target("avx2"), gnu::flatten]] void evaluate_columns_avx2(Cols& ch, double dt, bool update) const {
-    if (update)
-      evaluate_columns<true>(ch, dt);
-    else
-      evaluate_columns<false>(ch, dt);
+    evaluate_columns_all(ch, dt, update);
   }
   template <class Cols>
   [[gnu::target("avx512f,avx512dq"), gnu::flatten]] void evaluate_columns_avx512(Cols& ch, double dt,
                                                                                  bool update) const {
-    if (update)
-      evaluate_columns<true>(ch, dt);
-    else
-      evaluate_columns<false>(ch, dt);
+    evaluate_columns_all(ch, dt, update);
   }
 #endif
   template <class Cols>
   [[gnu::flatten]] void evaluate_columns_base(Cols& ch, double dt, bool update) const {
-    if (update)
-      evaluate_columns<true>(ch, dt);
-    else
-      evaluate_columns<false>(ch, dt);
+    evaluate_columns_all(ch, dt, update);
   }
   template <class Cols>
   void evaluate_columns_any(Cols& ch, double dt, bool update) const {
@@ -1058,6 +1068,7 @@ class GranKernel final : public ContactKernel {
     const AtomView& a = b.a;
     double sum[3] = {0, 0, 0};
     WallChunk<kH> ch;
+    ch.tp0 = a.stride > 2 ? -1 : a.stride + b.wall_type;  // one atom type (1): one type pair
     for (std::size_t k0 = 0; k0 < b.n; k0 += WallChunk<kH>::kCap) {
       const int n = static_cast<int>(std::min<std::size_t>(WallChunk<kH>::kCap, b.n - k0));
       ch.n = n;

@@ -72,7 +72,8 @@ struct State {
 
 // `before_run`: commands inserted before the run (thermo output stops the
 // deferred final half kick); `fusion` false: every pass separate.
-State run(int threads, sable::Simd simd, const std::string& before_run = "", bool fusion = true) {
+State run(int threads, sable::Simd simd, const std::string& before_run = "", bool fusion = true,
+          const std::string& deck_text = kDeck) {
   sable::ThreadSettings& ts = sable::thread_settings();
   const sable::ThreadSettings saved = ts;
   ts.pair_atoms = ts.pair_entries = ts.loop_work = 0;  // every loop threaded
@@ -82,7 +83,7 @@ State run(int threads, sable::Simd simd, const std::string& before_run = "", boo
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
 #endif
-  std::string deck = kDeck;
+  std::string deck = deck_text;
   deck.insert(deck.find("run 1500"), before_run);
   Deck d;
   d->step_fusion = fusion;
@@ -231,4 +232,25 @@ TEST(Threads, BalanceCountsEveryThreadedPass) {
 #else
   GTEST_SKIP() << "built without OpenMP";
 #endif
+}
+
+// With one atom type the contact loops read each coefficient once per chunk
+// (PairChunk::tp0); with two types, per contact from the type-pair tables. The
+// same grains all of type 1 in a two-type box: the same bits either way.
+TEST(KernelSpecialisation, OneTypeSameBitsAsPerContactTypes) {
+  std::string two = kDeck;
+  auto swap = [&](const std::string& a, const std::string& b) {
+    const auto at = two.find(a);
+    ASSERT_NE(at, std::string::npos) << a;
+    two.replace(at, a.size(), b);
+  };
+  swap("create_box 1 box", "create_box 2 box");
+  swap("youngsModulus peratomtype 1e7", "youngsModulus peratomtype 1e7 2e7");
+  swap("poissonsRatio peratomtype 0.3", "poissonsRatio peratomtype 0.3 0.25");
+  swap("coefficientRestitution peratomtypepair 1 0.5", "coefficientRestitution peratomtypepair 2 0.5 0.6 0.6 0.7");
+  swap("coefficientFriction peratomtypepair 1 0.5", "coefficientFriction peratomtypepair 2 0.5 0.4 0.4 0.3");
+  const State one = run(1, kWide), both = run(1, kWide, "", true, two);
+  ASSERT_GT(one.contacts, 300u);
+  EXPECT_TRUE(one == both) << "one-type and per-contact-type loops differ";
+  EXPECT_TRUE(run(1, sable::Simd::SSE2, "", true, two) == one) << "per-contact-type SSE2 loop differs";
 }
