@@ -174,7 +174,7 @@ struct PairChunk {
   int n = 0;      // contacts to evaluate (columns 0..n-1)
   int tp0 = -1;   // >= 0: every column's type pair (the loop then reads its coefficients once)
   int slot[kCap]; // threaded phase A: the cross slot of column m
-  int row[kCap], i[kCap], k[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
+  int row[kCap], i[kCap], j[kCap], itype[kCap], jtype[kCap], tp[kCap], frozen[kCap];
   alignas(64) double dx[kCap], dy[kCap], dz[kCap], radi[kCap], radj[kCap], mi[kCap], mj[kCap];
   alignas(64) double vr[3][kCap], wi[3][kCap], wj[3][kCap];
   alignas(64) double h[kH > 0 ? kH : 1][kCap];
@@ -559,12 +559,17 @@ class GranKernel final : public ContactKernel {
     double dx, dy, dz;
     separation(L, xi, yi, zi, j, k, dx, dy, dz);
     const double rsq = dx * dx + dy * dy + dz * dz;
-    const double radsum = radi + L.radius[j];
+    const double radj = L.radius[j], radsum = radi + radj;
     const bool touching = !(rsq >= radsum * radsum);
-    // Only (i, k) per entry: the separation is recomputed for the touching ones
-    // at gather time, cheaper than storing it for every near miss.
+    // What the contact needs from the list, kept (the column is overwritten
+    // unless the pair touches): the gather then reads no position again.
     ch.i[n] = i;
-    ch.k[n] = k;
+    ch.j[n] = j;
+    ch.dx[n] = dx;
+    ch.dy[n] = dy;
+    ch.dz[n] = dz;
+    ch.radi[n] = radi;
+    ch.radj[n] = radj;
     if constexpr (kH > 0) {
       // Contact begun or ended. Rare, so the branch is predictable as long as
       // it does not test `touching` alone (a coin flip): hence the arithmetic.
@@ -577,7 +582,7 @@ class GranKernel final : public ContactKernel {
     n += touching;
   }
 
-  // Stage 1, second half: copy the state of the touching pairs into columns.
+  // Stage 1, second half: copy the rest of the touching pairs' state into columns.
   // Specialised for the common scene: no frozen grains, one atom type.
   void gather(const PairBatch& b, Chunk& ch) const {
     const bool frozen = b.a.freeze_bit != 0, types = b.a.stride > 2;
@@ -590,15 +595,10 @@ class GranKernel final : public ContactKernel {
   template <bool kGeneral>
   void gather_columns(const PairBatch& b, Chunk& ch) const {
     const AtomView& a = b.a;
-    const ListView L = list_view(b);
     const double *v = a.v, *w = a.omega, *rmass = a.rmass;
     const int n = ch.n;
     for (int m = 0; m < n; ++m) {
-      const int i = ch.i[m], k = ch.k[m], j = L.jlist[k];
-      ch.j[m] = j;
-      separation(L, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], j, k, ch.dx[m], ch.dy[m], ch.dz[m]);
-      ch.radi[m] = L.radius[i];
-      ch.radj[m] = L.radius[j];
+      const int i = ch.i[m], j = ch.j[m];
       ch.mi[m] = rmass[i];
       ch.mj[m] = rmass[j];
       for (int d = 0; d < 3; ++d) {
@@ -779,10 +779,13 @@ class GranKernel final : public ContactKernel {
   // arithmetic and tests as filter_entry, so the same contacts in the same
   // order; periodic images and contacts that begin or end (rare) are handled
   // lane by lane, in list order (history rows are taken in the same order).
-  // The lanes of `m` packed to the front of 8 ints at p (all 8 written: the
+  // The lanes of `m` packed to the front of 8 values at p (all 8 written: the
   // chunk keeps room; a compressing store to memory is much slower).
   [[gnu::target("avx512f,avx512vl"), gnu::always_inline]] static inline void put8(int* p, __mmask8 m, __m256i v) {
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_maskz_compress_epi32(m, v));
+  }
+  [[gnu::target("avx512f"), gnu::always_inline]] static inline void put8(double* p, __mmask8 m, __m512d v) {
+    _mm512_storeu_pd(p, _mm512_maskz_compress_pd(m, v));
   }
   [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw")]] void pair_entries_avx512(const PairBatch& b, int lo, int hi,
                                                                                 bool trim, Chunk& ch) const {
@@ -790,7 +793,6 @@ class GranKernel final : public ContactKernel {
     const int* first = b.first;
     int n = 0;
     const int lead = prefetch_lead(b);
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     const __m128i noshift = _mm_set1_epi8(static_cast<char>(NeighborList::kNoShift));
     const __m512d zero = _mm512_setzero_pd();
     for (int i = lo; i < hi; ++i) {
@@ -832,7 +834,8 @@ class GranKernel final : public ContactKernel {
         const __m512d dx = _mm512_sub_pd(xi, xj), dy = _mm512_sub_pd(yi, yj), dz = _mm512_sub_pd(zi, zj);
         const __m512d rsq =
             _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
-        const __m512d radsum = _mm512_add_pd(radi, _mm512_mask_i32gather_pd(zero, m, j, L.radius, 8));
+        const __m512d radj = _mm512_mask_i32gather_pd(zero, m, j, L.radius, 8);
+        const __m512d radsum = _mm512_add_pd(radi, radj);
         const __mmask8 touch = _mm512_mask_cmp_pd_mask(m, rsq, _mm512_mul_pd(radsum, radsum), _CMP_NGE_UQ);
         if constexpr (kH > 0) {
           __m256i r = _mm256_maskz_loadu_epi32(m, L.row + k);
@@ -846,7 +849,12 @@ class GranKernel final : public ContactKernel {
           put8(ch.row + n, touch, r);
         }
         put8(ch.i + n, touch, _mm256_set1_epi32(i));
-        put8(ch.k + n, touch, _mm256_add_epi32(_mm256_set1_epi32(k), lane));
+        put8(ch.j + n, touch, j);
+        put8(ch.dx + n, touch, dx);
+        put8(ch.dy + n, touch, dy);
+        put8(ch.dz + n, touch, dz);
+        put8(ch.radi + n, touch, radi);
+        put8(ch.radj + n, touch, radj);
         n += __builtin_popcount(touch);
       }
     }
