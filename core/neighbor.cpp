@@ -320,8 +320,30 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     int bin[27];
     std::uint8_t code[27];
   };
+  // Inside the box (a bin away from every face along the stencil's axes) the
+  // stencil is b + fixed offsets, in increasing order (then each atom's
+  // entries come out sorted by j), all without image shift.
+  const int dims = domain.dimension == 3 ? 3 : 2;
+  int inner[27], ninner = 0;
+  for (int oz = -zr; oz <= zr; ++oz)
+    for (int oy = -1; oy <= 1; ++oy)
+      for (int ox = -1; ox <= 1; ++ox) {
+        const int off = ox * stride[0] + oy * stride[1] + oz * stride[2];
+        if (!sorted || off >= 0) inner[ninner++] = off;
+      }
+  std::sort(inner, inner + ninner);
   auto stencil = [&](int b, Stencil& st) {
     const int bc[3] = {(b / stride[0]) % nb[0], (b / stride[1]) % nb[1], (b / stride[2]) % nb[2]};
+    bool interior = true;
+    for (int k = 0; k < dims; ++k) interior = interior && bc[k] >= 1 && bc[k] <= nb[k] - 2;
+    if (interior) {
+      st.n = ninner;
+      for (int q = 0; q < ninner; ++q) {
+        st.bin[q] = b + inner[q];
+        st.code[q] = NeighborList::kNoShift;
+      }
+      return;
+    }
     st.n = 0;
     for (int oz = -zr; oz <= zr; ++oz)
       for (int oy = -1; oy <= 1; ++oy)
