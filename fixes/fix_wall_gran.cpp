@@ -92,6 +92,7 @@ void FixWallGran::init() {
   kernel_->connect(Materials::of(sim), args);
   freeze_bit_ = frozen_groupbits(sim);
   setup_pass_ = true;
+  check_all_ = true;
 }
 
 double FixWallGran::max_speed() const {
@@ -196,8 +197,11 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
 
 // History of the grains that left the wall is reset. Between neighbour
 // rebuilds atoms keep their indices, so only last step's contacts can have
-// left (a merge of two sorted lists); after a rebuild or an insertion every
-// grain of the group is checked. atoms_now_: this pass's contacts, sorted.
+// left (a merge of two sorted lists). After a rebuild they are among the new
+// near grains (they touched the wall a step ago: within reach); after an
+// insertion, and at a run's first pass (the deck may have moved grains between
+// runs), every grain of the group is checked.
+// atoms_now_: this pass's contacts, sorted.
 void FixWallGran::forget_departed(const Now& w) {
   const Atoms& at = sim.atoms;
   double* hist = sim.atoms.column(hist_col_).data();
@@ -215,18 +219,22 @@ void FixWallGran::forget_departed(const Now& w) {
       forget(static_cast<std::size_t>(i));
     }
   } else {
-    std::size_t c = 0;
-    for (std::size_t i = 0; i < at.n; ++i) {
-      if (c < now.size() && now[c] == static_cast<int>(i)) {
-        ++c;
-        continue;
-      }
-      if (!(at.mask[i] & groupbit)) continue;
+    auto check = [&](std::size_t i, std::size_t& c) {  // c: position in `now`, both in increasing i
+      while (c < now.size() && now[c] < static_cast<int>(i)) ++c;
+      if (c < now.size() && now[c] == static_cast<int>(i)) return;
+      if (!(at.mask[i] & groupbit)) return;
       bool nonzero = false;
       for (int m = 0; m < hist_size_; ++m) nonzero |= hist[i * hist_size_ + m] != 0.0;
       if (nonzero) forget(i);
+    };
+    std::size_t c = 0;
+    if (!check_all_ && prev_n_ == at.n) {
+      for (int i : near_) check(static_cast<std::size_t>(i), c);
+    } else {
+      for (std::size_t i = 0; i < at.n; ++i) check(i, c);
     }
   }
+  check_all_ = false;
   prev_atoms_.swap(atoms_now_);
   prev_builds_ = sim.neighbor.builds;
   prev_n_ = at.n;

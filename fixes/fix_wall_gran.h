@@ -50,6 +50,7 @@ class FixWallGran : public Fix {
   int type_ = 1;
   int hist_col_ = -1, hist_size_ = 0;
   bool setup_pass_ = true;
+  bool check_all_ = true;  // next forget_departed looks at every grain (first pass of a run)
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
   // Overlapping grains found by one search: atom index, overlap, unit normal,

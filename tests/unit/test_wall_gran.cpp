@@ -200,3 +200,39 @@ compute wl all wall/gran/local pos vel id force delta)");
   EXPECT_NEAR(row[18], 1e-5, 1e-15);          // overlap
   EXPECT_NEAR(row[15], d->atoms.f[0], 1e-15);
 }
+
+// The wall's tangential spring of a grain is forgotten when the grain leaves
+// the wall: at a step with a neighbour rebuild (the atoms just sorted), and
+// when the deck moves it away between runs.
+TEST(WallGran, SpringForgottenWhenTheGrainLeaves) {
+  Deck d;
+  d(kHead);
+  // At the static Hertz overlap on the floor (2e-7 m: (3 m g / (4 Y* sqrt(r)))^(2/3), Y* = E / (2 (1 - nu^2))).
+  d(R"(create_atoms 1 single 0.004 0 0.0009998 units box
+create_atoms 1 single -0.004 0 0.0009998 units box
+create_atoms 1 single 0 0.004 0.0009998 units box
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix g all gravity 9.81 vector 0 0 -1
+fix i all nve/sphere
+neigh_modify every 1 check no)");  // a rebuild (and sort) every step
+  grains(d);
+  sable::Atoms& at = d->atoms;
+  for (std::size_t i = 0; i < at.n; ++i) at.v[3 * i] = 0.05;  // sliding: the spring loads
+  d("run 200");
+  const int col = at.find_column("wall/gran floor");
+  ASSERT_GE(col, 0);
+  auto spring = [&](long id) {
+    const std::size_t i = at.index_of(id);
+    const double* h = &at.column(col)[3 * i];
+    return std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  };
+  for (long id = 1; id <= 3; ++id) ASSERT_GT(spring(id), 0.0) << "grain " << id << " loads no spring";
+  at.v[3 * at.index_of(2) + 2] = 2.0;  // leaves the floor within the next step
+  d("run 3");
+  EXPECT_EQ(spring(2), 0.0) << "the spring of a grain that left the floor survived a rebuild step";
+  EXPECT_GT(spring(1), 0.0);
+  d("set atom 3 z 0.008");  // moved away between runs: no longer near the floor
+  d("run 1");
+  EXPECT_EQ(spring(3), 0.0) << "the spring of a grain moved away between runs survived";
+  EXPECT_GT(spring(1), 0.0);
+}
