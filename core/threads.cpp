@@ -1,6 +1,7 @@
 #include "core/threads.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -49,8 +50,10 @@ static Simd simd_available() {
 #endif
   if (const char* e = std::getenv("SABLE_SIMD")) {
     const std::string w = e;
-    const Simd cap = w == "sse2" ? Simd::SSE2 : w == "avx2" ? Simd::AVX2 : Simd::AVX512;
-    s = std::min(s, cap);
+    if (w == "sse2" || w == "avx2" || w == "avx512")
+      s = std::min(s, w == "sse2" ? Simd::SSE2 : w == "avx2" ? Simd::AVX2 : Simd::AVX512);
+    else
+      std::fprintf(stderr, "sable: SABLE_SIMD=%s ignored (expected sse2, avx2 or avx512)\n", e);
   }
   return s;
 }
