@@ -126,6 +126,34 @@ TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
 #endif
 }
 
+// Two atom types and a frozen group take the general gather (per-contact type
+// pairs, freeze flags): the same bits for every vector width and thread count.
+TEST(Threads, TypesAndFrozenGrainsSameBitsForAnyWidth) {
+  std::string deck = kDeck;
+  auto swap = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = deck.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    deck.replace(at, from.size(), to);
+  };
+  swap("create_box 1 box", "create_box 2 box");
+  swap("peratomtype 1e7", "peratomtype 1e7 2e7");
+  swap("peratomtype 0.3", "peratomtype 0.3 0.25");
+  swap("peratomtypepair 1 0.5\nfix m4", "peratomtypepair 2 0.5 0.6 0.6 0.7\nfix m4");
+  swap("peratomtypepair 1 0.5\npair", "peratomtypepair 2 0.5 0.4 0.4 0.3\npair");
+  swap("fix floor", R"(region upper block 0 0.012 0 0.012 0.006 0.03 units box
+set region upper type 2
+region stuck block 0 0.006 0 0.006 0 0.002 units box
+group stuck region stuck
+fix fr stuck freeze
+fix floor)");
+  const State wide = run(1, kWide, "", true, deck.c_str());
+  ASSERT_GT(wide.contacts, 300u);
+  EXPECT_TRUE(run(1, sable::Simd::SSE2, "", true, deck.c_str()) == wide) << "SSE2 and the widest contact loops differ";
+#ifdef _OPENMP
+  EXPECT_TRUE(run(2, kWide, "", true, deck.c_str()) == wide) << "2 threads differ from 1";
+#endif
+}
+
 // A final half kick deferred into the next initial pass and forces zeroed by
 // the integrator: the same bits (and the same rebuilds) as separate passes.
 TEST(StepFusion, SameBitsAsSeparatePasses) {
