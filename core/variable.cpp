@@ -139,7 +139,9 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
       where.fail_line("bound() second argument '" + w + "': expected xmin, xmax, ymin, ymax, zmin or zmax");
     const int k = w[0] - 'x';
     const bool mx = w.substr(1) == "max";
-    double b = mx ? -std::numeric_limits<double>::max() : std::numeric_limits<double>::max();
+    // An empty group gives LIGGGHTS' (LAMMPS') sentinels: min 1e20, max -1e20.
+    constexpr double kBig = 1.0e20;
+    double b = mx ? -kBig : kBig;
     for (std::size_t i = 0; i < a.n; ++i)
       if (a.mask[i] & bit) b = mx ? std::max(b, a.x[3 * i + k]) : std::min(b, a.x[3 * i + k]);
     out = b;

@@ -90,6 +90,13 @@ variable hi equal bound(all,xmax)
 print "atoms=$(atoms) count=${cnt} xcm=${xc} xmax=${hi} x2=$(x[2]) step=$(step)")D",
                                   d);
   EXPECT_NE(out.find("atoms=2 count=2 xcm=0.5 xmax=0.75 x2=0.75 step=0"), std::string::npos) << out;
+  // An empty group: LIGGGHTS' bounds start from +-1e20 (LAMMPS group.cpp, BIG), so that is what it returns.
+  const std::string none = printed(R"D(group nobody id 99
+variable lo equal bound(nobody,xmin)
+variable up equal bound(nobody,xmax)
+print "empty: ${lo} ${up}")D",
+                                   d);
+  EXPECT_NE(none.find("empty: 1e+20 -1e+20"), std::string::npos) << none;
 }
 
 TEST(Input, CommandLineIndexVariableWins) {
