@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,24 @@ State run(int threads, sable::Simd simd, const std::string& before_run = "", boo
   return s;
 }
 
+// kDeck in a two-type box (all grains still of type 1), with `extra`
+// commands inserted before its `fix floor` line.
+std::string two_type_deck(const std::string& extra = "") {
+  std::string deck = kDeck;
+  auto swap = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = deck.find(from);
+    if (at == std::string::npos) throw std::logic_error("kDeck lacks: " + from);
+    deck.replace(at, from.size(), to);
+  };
+  swap("create_box 1 box", "create_box 2 box");
+  swap("youngsModulus peratomtype 1e7", "youngsModulus peratomtype 1e7 2e7");
+  swap("poissonsRatio peratomtype 0.3", "poissonsRatio peratomtype 0.3 0.25");
+  swap("coefficientRestitution peratomtypepair 1 0.5", "coefficientRestitution peratomtypepair 2 0.5 0.6 0.6 0.7");
+  swap("coefficientFriction peratomtypepair 1 0.5", "coefficientFriction peratomtypepair 2 0.5 0.4 0.4 0.3");
+  if (!extra.empty()) swap("fix floor", extra + "fix floor");
+  return deck;
+}
+
 }  // namespace
 
 TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
@@ -129,28 +148,17 @@ TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
 // Two atom types and a frozen group take the general gather (per-contact type
 // pairs, freeze flags): the same bits for every vector width and thread count.
 TEST(Threads, TypesAndFrozenGrainsSameBitsForAnyWidth) {
-  std::string deck = kDeck;
-  auto swap = [&](const std::string& from, const std::string& to) {
-    const std::size_t at = deck.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    deck.replace(at, from.size(), to);
-  };
-  swap("create_box 1 box", "create_box 2 box");
-  swap("peratomtype 1e7", "peratomtype 1e7 2e7");
-  swap("peratomtype 0.3", "peratomtype 0.3 0.25");
-  swap("peratomtypepair 1 0.5\nfix m4", "peratomtypepair 2 0.5 0.6 0.6 0.7\nfix m4");
-  swap("peratomtypepair 1 0.5\npair", "peratomtypepair 2 0.5 0.4 0.4 0.3\npair");
-  swap("fix floor", R"(region upper block 0 0.012 0 0.012 0.006 0.03 units box
+  const std::string deck = two_type_deck(R"(region upper block 0 0.012 0 0.012 0.006 0.03 units box
 set region upper type 2
 region stuck block 0 0.006 0 0.006 0 0.002 units box
 group stuck region stuck
 fix fr stuck freeze
-fix floor)");
-  const State wide = run(1, kWide, "", true, deck.c_str());
+)");
+  const State wide = run(1, kWide, "", true, deck);
   ASSERT_GT(wide.contacts, 300u);
-  EXPECT_TRUE(run(1, sable::Simd::SSE2, "", true, deck.c_str()) == wide) << "SSE2 and the widest contact loops differ";
+  EXPECT_TRUE(run(1, sable::Simd::SSE2, "", true, deck) == wide) << "SSE2 and the widest contact loops differ";
 #ifdef _OPENMP
-  EXPECT_TRUE(run(2, kWide, "", true, deck.c_str()) == wide) << "2 threads differ from 1";
+  EXPECT_TRUE(run(2, kWide, "", true, deck) == wide) << "2 threads differ from 1";
 #endif
 }
 
@@ -266,17 +274,7 @@ TEST(Threads, BalanceCountsEveryThreadedPass) {
 // (PairChunk::tp0); with two types, per contact from the type-pair tables. The
 // same grains all of type 1 in a two-type box: the same bits either way.
 TEST(KernelSpecialisation, OneTypeSameBitsAsPerContactTypes) {
-  std::string two = kDeck;
-  auto swap = [&](const std::string& a, const std::string& b) {
-    const auto at = two.find(a);
-    ASSERT_NE(at, std::string::npos) << a;
-    two.replace(at, a.size(), b);
-  };
-  swap("create_box 1 box", "create_box 2 box");
-  swap("youngsModulus peratomtype 1e7", "youngsModulus peratomtype 1e7 2e7");
-  swap("poissonsRatio peratomtype 0.3", "poissonsRatio peratomtype 0.3 0.25");
-  swap("coefficientRestitution peratomtypepair 1 0.5", "coefficientRestitution peratomtypepair 2 0.5 0.6 0.6 0.7");
-  swap("coefficientFriction peratomtypepair 1 0.5", "coefficientFriction peratomtypepair 2 0.5 0.4 0.4 0.3");
+  const std::string two = two_type_deck();
   const State one = run(1, kWide), both = run(1, kWide, "", true, two);
   ASSERT_GT(one.contacts, 300u);
   EXPECT_TRUE(one == both) << "one-type and per-contact-type loops differ";
