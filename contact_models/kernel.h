@@ -83,6 +83,7 @@ struct PairBatch {
   // LIGGGHTS 3.8 mode (pair_gran.h): a separated pair keeps its history until
   // the first force pass after a neighbour rebuild (`rebuilt`), then loses it.
   bool keep_until_rebuild = false, rebuilt = false;
+  Simd simd = simd_level();               // contact loops' width, read once per pass
 };
 
 // Particle-wall contacts found by a wall fix (overlap > 0 only).
@@ -98,6 +99,7 @@ struct WallBatch {
   int hist_stride = 0;
   int wall_type = 1;
   StepContext ctx;
+  Simd simd = simd_level();        // as PairBatch::simd
 };
 
 // Per-contact output (compute pair/gran/local, wall/gran/local), produced by a
@@ -585,21 +587,12 @@ class GranKernel final : public ContactKernel {
   // Stage 1, second half: copy the rest of the touching pairs' state into columns.
   // Specialised for the common scene: no frozen grains, one atom type.
   void gather(const PairBatch& b, Chunk& ch) const {
-    const bool frozen = b.a.freeze_bit != 0, types = b.a.stride > 2;
+    const bool types = b.a.stride > 2, general = types || b.a.freeze_bit != 0;
     ch.tp0 = types ? -1 : b.a.stride + 1;  // one atom type: one type pair
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (simd_level() == Simd::AVX512) {
-      if (frozen || types)
-        gather_columns_avx512<true>(b, ch);
-      else
-        gather_columns_avx512<false>(b, ch);
-      return;
-    }
+    if (b.simd == Simd::AVX512) return general ? gather_columns_avx512<true>(b, ch) : gather_columns_avx512<false>(b, ch);
 #endif
-    if (frozen || types)
-      gather_columns<true>(b, ch);
-    else
-      gather_columns<false>(b, ch);
+    return general ? gather_columns<true>(b, ch) : gather_columns<false>(b, ch);
   }
   template <bool kGeneral>
   void gather_columns(const PairBatch& b, Chunk& ch) const {
@@ -737,9 +730,9 @@ class GranKernel final : public ContactKernel {
     evaluate_columns_all(ch, dt, update);
   }
   template <class Cols>
-  void evaluate_columns_any(Cols& ch, double dt, bool update) const {
+  void evaluate_columns_any(Cols& ch, double dt, bool update, Simd simd) const {
 #if defined(__x86_64__) && defined(__GNUC__)
-    switch (simd_level()) {
+    switch (simd) {
       case Simd::AVX512: return evaluate_columns_avx512(ch, dt, update);
       case Simd::AVX2: return evaluate_columns_avx2(ch, dt, update);
       case Simd::SSE2: break;
@@ -752,7 +745,7 @@ class GranKernel final : public ContactKernel {
   // keeps its values in registers.
   [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch) const {
     gather(b, ch);
-    evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+    evaluate_columns_any(ch, b.ctx.dt, b.ctx.update, b.simd);
     if (b.ctx.update)
       scatter<true>(b, ch);
     else
@@ -798,7 +791,7 @@ class GranKernel final : public ContactKernel {
   void pair_range(const PairBatch& b, int lo, int hi, const PairPartition* pp, int t, Chunk& ch) const {
     ch.n = 0;
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (simd_level() == Simd::AVX512)
+    if (b.simd == Simd::AVX512)
       pair_entries_avx512(b, lo, hi, pp != nullptr, ch);
     else
 #endif
@@ -962,7 +955,7 @@ class GranKernel final : public ContactKernel {
 
   [[gnu::noinline]] void cross_flush(const PairBatch& b, PairPartition& pp, Chunk& ch) const {
     gather(b, ch);
-    evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+    evaluate_columns_any(ch, b.ctx.dt, b.ctx.update, b.simd);
     for (int m = 0; m < ch.n; ++m) {
       double* val = &pp.val[9 * static_cast<std::size_t>(ch.slot[m])];
       for (int d = 0; d < 3; ++d) {
@@ -1163,7 +1156,7 @@ class GranKernel final : public ContactKernel {
           for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
         }
       }
-      evaluate_columns_any(ch, b.ctx.dt, b.ctx.update);
+      evaluate_columns_any(ch, b.ctx.dt, b.ctx.update, b.simd);
       for (int m = 0; m < n; ++m) {
         const std::size_t k = k0 + m;
         const int i = b.atom[k];

@@ -146,7 +146,7 @@ TEST(Threads, BitIdenticalForAnyThreadCountAndVectorWidth) {
 }
 
 // Two atom types and a frozen group take the general gather (per-contact type
-// pairs, freeze flags): the same bits for every vector width and thread count.
+// pairs, freeze flags): the widest loops give the bits of SSE2 and of 2 threads.
 TEST(Threads, TypesAndFrozenGrainsSameBitsForAnyWidth) {
   const std::string deck = two_type_deck(R"(region upper block 0 0.012 0 0.012 0.006 0.03 units box
 set region upper type 2
