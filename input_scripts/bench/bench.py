@@ -74,10 +74,10 @@ def fmt_rate(x):
 
 # ---------------------------------------------------------------- running ---
 
-def run_engine(engine, exe, case, size_vars, threads, workdir, timeout, dumpname):
-    """Runs one deck once; returns a dict with the parsed numbers."""
+def run_engine(engine, exe, case, size_vars, threads, workdir, timeout, dumpname, launcher=()):
+    """Runs one deck once (under `launcher`, e.g. mpirun -np 2, if given); returns the parsed numbers."""
     deck = os.path.join(HERE, case["deck"])
-    args = [exe, "-in", deck, "-log", "none"]
+    args = [*launcher, exe, "-in", deck, "-log", "none"]
     for k, v in size_vars.items():
         args += ["-var", k, str(v)]
     args += ["-var", "dumpfile", dumpname]
@@ -87,6 +87,7 @@ def run_engine(engine, exe, case, size_vars, threads, workdir, timeout, dumpname
     cmd = ["stdbuf", "-o0", "-e0"] + args if shutil.which("stdbuf") else args
     env = dict(os.environ)
     env["OMP_NUM_THREADS"] = str(threads)
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")  # mpirun in a root container
     os.makedirs(workdir, exist_ok=True)
     out_path = os.path.join(workdir, "out.txt")
     load0 = os.getloadavg()[0]
@@ -584,6 +585,83 @@ def determinism(args, cases, threads, sable, tmp):
     return rows, "\n".join(md)
 
 
+MPI2 = ("mpirun", "-np", "2", "--bind-to", "none")
+
+
+def run_pair_at_once(exe, case, v, workdir, timeout):
+    """Two one-thread sable runs of the same deck started together: what the machine gives two
+    independent jobs (shared memory bandwidth, caches, clock, other tenants), the ceiling of any
+    two-thread speed-up here."""
+    import threading
+    out = [None, None]
+
+    def one(k):
+        out[k] = run_engine("sable", exe, case, v, 1, os.path.join(workdir, "job%d" % k), timeout, "final.dump")
+    jobs = [threading.Thread(target=one, args=(k,)) for k in (0, 1)]
+    for j in jobs:
+        j.start()
+    for j in jobs:
+        j.join()
+    return out
+
+
+def scaling_repeat(args, case, v, sable, liggghts, wd):
+    """One repeat: sable 1t alone, two sable 1t at once, sable 2t, LIGGGHTS 1 and 2 MPI processes."""
+    r = {}
+    steps = [("sable 1t", lambda: run_engine("sable", sable, case, v, 1, wd + "/s1", args.timeout, "final.dump")),
+             ("sable 1t x2 at once", lambda: run_pair_at_once(sable, case, v, wd + "/s1x2", args.timeout)),
+             ("sable 2t", lambda: run_engine("sable", sable, case, v, 2, wd + "/s2", args.timeout, "final.dump"))]
+    if liggghts:
+        steps += [("LIGGGHTS 1p", lambda: run_engine("liggghts", liggghts, case, v, 1, wd + "/l1", args.timeout,
+                                                     "final.dump")),
+                  ("LIGGGHTS 2p", lambda: run_engine("liggghts", liggghts, case, v, 1, wd + "/l2", args.timeout,
+                                                     "final.dump", launcher=MPI2))]
+    for name, go in steps:
+        log(f"[{case['name']}] {name} ...")
+        res = go()
+        for x in res if isinstance(res, list) else [res]:
+            log(f"    {x['psps']:.3g} PS/s" if x["ok"] else f"    FAILED (exit {x['rc']}):\n" + x.get("tail", ""))
+        r[name] = res
+    return r
+
+
+def scaling_ratios(rep):
+    """Per repeat: sable 2t / 1t, the machine's ceiling (two jobs' summed PS/s / one alone), LIGGGHTS 2p / 1p."""
+    def psps(x):
+        return x["psps"] if x and x["ok"] else None
+    s1, s2 = psps(rep["sable 1t"]), psps(rep["sable 2t"])
+    both = [psps(x) for x in rep["sable 1t x2 at once"]]
+    l1, l2 = psps(rep.get("LIGGGHTS 1p")), psps(rep.get("LIGGGHTS 2p"))
+    return dict(sable=s2 / s1 if s1 and s2 else None,
+                ceiling=sum(both) / s1 if s1 and None not in both else None,
+                liggghts=l2 / l1 if l1 and l2 else None)
+
+
+def scaling(args, cases, sable, liggghts, tmp):
+    rows = []
+    for case in cases:
+        v = dict(case["quick"] if args.quick else case["vars"])
+        reps = [scaling_repeat(args, case, v, sable, liggghts, os.path.join(tmp, case["name"], "r%d" % k))
+                for k in range(args.repeats)]
+        ratios = [scaling_ratios(r) for r in reps]
+        med = {k: median_or_none([q[k] for q in ratios]) for k in ("sable", "ceiling", "liggghts")}
+        rows.append(dict(case=case["name"], vars=v, ratios=ratios, median=med,
+                         runs=[{k: x for k, x in r.items()} for r in reps]))
+
+    def cell(k, row):
+        m = row["median"][k]
+        return "-" if m is None else "%.2f (%s)" % (m, ", ".join("%.2f" % q[k] for q in row["ratios"] if q[k]))
+    h = ["case", "sable 2t / 1t", "machine ceiling: 2 one-thread jobs at once / 1 alone",
+         "sable 2t / ceiling", "LIGGGHTS 2 / 1 MPI processes"]
+    md = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
+    for row in rows:
+        m = row["median"]
+        eff = "%.0f%%" % (100 * m["sable"] / m["ceiling"]) if m["sable"] and m["ceiling"] else "-"
+        md.append("| " + " | ".join([row["case"], cell("sable", row), cell("ceiling", row), eff,
+                                     cell("liggghts", row)]) + " |")
+    return rows, "\n".join(md)
+
+
 def find_sable(path):
     cands = [path] if path else [os.path.join(REPO, "build", "sable"), os.path.join(REPO, "build-bench", "sable")]
     for c in cands:
@@ -616,6 +694,9 @@ def main():
     ap.add_argument("--quick", action="store_true", help="tiny sizes: a smoke test of the tooling (seconds)")
     ap.add_argument("--determinism", action="store_true",
                     help="run sable twice per thread count and compare the final dumps byte for byte")
+    ap.add_argument("--scaling", action="store_true",
+                    help="per repeat: sable 1t, two sable 1t jobs at once (the machine's ceiling), sable 2t, "
+                         "LIGGGHTS with 1 and 2 MPI processes; writes scaling[_quick].md/json")
     ap.add_argument("--no-contacts", action="store_true", help="skip counting contacts in the final dumps")
     ap.add_argument("--timeout", type=float, default=0, help="seconds per run (default: none)")
     ap.add_argument("--out", default=None,
@@ -645,6 +726,9 @@ def main():
         sys.exit("sable binary not found (%s); build it: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && "
                  "cmake --build build -j" % (args.sable or "build/sable, build-bench/sable"))
     liggghts = None
+    if args.scaling and not args.no_liggghts and not shutil.which("mpirun"):
+        sys.exit("--scaling runs LIGGGHTS under mpirun, which is missing (apt-get install openmpi-bin), "
+                 "or pass --no-liggghts")
     if not args.no_liggghts and not args.determinism:
         liggghts = shutil.which(args.liggghts)
         if not liggghts:
@@ -671,6 +755,27 @@ def main():
                 json.dump(dict(info=info, rows=rows), f, indent=1, default=str)
             print("\n" + table)
             print(f"\nwritten: {prefix}.md, {prefix}.json")
+            return
+        if args.scaling:
+            prefix = args.out or os.path.join(HERE, "scaling_quick" if args.quick else "scaling")
+            rows, table = scaling(args, cases, sable, liggghts, tmp)
+            info["loadavg_end"] = os.getloadavg()
+            text = "\n".join([
+                "# One to two cores: sable threads, the machine's ceiling, LIGGGHTS MPI", "",
+                f"Generated by `python3 input_scripts/bench/bench.py {' '.join(sys.argv[1:])}` on {info['date']} "
+                f"(sable {sable}, commit {info.get('sable_commit')}, tree {info.get('sable_tree')}; "
+                f"{info.get('cpu')}, {info.get('nproc')} cores).", "",
+                "Each repeat runs, one after the other: sable with 1 thread; two independent 1-thread sable "
+                "runs of the same deck started together; sable with 2 threads; LIGGGHTS with 1 and with 2 MPI "
+                "processes (`mpirun -np 2`). Ratios are of particle-steps/s of the timed run within one "
+                "repeat; the median first, every repeat in brackets. The ceiling is the two jobs' summed "
+                "PS/s over the job alone: what two cores of this machine give two jobs that share nothing "
+                "but the hardware, hence the most a two-thread run can gain here.", "", table, ""])
+            with open(prefix + ".md", "w") as f:
+                f.write(text)
+            with open(prefix + ".json", "w") as f:
+                json.dump(dict(info=info, rows=rows), f, indent=1, default=str)
+            print("\n" + table + f"\n\nwritten: {prefix}.md, {prefix}.json")
             return
         prefix = args.out or os.path.join(HERE, "results_quick" if args.quick else "results")
         results = bench(args, cases, threads, sable, liggghts, tmp)
