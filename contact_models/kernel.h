@@ -289,6 +289,7 @@ struct PairPartition {
   std::vector<int> cross_first;          // nparts + 1: cross entries of range t
   std::vector<int> cross_k, cross_i;     // per cross entry (list order): entry and its atom i
   std::vector<int> in_first, in_slot;    // per atom: incoming cross entries, in list order
+  std::vector<int> in_atoms;             // the atoms that have any, increasing
   std::vector<double> val;               // 9 per cross entry: force on i, torque on i, torque on j
   std::vector<std::uint8_t> on;          // cross entry touching this step
   // Balance from measured time (the results do not depend on the split):
@@ -987,7 +988,9 @@ class GranKernel final : public ContactKernel {
   void apply_incoming(const PairBatch& b, const PairPartition& pp, int t) const {
     double* f = b.a.f;
     double* tq = b.a.torque;
-    for (int a = pp.lo[t]; a < pp.lo[t + 1]; ++a)
+    const auto end = std::lower_bound(pp.in_atoms.begin(), pp.in_atoms.end(), pp.lo[t + 1]);
+    for (auto it = std::lower_bound(pp.in_atoms.begin(), end, pp.lo[t]); it != end; ++it) {
+      const int a = *it;
       for (int q = pp.in_first[a]; q < pp.in_first[a + 1]; ++q) {
         const int s = pp.in_slot[q];
         if (!pp.on[s]) continue;
@@ -997,17 +1000,21 @@ class GranKernel final : public ContactKernel {
           tq[3 * a + d] += val[6 + d];
         }
       }
+    }
   }
 
   // Ranges balanced by work: entries, touching ones counting 3 more, weighted
-  // by the cost per weight each range took last time (cache misses, threads
-  // slowed by the machine), re-split every 50 passes while unbalanced. Then the
-  // cross entries and the per-atom incoming lists. Any split gives the same bits.
+  // by the cost per weight each range took since the last split (cache misses,
+  // threads slowed by the machine), re-split as soon as kLearnCalls passes show
+  // the ranges more than 4 % apart: on a shared host one core can run at half
+  // speed for 10-50 passes and then recover. Then the cross entries and the
+  // per-atom incoming lists. Any split gives the same bits.
+  static constexpr int kLearnCalls = 3;  // passes measured before a re-split
   void plan_partition(const PairBatch& b, int nparts) {
     PairPartition& pp = part_;
     const std::size_t n = b.a.n, ne = static_cast<std::size_t>(b.first[n]);
     const bool same_list = pp.version == b.list_version && pp.nparts == nparts && pp.natoms == n && pp.nentries == ne;
-    if (same_list && !(pp.calls >= 50 && unbalanced(pp))) return;
+    if (same_list && !(pp.calls >= kLearnCalls && unbalanced(pp))) return;
     learn_costs(pp);
     pp.version = b.list_version;
     pp.nparts = nparts;
@@ -1036,13 +1043,13 @@ class GranKernel final : public ContactKernel {
 
   static bool unbalanced(const PairPartition& pp) {
     const auto [lo, hi] = std::minmax_element(pp.busy.begin(), pp.busy.end());
-    return *hi > 1.03 * *lo;
+    return *hi > 1.04 * *lo;
   }
 
   // Seconds per unit of weight in each range since the last split.
   static void learn_costs(PairPartition& pp) {
     const int np = static_cast<int>(pp.busy.size());
-    if (pp.calls < 10 || np != pp.nparts || pp.cum.size() != pp.natoms + 1 || pp.cum.back() <= 0.0) return;
+    if (pp.calls < kLearnCalls || np != pp.nparts || pp.cum.size() != pp.natoms + 1 || pp.cum.back() <= 0.0) return;
     const double total = pp.cum.back();
     pp.seg_u.assign(np + 1, 1.0);
     pp.seg_d.assign(np, 0.0);
@@ -1082,47 +1089,41 @@ class GranKernel final : public ContactKernel {
     pp.lo[nparts] = static_cast<int>(n);
   }
 
-  // Cross entries (j in a later range) of each range and the per-atom incoming
-  // lists. The entries are found in parallel over blocks of atoms (joined in
-  // atom order: the serial order); the last range has none.
+  // Cross entries (j in a later range) of each range, in list order, and the
+  // per-atom incoming lists. An atom's entries are sorted by j, so its cross
+  // entries are a suffix, present only when its last j lies beyond the range:
+  // one look per atom, cheap enough to re-split whenever the threads drift apart.
   static void cross_lists(const PairBatch& b, PairPartition& pp) {
     const int nparts = pp.nparts;
     const std::size_t n = pp.natoms;
-    const int last = pp.lo[nparts - 1];
-    std::vector<std::vector<int>> bk(nparts), bi(nparts);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static, 1) num_threads(nparts)
-#endif
-    for (int c = 0; c < nparts; ++c) {
-      const int i0 = static_cast<int>(static_cast<long>(last) * c / nparts);
-      const int i1 = static_cast<int>(static_cast<long>(last) * (c + 1) / nparts);
-      int t = static_cast<int>(std::upper_bound(pp.lo.begin(), pp.lo.end(), i0) - pp.lo.begin()) - 1;
-      for (int i = i0; i < i1; ++i) {
-        while (i >= pp.lo[t + 1]) ++t;
-        for (int k = b.first[i]; k < b.first[i + 1]; ++k)
-          if (b.jlist[k] >= pp.lo[t + 1]) {
-            bk[c].push_back(k);
-            bi[c].push_back(i);
-          }
-      }
-    }
     pp.cross_k.clear();
     pp.cross_i.clear();
-    for (int c = 0; c < nparts; ++c) {
-      pp.cross_k.insert(pp.cross_k.end(), bk[c].begin(), bk[c].end());
-      pp.cross_i.insert(pp.cross_i.end(), bi[c].begin(), bi[c].end());
+    pp.cross_first.assign(nparts + 1, 0);
+    for (int t = 0; t + 1 < nparts; ++t) {
+      const int hi = pp.lo[t + 1];
+      for (int i = pp.lo[t]; i < hi; ++i) {
+        const int k0 = b.first[i], k1 = b.first[i + 1];
+        if (k1 == k0 || b.jlist[k1 - 1] < hi) continue;
+        int k = k1;
+        while (k > k0 && b.jlist[k - 1] >= hi) --k;
+        for (; k < k1; ++k) {
+          pp.cross_k.push_back(k);
+          pp.cross_i.push_back(i);
+        }
+      }
+      pp.cross_first[t + 1] = static_cast<int>(pp.cross_k.size());
     }
     const int ncross = static_cast<int>(pp.cross_k.size());
-    pp.cross_first.assign(nparts + 1, 0);  // per range, then offsets
-    for (int s = 0; s < ncross; ++s)
-      ++pp.cross_first[std::upper_bound(pp.lo.begin(), pp.lo.end(), pp.cross_i[s]) - pp.lo.begin()];
-    std::partial_sum(pp.cross_first.begin(), pp.cross_first.end(), pp.cross_first.begin());
+    pp.cross_first[nparts] = ncross;
     pp.in_first.assign(n + 1, 0);
     for (int s = 0; s < ncross; ++s) ++pp.in_first[b.jlist[pp.cross_k[s]] + 1];
     for (std::size_t a = 0; a < n; ++a) pp.in_first[a + 1] += pp.in_first[a];
     pp.in_slot.assign(ncross, 0);
     std::vector<int> fill(pp.in_first.begin(), pp.in_first.end() - 1);
     for (int s = 0; s < ncross; ++s) pp.in_slot[fill[b.jlist[pp.cross_k[s]]]++] = s;
+    pp.in_atoms.clear();
+    for (std::size_t a = 0; a < n; ++a)
+      if (pp.in_first[a + 1] > pp.in_first[a]) pp.in_atoms.push_back(static_cast<int>(a));
     pp.val.assign(9 * static_cast<std::size_t>(ncross), 0.0);
     pp.on.assign(ncross, 0);
   }
