@@ -627,7 +627,7 @@ def scaling_repeat(args, case, v, sable, liggghts, wd):
 
 def scaling_ratios(rep):
     """Per repeat: sable 2t / 1t, two 1t jobs at once (summed PS/s) / one alone, LIGGGHTS 2p / 1p,
-    and sable 2t / LIGGGHTS 2p (two cores each)."""
+    sable 1t / LIGGGHTS 1p and sable 2t / LIGGGHTS 2p."""
     def psps(x):
         return x["psps"] if x and x["ok"] else None
     s1, s2 = psps(rep["sable 1t"]), psps(rep["sable 2t"])
@@ -636,6 +636,7 @@ def scaling_ratios(rep):
     return dict(sable=s2 / s1 if s1 and s2 else None,
                 ceiling=sum(both) / s1 if s1 and None not in both else None,
                 liggghts=l2 / l1 if l1 and l2 else None,
+                one_core=s1 / l1 if s1 and l1 else None,
                 two_cores=s2 / l2 if s2 and l2 else None)
 
 
@@ -650,7 +651,7 @@ def scaling(args, cases, sable, liggghts, tmp):
 
 
 def scaling_table(rows):
-    keys = ("sable", "ceiling", "liggghts", "two_cores")
+    keys = ("sable", "ceiling", "liggghts", "one_core", "two_cores")
     for row in rows:
         row["ratios"] = [scaling_ratios(r) for r in row["runs"]]
         row["median"] = {k: median_or_none([q[k] for q in row["ratios"]]) for k in keys}
@@ -659,7 +660,8 @@ def scaling_table(rows):
         m = row["median"][k]
         return "-" if m is None else "%.2f (%s)" % (m, ", ".join("%.2f" % q[k] for q in row["ratios"] if q[k]))
     h = ["case", "sable 2 / 1 threads", "two 1-thread sable jobs at once / one alone",
-         "LIGGGHTS 2 / 1 MPI processes", "sable 2 threads / LIGGGHTS 2 processes"]
+         "LIGGGHTS 2 / 1 MPI processes", "sable 1 thread / LIGGGHTS 1 process",
+         "sable 2 threads / LIGGGHTS 2 processes"]
     md = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
     for row in rows:
         md.append("| " + " | ".join([row["case"]] + [cell(k, row) for k in keys]) + " |")
