@@ -589,9 +589,8 @@ MPI2 = ("mpirun", "-np", "2", "--bind-to", "none")
 
 
 def run_pair_at_once(exe, case, v, workdir, timeout):
-    """Two one-thread sable runs of the same deck started together: what the machine gives two
-    independent jobs (shared memory bandwidth, caches, clock, other tenants), the ceiling of any
-    two-thread speed-up here."""
+    """Two one-thread sable runs of the same deck started together: what two cores give two
+    independent jobs that share only the hardware (memory bandwidth, L3, clock, other tenants)."""
     import threading
     out = [None, None]
 
@@ -634,7 +633,7 @@ def scaling_ratios(rep):
     both = [psps(x) for x in rep["sable 1t x2 at once"]]
     l1, l2 = psps(rep.get("LIGGGHTS 1p")), psps(rep.get("LIGGGHTS 2p"))
     return dict(sable=s2 / s1 if s1 and s2 else None,
-                ceiling=sum(both) / s1 if s1 and None not in both else None,
+                two_jobs=sum(both) / s1 if s1 and None not in both else None,
                 liggghts=l2 / l1 if l1 and l2 else None,
                 one_core=s1 / l1 if s1 and l1 else None,
                 two_cores=s2 / l2 if s2 and l2 else None)
@@ -651,7 +650,7 @@ def scaling(args, cases, sable, liggghts, tmp):
 
 
 def scaling_table(rows):
-    keys = ("sable", "ceiling", "liggghts", "one_core", "two_cores")
+    keys = ("sable", "two_jobs", "liggghts", "one_core", "two_cores")
     for row in rows:
         row["ratios"] = [scaling_ratios(r) for r in row["runs"]]
         row["median"] = {k: median_or_none([q[k] for q in row["ratios"]]) for k in keys}
@@ -721,7 +720,7 @@ def main():
     ap.add_argument("--determinism", action="store_true",
                     help="run sable twice per thread count and compare the final dumps byte for byte")
     ap.add_argument("--scaling", action="store_true",
-                    help="per repeat: sable 1t, two sable 1t jobs at once (the machine's ceiling), sable 2t, "
+                    help="per repeat: sable 1t, two sable 1t jobs at once, sable 2t, "
                          "LIGGGHTS with 1 and 2 MPI processes; writes scaling[_quick].md/json")
     ap.add_argument("--no-contacts", action="store_true", help="skip counting contacts in the final dumps")
     ap.add_argument("--timeout", type=float, default=0, help="seconds per run (default: none)")
