@@ -681,10 +681,14 @@ def write_scaling(prefix, rows, table, info, argv):
         "bandwidth, L3, clock, the host's other tenants), each with the whole working set. A run "
         "split over two cores can gain more (each core's cache holds half the grains): LIGGGHTS' "
         "domains do.", "", table, ""])
+    write_md_json(prefix, text, dict(info=info, rows=rows))
+
+
+def write_md_json(prefix, text, data):
     with open(prefix + ".md", "w") as f:
         f.write(text)
     with open(prefix + ".json", "w") as f:
-        json.dump(dict(info=info, rows=rows), f, indent=1, default=str)
+        json.dump(data, f, indent=1, default=str)
 
 
 def find_sable(path):
@@ -774,10 +778,7 @@ def main():
                 f"(sable {sable}, commit {info.get('sable_commit')}, tree {info.get('sable_tree')}).", "",
                 "Each deck runs twice per OMP_NUM_THREADS value; the final dumps (all atoms sorted by id, "
                 "positions, velocities, spins at %.17g) are compared byte for byte.", "", table, ""])
-            with open(prefix + ".md", "w") as f:
-                f.write(text)
-            with open(prefix + ".json", "w") as f:
-                json.dump(dict(info=info, rows=rows), f, indent=1, default=str)
+            write_md_json(prefix, text, dict(info=info, rows=rows))
             print("\n" + table)
             print(f"\nwritten: {prefix}.md, {prefix}.json")
             return
