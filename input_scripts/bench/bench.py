@@ -27,6 +27,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -591,7 +592,6 @@ MPI2 = ("mpirun", "-np", "2", "--bind-to", "none")
 def run_pair_at_once(exe, case, v, workdir, timeout):
     """Two one-thread sable runs of the same deck started together: what two cores give two
     independent jobs that share only the hardware (memory bandwidth, L3, clock, other tenants)."""
-    import threading
     out = [None, None]
 
     def one(k):
