@@ -287,9 +287,7 @@ struct PairPartition {
   std::size_t natoms = 0, nentries = 0;
   std::vector<int> lo;                   // nparts + 1 atom bounds of the ranges
   std::vector<int> cross_first;          // nparts + 1: cross entries of range t
-  std::vector<int> cross_k, cross_i;     // per cross entry (list order): entry and its atom i
-  std::vector<int> in_first, in_slot;    // per atom: incoming cross entries, in list order
-  std::vector<int> in_atoms;             // the atoms that have any, increasing
+  std::vector<int> cross_k, cross_i, cross_j;  // per cross entry (list order): entry, its atoms i and j
   std::vector<double> val;               // 9 per cross entry: force on i, torque on i, torque on j
   std::vector<std::uint8_t> on;          // cross entry touching this step
   // Balance from measured time (the results do not depend on the split):
@@ -984,21 +982,20 @@ class GranKernel final : public ContactKernel {
     }
   }
 
-  // Phase B, first: j-side contributions of cross entries to the atoms of range t.
+  // Phase B, first: j-side contributions of cross entries to the atoms of
+  // range t. They come from earlier ranges; taken in list order, each atom
+  // receives its own in list order, as in the serial pass.
   void apply_incoming(const PairBatch& b, const PairPartition& pp, int t) const {
     double* f = b.a.f;
     double* tq = b.a.torque;
-    const auto end = std::lower_bound(pp.in_atoms.begin(), pp.in_atoms.end(), pp.lo[t + 1]);
-    for (auto it = std::lower_bound(pp.in_atoms.begin(), end, pp.lo[t]); it != end; ++it) {
-      const int a = *it;
-      for (int q = pp.in_first[a]; q < pp.in_first[a + 1]; ++q) {
-        const int s = pp.in_slot[q];
-        if (!pp.on[s]) continue;
-        const double* val = &pp.val[9 * static_cast<std::size_t>(s)];
-        for (int d = 0; d < 3; ++d) {
-          f[3 * a + d] -= val[d];
-          tq[3 * a + d] += val[6 + d];
-        }
+    const int lo = pp.lo[t], hi = pp.lo[t + 1];
+    for (int s = 0; s < pp.cross_first[t]; ++s) {
+      const int a = pp.cross_j[s];
+      if (!pp.on[s] || a < lo || a >= hi) continue;
+      const double* val = &pp.val[9 * static_cast<std::size_t>(s)];
+      for (int d = 0; d < 3; ++d) {
+        f[3 * a + d] -= val[d];
+        tq[3 * a + d] += val[6 + d];
       }
     }
   }
@@ -1007,8 +1004,9 @@ class GranKernel final : public ContactKernel {
   // by the cost per weight each range took since the last split (cache misses,
   // threads slowed by the machine), re-split as soon as kLearnCalls passes show
   // the ranges more than 4 % apart: on a shared host one core can run at half
-  // speed for 10-50 passes and then recover. Then the cross entries and the
-  // per-atom incoming lists. Any split gives the same bits.
+  // speed for 10-50 passes and then recover. A re-split costs a search per
+  // bound and one look per atom for the cross entries (0.06 ms on bed_30k),
+  // so following the host is cheap. Any split gives the same bits.
   static constexpr int kLearnCalls = 3;  // passes measured before a re-split
   void plan_partition(const PairBatch& b, int nparts) {
     PairPartition& pp = part_;
@@ -1065,39 +1063,39 @@ class GranKernel final : public ContactKernel {
 
   // Range bounds with equal predicted time: weight times the learned cost of
   // its place (as a fraction of the total weight); equal weight before any.
+  // The predicted time of the weight [0, c) is piecewise linear in c (slope
+  // seg_d on each learned segment), so each bound is found by a search, with
+  // no pass over the atoms.
   static void split(PairPartition& pp, int nparts) {
     const std::size_t n = pp.natoms;
     const double total = pp.cum[n];
-    const bool learned = pp.seg_u.size() >= 2;
-    std::vector<double> time(n + 1, 0.0);  // predicted time of atoms [0, i)
-    std::size_t seg = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      double d = 1.0;
-      if (learned && total > 0.0) {
-        const double u = pp.cum[i] / total;
-        while (seg + 1 < pp.seg_d.size() && u >= pp.seg_u[seg + 1]) ++seg;
-        d = pp.seg_d[seg];
-      }
-      time[i + 1] = time[i] + d * (pp.cum[i + 1] - pp.cum[i]);
-    }
+    const std::size_t nseg = pp.seg_u.size() >= 2 && total > 0.0 ? pp.seg_d.size() : 0;
+    std::vector<double> t0(nseg + 1, 0.0);  // predicted time at each segment's start
+    for (std::size_t s = 0; s < nseg; ++s) t0[s + 1] = t0[s] + pp.seg_d[s] * (pp.seg_u[s + 1] - pp.seg_u[s]) * total;
+    const double whole = nseg ? t0[nseg] : total;
     pp.lo.assign(nparts + 1, 0);
     for (int t = 1; t < nparts; ++t) {
-      const double target = time[n] * t / nparts;
-      pp.lo[t] = static_cast<int>(std::lower_bound(time.begin(), time.end(), target) - time.begin());
-      pp.lo[t] = std::max(pp.lo[t], pp.lo[t - 1]);
+      const double target = whole * t / nparts;
+      double c = target;  // the weight whose predicted time is `target`
+      if (nseg) {
+        const std::size_t s = std::min<std::size_t>(std::upper_bound(t0.begin(), t0.end(), target) - t0.begin(), nseg) - 1;
+        c = pp.seg_u[s] * total + (target - t0[s]) / pp.seg_d[s];
+      }
+      pp.lo[t] = static_cast<int>(std::lower_bound(pp.cum.begin(), pp.cum.end(), c) - pp.cum.begin());
+      pp.lo[t] = std::clamp(pp.lo[t], pp.lo[t - 1], static_cast<int>(n));
     }
     pp.lo[nparts] = static_cast<int>(n);
   }
 
-  // Cross entries (j in a later range) of each range, in list order, and the
-  // per-atom incoming lists. An atom's entries are sorted by j, so its cross
-  // entries are a suffix, present only when its last j lies beyond the range:
-  // one look per atom, cheap enough to re-split whenever the threads drift apart.
+  // Cross entries (j in a later range) of each range, in list order. An atom's
+  // entries are sorted by j, so its cross entries are a suffix, present only
+  // when its last j lies beyond the range: one look per atom, cheap enough to
+  // re-split whenever the threads drift apart.
   static void cross_lists(const PairBatch& b, PairPartition& pp) {
     const int nparts = pp.nparts;
-    const std::size_t n = pp.natoms;
     pp.cross_k.clear();
     pp.cross_i.clear();
+    pp.cross_j.clear();
     pp.cross_first.assign(nparts + 1, 0);
     for (int t = 0; t + 1 < nparts; ++t) {
       const int hi = pp.lo[t + 1];
@@ -1109,23 +1107,15 @@ class GranKernel final : public ContactKernel {
         for (; k < k1; ++k) {
           pp.cross_k.push_back(k);
           pp.cross_i.push_back(i);
+          pp.cross_j.push_back(b.jlist[k]);
         }
       }
       pp.cross_first[t + 1] = static_cast<int>(pp.cross_k.size());
     }
     const int ncross = static_cast<int>(pp.cross_k.size());
     pp.cross_first[nparts] = ncross;
-    pp.in_first.assign(n + 1, 0);
-    for (int s = 0; s < ncross; ++s) ++pp.in_first[b.jlist[pp.cross_k[s]] + 1];
-    for (std::size_t a = 0; a < n; ++a) pp.in_first[a + 1] += pp.in_first[a];
-    pp.in_slot.assign(ncross, 0);
-    std::vector<int> fill(pp.in_first.begin(), pp.in_first.end() - 1);
-    for (int s = 0; s < ncross; ++s) pp.in_slot[fill[b.jlist[pp.cross_k[s]]]++] = s;
-    pp.in_atoms.clear();
-    for (std::size_t a = 0; a < n; ++a)
-      if (pp.in_first[a + 1] > pp.in_first[a]) pp.in_atoms.push_back(static_cast<int>(a));
-    pp.val.assign(9 * static_cast<std::size_t>(ncross), 0.0);
-    pp.on.assign(ncross, 0);
+    pp.val.resize(9 * static_cast<std::size_t>(ncross));  // read only where `on`, both set in phase A
+    pp.on.resize(ncross);
   }
 
   // Wall contacts: gathered into columns and evaluated like pair contacts
