@@ -485,8 +485,13 @@ class GranKernel final : public ContactKernel {
     }
 #ifdef _OPENMP
     const double w0 = omp_get_wtime();
-    plan_partition(b, nparts);
     PairPartition& pp = part_;
+    const long version0 = pp.version;
+    const int calls0 = pp.calls;
+    plan_partition(b, nparts);
+    PairTrace* const trace = PairTrace::get();
+    const double plan = omp_get_wtime() - w0;
+    if (trace) trace->begin(nparts);
     ++pp.calls;
     if (b.split) {
       b.split->n = b.a.n;
@@ -502,7 +507,12 @@ class GranKernel final : public ContactKernel {
       const double a0 = omp_get_wtime();
       cross_range(b, pp, ncross * tid / nt, ncross * (tid + 1) / nt, ch);
       double busy = omp_get_wtime() - a0;
+      const double a1 = a0 + busy;
 #pragma omp barrier
+      if (trace) {
+        double* r = &trace->t[4 * static_cast<std::size_t>(tid)];
+        r[0] = a0 - w0, r[1] = a1 - w0, r[2] = omp_get_wtime() - w0;
+      }
       for (int t = tid; t < nparts; t += nt) {
         const double t0 = omp_get_wtime();
         apply_incoming(b, pp, t);
@@ -512,9 +522,11 @@ class GranKernel final : public ContactKernel {
         busy += dt;
       }
       tb.busy[tid] += busy;
+      if (trace) trace->t[4 * static_cast<std::size_t>(tid) + 3] = omp_get_wtime() - w0;
     }
     tb.wall += omp_get_wtime() - w0;
     ++tb.calls;
+    if (trace) trace->write(plan, pp.version != version0 ? 2 : pp.calls <= calls0 ? 1 : 0, omp_get_wtime() - w0);
 #endif
   }
 

@@ -39,6 +39,28 @@ ThreadBalance& thread_balance(PassKind k) {
   return k == PassKind::Pair ? pair : atoms;
 }
 
+PairTrace* PairTrace::get() {
+  static PairTrace* trace = [] {
+    const char* path = std::getenv("SABLE_PAIR_TRACE");
+    if (!path || !*path) return static_cast<PairTrace*>(nullptr);
+    std::FILE* f = std::fopen(path, "w");
+    if (!f) {
+      std::fprintf(stderr, "sable: SABLE_PAIR_TRACE=%s cannot be written; no pair trace\n", path);
+      return static_cast<PairTrace*>(nullptr);
+    }
+    std::fprintf(f, "# plan_s kind wall_s, then per thread: start_s phaseA_end_s phaseB_start_s end_s (kind: 0 kept, 1 re-split, 2 new list)\n");
+    return new PairTrace(f);  // lives to the end of the process
+  }();
+  return trace;
+}
+
+void PairTrace::write(double plan, int kind, double wall) {
+  std::fprintf(out_, "%.9g %d %.9g", plan, kind, wall);
+  for (double v : t) std::fprintf(out_, " %.9g", v);
+  std::fputc('\n', out_);
+  std::fflush(out_);  // a killed run keeps its lines
+}
+
 // The CPU's widest variant, capped by SABLE_SIMD.
 static Simd simd_available() {
   Simd s = Simd::SSE2;

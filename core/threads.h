@@ -13,6 +13,7 @@
 // there, run with OMP_WAIT_POLICY=passive (or one thread).
 #include <array>
 #include <cstddef>
+#include <cstdio>
 #include <vector>
 
 #ifdef _OPENMP
@@ -80,6 +81,24 @@ struct ThreadBalance {
 };
 enum class PassKind { Pair, Atoms };
 ThreadBalance& thread_balance(PassKind k);
+
+// Per-pass timing of the threaded pair pass, for diagnosing the threads'
+// waiting: one line per pass in the file named by SABLE_PAIR_TRACE (absent:
+// nothing is recorded). input_scripts/bench/pair_trace.py summarises it.
+class PairTrace {
+ public:
+  static PairTrace* get();  // nullptr unless SABLE_PAIR_TRACE is set
+  // Seconds from the pass's start, per thread: start, end of phase A (cross
+  // entries), start of phase B (after the barrier), end. Filled by the threads.
+  std::vector<double> t;
+  void begin(int threads) { t.assign(4 * static_cast<std::size_t>(threads), 0.0); }
+  // plan: seconds spent choosing the split; kind: 0 kept, 1 re-split, 2 new list.
+  void write(double plan, int kind, double wall);
+
+ private:
+  explicit PairTrace(std::FILE* f) : out_(f) {}
+  std::FILE* out_;
+};
 
 // Runs body(t, lo, hi) once per thread t on its range [lo, hi) of the n atoms
 // (one call, t = 0, over all of them when the pass is not threaded).

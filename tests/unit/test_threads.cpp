@@ -1,8 +1,8 @@
 // Deterministic threading: the same deck gives the same bits whatever the
 // thread count and whether the contact loops run as AVX-512, AVX2 or SSE2 (core/threads.h,
 // GranKernel::pair_forces). The size thresholds are lowered so a small system
-// takes every threaded path: the pair pass (ranges, cross entries, incoming
-// lists), the neighbour build, the integrator, gravity, the wall (in blocks of
+// takes every threaded path: the pair pass (ranges, cross entries and their
+// slots), the neighbour build, the integrator, gravity, the wall (in blocks of
 // 16 grains) and the checks, the per-atom passes on the pair pass's ranges.
 // Step fusion (Simulation::run) must give the bits of the separate passes too.
 #include <gtest/gtest.h>
@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -281,4 +283,70 @@ TEST(KernelSpecialisation, OneTypeSameBitsAsPerContactTypes) {
   ASSERT_GT(one.contacts, 300u);
   EXPECT_TRUE(one == both) << "one-type and per-contact-type loops differ";
   EXPECT_TRUE(run(1, sable::Simd::SSE2, "", true, two) == one) << "per-contact-type SSE2 loop differs";
+}
+
+// SABLE_PAIR_TRACE: one line per threaded pair pass (the setup pass and each
+// step), each thread's times ordered within the pass's wall time, and the
+// summary script reads it. Large enough (5 000 grains, 3 list entries each)
+// for the pair pass to thread at the default thresholds.
+TEST(Threads, PairTraceWritesOnePassPerLine) {
+#if defined(_OPENMP) && defined(SABLE_BINARY)
+  std::string deck = kDeck;
+  deck.replace(deck.find("block 0 0.012 0 0.012 0 0.03"), 28, "block 0 0.024 0 0.024 0 0.03");
+  deck.replace(deck.find("block 0 0.012 0 0.012 0.0006 0.012"), 34, "block 0 0.024 0 0.024 0.0006 0.012");
+  deck.replace(deck.find("run 1500"), 8, "run 20");
+  const std::string in = "pair_trace_test.in", trace = "pair_trace_test.txt";
+  std::FILE* f = std::fopen(in.c_str(), "w");
+  ASSERT_TRUE(f);
+  std::fputs(deck.c_str(), f);
+  std::fclose(f);
+  const std::string cmd = "SABLE_PAIR_TRACE=" + trace + " OMP_NUM_THREADS=2 OMP_WAIT_POLICY=passive " +
+                          SABLE_BINARY + " -in " + in + " -log none > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::FILE* t = std::fopen(trace.c_str(), "r");
+  ASSERT_TRUE(t);
+  char line[1024];
+  ASSERT_TRUE(std::fgets(line, sizeof line, t));
+  EXPECT_EQ(line[0], '#');
+  int passes = 0, new_lists = 0;
+  while (std::fgets(line, sizeof line, t)) {
+    double v[11];
+    int kind = -1, used = 0;
+    ASSERT_EQ(std::sscanf(line, "%lf %d %lf %lf %lf %lf %lf %lf %lf %lf %lf%n", &v[0], &kind, &v[2], &v[3], &v[4],
+                          &v[5], &v[6], &v[7], &v[8], &v[9], &v[10], &used),
+              11)
+        << line;
+    EXPECT_TRUE(line[used] == '\n' || line[used] == '\0') << "more than two threads' columns: " << line;
+    ++passes;
+    new_lists += kind == 2;
+    for (int th = 0; th < 2; ++th) {
+      const double* r = &v[3 + 4 * th];  // start, end of phase A, start of phase B, end
+      EXPECT_LE(v[0], r[0]) << line;     // planned before the threads start
+      EXPECT_TRUE(r[0] <= r[1] && r[1] <= r[2] && r[2] <= r[3] && r[3] <= v[2]) << line;
+    }
+  }
+  std::fclose(t);
+  EXPECT_EQ(passes, 21);  // the setup pass and 20 steps
+  EXPECT_GE(new_lists, 1);
+  std::string py;
+  for (const char* c : {"/usr/bin/python3", "python3"})
+    if (std::system((std::string(c) + " -c 'import numpy' > /dev/null 2>&1").c_str()) == 0) {
+      py = c;
+      break;
+    }
+  if (!py.empty()) {
+    const std::string sum = py + " " + SABLE_SOURCE_DIR + "/input_scripts/bench/pair_trace.py " + trace;
+    std::FILE* p = popen(sum.c_str(), "r");
+    ASSERT_TRUE(p);
+    std::string out;
+    while (std::fgets(line, sizeof line, p)) out += line;
+    EXPECT_EQ(pclose(p), 0) << out;
+    EXPECT_NE(out.find("21 passes, 2 threads"), std::string::npos) << out;
+    EXPECT_NE(out.find("phase B waiting"), std::string::npos) << out;
+  }
+  std::remove(in.c_str());
+  std::remove(trace.c_str());
+#else
+  GTEST_SKIP() << "built without OpenMP";
+#endif
 }
