@@ -4,7 +4,9 @@ the threaded pair pass's wall time goes and how the threads' finishing times
 scatter from pass to pass.
 
     SABLE_PAIR_TRACE=trace.txt OMP_NUM_THREADS=2 build/sable -in deck -log none
-    python3 input_scripts/bench/pair_trace.py trace.txt
+    python3 input_scripts/bench/pair_trace.py [--last N] trace.txt
+
+--last N: only the last N passes (a benchmark deck's timed run: its steps + 1).
 
 Shares are of the threads' capacity (threads x wall time of the passes):
   plan     choosing the split (kept, re-split or new list) before the threads start
@@ -31,8 +33,8 @@ def autocorr(x, lag):
     return float(np.corrcoef(x[:-lag], x[lag:])[0, 1]) if len(x) > lag + 2 else float("nan")
 
 
-def summary(path):
-    plan, kind, wall, th = load(path)
+def summary(path, last=0):
+    plan, kind, wall, th = (a[-last:] for a in load(path)) if last else load(path)
     n, nt = th.shape[0], th.shape[1]
     start, a_end, b_start, end = (th[:, :, k] for k in range(4))
     cap = nt * wall.sum()
@@ -61,7 +63,11 @@ def summary(path):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) < 2:
+    args = sys.argv[1:]
+    last = 0
+    if args[:1] == ["--last"] and len(args) >= 2:
+        last, args = int(args[1]), args[2:]
+    if not args:
         sys.exit(__doc__)
-    for f in sys.argv[1:]:
-        print(summary(f))
+    for f in args:
+        print(summary(f, last))
