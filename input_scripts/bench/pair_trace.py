@@ -40,7 +40,8 @@ def summary(path, last=0):
     cap = nt * wall.sum()
     busy_a = (a_end - start).sum()
     busy_b = (end - b_start).sum()
-    wait_b = (end.max(axis=1)[:, None] - end).sum()
+    last = end.max(axis=1)  # the last thread done, per pass
+    wait_b = (last[:, None] - end).sum()
     out = ["pair trace %s: %d passes, %d threads, wall %.3f ms per pass (median %.3f)"
            % (path, n, nt, 1e3 * wall.mean(), 1e3 * np.median(wall))]
     for k, name in ((0, "kept"), (1, "re-split"), (2, "new list")):
@@ -50,7 +51,7 @@ def summary(path, last=0):
     out.append("  share of the threads' capacity: plan %.1f %%, phase A + barrier %.1f %% (phase A busy %.1f %%), "
                "phase B busy %.1f %%, phase B waiting %.1f %%, after the last thread %.1f %%"
                % (100 * nt * plan.sum() / cap, 100 * (b_start - plan[:, None]).sum() / cap, 100 * busy_a / cap,
-                  100 * busy_b / cap, 100 * wait_b / cap, 100 * (wall[:, None] - end.max(axis=1)[:, None]).sum() * nt / cap))
+                  100 * busy_b / cap, 100 * wait_b / cap, 100 * nt * (wall - last).sum() / cap))
     if nt >= 2:
         b = end - b_start  # phase B seconds per thread
         rel = (b[:, 0] - b[:, 1]) / b[:, :2].mean(axis=1)
