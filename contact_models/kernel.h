@@ -710,7 +710,7 @@ class GranKernel final : public ContactKernel {
         put(ch.jtype + m, _mm256_set1_epi32(1));
         put(ch.tp + m, _mm256_set1_epi32(a.stride + 1));
       }
-      if constexpr (kH == 3) {
+      if constexpr (kH == 3) {  // tangential history alone (the common model): a row is three doubles
         alignas(32) int rr[8];
         _mm256_store_si256(reinterpret_cast<__m256i*>(rr), _mm256_maskz_loadu_epi32(k, ch.row + m));
         __m512d h0, h1, h2;
