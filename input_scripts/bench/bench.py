@@ -316,6 +316,32 @@ def machine_info(sable, liggghts):
     return info
 
 
+def core_probe(sable):
+    """sable_core_probe (built next to sable, input_scripts/bench/core_probe.cpp): what synchronising two
+    threads costs now (cache-line round trip, OpenMP barrier and region, us); None where absent."""
+    exe = os.path.join(os.path.dirname(sable), "sable_core_probe") if sable else None
+    if not exe or not os.access(exe, os.X_OK):
+        return None
+    try:
+        out = subprocess.run([exe], capture_output=True, text=True, timeout=120,
+                             env=dict(os.environ, OMP_NUM_THREADS="2")).stdout
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    m = re.search(r"round_trip_us ([\d.]+) barrier_us ([\d.]+) region_us ([\d.]+)", out)
+    if not m:
+        return None
+    probe = dict(round_trip_us=float(m.group(1)), barrier_us=float(m.group(2)), region_us=float(m.group(3)))
+    log("    core probe: round trip %(round_trip_us).3f us, barrier %(barrier_us).2f us, region %(region_us).2f us"
+        % probe)
+    return probe
+
+
+def probe_cell(probes):
+    """'0.09, 0.09, 0.34': the cache-line round trip of each repeat (us)."""
+    trips = ["%.2f" % p["round_trip_us"] if p else "-" for p in probes or []]
+    return ", ".join(trips) if any(t != "-" for t in trips) else "-"
+
+
 def deck_hash(case):
     """SHA-1 of the deck's commands (comments and blank lines left out)."""
     with open(os.path.join(HERE, case["deck"])) as f:
@@ -386,6 +412,7 @@ def summarize(results, threads):
                                    builds=best.get("builds"), neighs_per_atom=best.get("neighs_per_atom"),
                                    reused=res.get("liggghts_reused"))
         row["contacts"] = res.get("contacts", {})
+        row["probes"] = res.get("probes")
         row["failures"] = [dict(engine=r["engine"], threads=r["threads"], rc=r["rc"], tail=r.get("tail"))
                            for r in res["runs"] if not r["ok"]]
         rows.append(row)
@@ -400,6 +427,8 @@ def table_md(rows, threads, info, args):
     h += ["%dt / %dt paired (pair busy)" % (t, min(threads)) for t in multi]
     h += ["sable split (%)", "LIGGGHTS split (%)", "max RSS sable / LIGGGHTS (MB)",
           "nbr builds sable / LIGGGHTS", "contacts/grain sable / LIGGGHTS", "neighs/atom sable / LIGGGHTS"]
+    if multi:
+        h.append("core round trip, us (per repeat)")
     out = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
     for row in rows:
         lg = row.get("liggghts") or {}
@@ -431,6 +460,8 @@ def table_md(rows, threads, info, args):
         nbs = st.get("neighs_per_atom") if st else None
         c.append("%s / %s" % ("%.2f" % nbs if nbs is not None else "-",
                               "%.2f" % lg["neighs_per_atom"] if lg.get("neighs_per_atom") is not None else "-"))
+        if multi:
+            c.append(probe_cell(row.get("probes")))
         out.append("| " + " | ".join(c) + " |")
     return "\n".join(out)
 
@@ -454,7 +485,10 @@ def write_report(path_md, path_json, rows, results, threads, info, args, title):
           "(distance <= ri + rj); neighs/atom = each code's 'Ave neighs/atom' (half lists); "
           "Nt / 1t paired = median over repeats of the speed-up between the runs of one repeat (each one's in "
           "brackets), pair busy = median share of the pair passes' wall time each thread was busy (the rest it "
-          "waited for the other; sable's 'Thread balance' line)", "",
+          "waited for the other; sable's 'Thread balance' line); core round trip = `sable_core_probe` before "
+          "each repeat: the time a cache line takes to go to the other core and back (about 0.1 us where the two "
+          "cores share an L3, 0.3 us and more where they do not: then every barrier and shared line costs more "
+          "and the thread speed-up drops)", "",
           table_md(rows, threads, info, args), ""]
     kept = [(k, v["measured"]) for k, v in results.items() if v.get("measured")]
     if kept:
@@ -514,7 +548,10 @@ def bench(args, cases, threads, sable, liggghts, tmp):
             res["runs"] += [r for r in old["runs"] if r["engine"] == "liggghts"]
             res["liggghts_reused"] = args.liggghts_from
         nrep = max(args.repeats, args.liggghts_repeats)
+        res["probes"] = []
         for rep in range(nrep):
+            if sable and rep < args.repeats and max(threads) > 1:
+                res["probes"].append(core_probe(sable))
             configs = []
             if sable and rep < args.repeats:
                 configs += [("sable", sable, t) for t in threads]
@@ -606,7 +643,7 @@ def run_pair_at_once(exe, case, v, workdir, timeout):
 
 def scaling_repeat(args, case, v, sable, liggghts, wd):
     """One repeat: sable 1t alone, two sable 1t at once, sable 2t, LIGGGHTS 1 and 2 MPI processes."""
-    r = {}
+    r = {"probe": core_probe(sable)}
     steps = [("sable 1t", lambda: run_engine("sable", sable, case, v, 1, wd + "/s1", args.timeout, "final.dump")),
              ("sable 1t x2 at once", lambda: run_pair_at_once(sable, case, v, wd + "/s1x2", args.timeout)),
              ("sable 2t", lambda: run_engine("sable", sable, case, v, 2, wd + "/s2", args.timeout, "final.dump"))]
@@ -661,9 +698,11 @@ def scaling_table(rows):
     h = ["case", "sable 2 / 1 threads", "two 1-thread sable jobs at once / one alone",
          "LIGGGHTS 2 / 1 MPI processes", "sable 1 thread / LIGGGHTS 1 process",
          "sable 2 threads / LIGGGHTS 2 processes"]
+    h.append("core round trip, us (per repeat)")
     md = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
     for row in rows:
-        md.append("| " + " | ".join([row["case"]] + [cell(k, row) for k in keys]) + " |")
+        md.append("| " + " | ".join([row["case"]] + [cell(k, row) for k in keys] +
+                                    [probe_cell([r.get("probe") for r in row["runs"]])]) + " |")
     return "\n".join(md)
 
 
@@ -680,7 +719,8 @@ def write_scaling(prefix, rows, table, info, argv):
         "over the job alone, what two cores give two jobs that share only the hardware (memory "
         "bandwidth, L3, clock, the host's other tenants), each with the whole working set. A run "
         "split over two cores can gain more (each core's cache holds half the grains): LIGGGHTS' "
-        "domains do.", "", table, ""])
+        "domains do. Core round trip: `sable_core_probe` before each repeat, the time a cache line takes "
+        "to go to the other core and back.", "", table, ""])
     write_md_json(prefix, text, dict(info=info, rows=rows))
 
 
