@@ -65,7 +65,15 @@ class Fix {
   virtual bool can_fuse() const { return false; }
   struct Fusion {
     bool final = false, clear = false;
+    // With final: last step's gravity pass was skipped; add rmass * accel to
+    // each force before using it (what that pass would have stored).
+    const double* accel = nullptr;
   } fuse;
+  // A post_force that does nothing but add m a to the force of every atom
+  // (gravity on group all) gives a here. As the last post_force fix, on
+  // steps whose final half kick is deferred, its pass goes into the
+  // integrator's (Fusion::accel): one pass over the grains fewer.
+  virtual bool uniform_acceleration(double /*a*/[3]) const { return false; }
 
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }

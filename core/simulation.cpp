@@ -359,6 +359,11 @@ void Simulation::run(long nsteps) {
                    ? hook[0][0]
                    : nullptr;
   const bool clear_in_integrate = fused && hook[1].empty() && hook[2].empty();
+  // On those steps a last post_force pass that only adds m a to every grain
+  // (gravity) is skipped too, and the next initial pass adds m a to the forces
+  // it reads: the same additions in the same order.
+  double accel[3];
+  Fix* folded = fused && !hook[3].empty() && hook[3].back()->uniform_acceleration(accel) ? hook[3].back() : nullptr;
   auto quiet = [&](long s) {
     if (s >= run_last || (thermo->every > 0 && s % thermo->every == 0)) return false;
     for (Fix* f : hook[5])
@@ -373,7 +378,7 @@ void Simulation::run(long nsteps) {
     ++step;
     time += dt;
     tic = clock::now();
-    if (fused) fused->fuse = {deferred, clear_in_integrate};
+    if (fused) fused->fuse = {deferred, clear_in_integrate, deferred && folded ? accel : nullptr};
     deferred = false;
     for (Fix* f : hook[0]) f->initial_integrate();
     for (Fix* f : hook[1]) f->post_integrate();
@@ -384,10 +389,12 @@ void Simulation::run(long nsteps) {
     if (!clear_in_integrate) clear_forces_threaded(atoms);
     if (pair) pair->compute();
     lap(timers.pair);
-    for (Fix* f : hook[3]) f->post_force();
-    lap(timers.fixes);
     deferred = fused && quiet(step);
+    for (Fix* f : hook[3])
+      if (!(deferred && f == folded)) f->post_force();
+    lap(timers.fixes);
     fused_steps += deferred;
+    folded_steps += deferred && folded;
     if (!deferred)
       for (Fix* f : hook[4]) f->final_integrate();
     lap(timers.integrate);

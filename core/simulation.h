@@ -120,6 +120,7 @@ class Simulation {
 
   bool step_fusion = true;  // let the integrator fuse passes (run()); off: every pass separate (tests)
   long fused_steps = 0;     // steps whose final half kick ran in the next initial pass (run())
+  long folded_steps = 0;    // ... and whose gravity pass went into it too
   // Time split of the last run (seconds).
   struct Timers {
     double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;

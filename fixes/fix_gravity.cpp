@@ -39,6 +39,10 @@ class FixGravity : public Fix {
     });
   }
   double acceleration() const override { return std::fabs(g_); }
+  bool uniform_acceleration(double a[3]) const override {
+    for (int k = 0; k < 3; ++k) a[k] = acc_[k];
+    return groupbit == 1u;
+  }
 
  private:
   double g_ = 0, acc_[3] = {0, 0, 0};

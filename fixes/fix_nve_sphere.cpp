@@ -17,14 +17,18 @@ class FixNveSphere : public Fix {
       if (a[i] != "update" && a[i] != "dipole" && a[i] != "disc") a.fail(i, "nothing (or update dipole/disc)");
   }
   // Half kick, then drift, in one pass over the atoms; fused (Simulation::run)
-  // with last step's final half kick before it and the force clear after it.
+  // with last step's final half kick (and gravity) before it and the force
+  // clear after it.
   void initial_integrate() override {
-    const unsigned m = kDrift | (fuse.final ? kFinalFirst : 0u) | (fuse.clear ? kClear : 0u);
+    const bool accel = fuse.final && fuse.accel;
+    const unsigned m = kDrift | (fuse.final ? kFinalFirst : 0u) | (fuse.clear ? kClear : 0u) | (accel ? kAccel : 0u);
     switch (m) {
       case kDrift: return integrate<kDrift>();
       case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>();
       case kDrift | kClear: return integrate<kDrift | kClear>();
-      default: return integrate<kDrift | kFinalFirst | kClear>();
+      case kDrift | kFinalFirst | kClear: return integrate<kDrift | kFinalFirst | kClear>();
+      case kDrift | kFinalFirst | kAccel: return integrate<kDrift | kFinalFirst | kAccel>();
+      default: return integrate<kDrift | kFinalFirst | kClear | kAccel>();
     }
   }
   void final_integrate() override { integrate<0>(); }
@@ -32,7 +36,7 @@ class FixNveSphere : public Fix {
   bool can_fuse() const override { return groupbit == 1u; }
 
  private:
-  static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4;
+  static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4, kAccel = 8;
 
   // Half-step velocity and spin update from force and torque (and the drift x += dt v).
   template <unsigned kMode>
@@ -40,7 +44,7 @@ class FixNveSphere : public Fix {
     Atoms& at = sim.atoms;
     const double dt = sim.dt, h = 0.5 * sim.dt;
     Arrays p{at.x.data(), at.v.data(), at.omega.data(), at.f.data(), at.torque.data(), at.rmass.data(),
-             at.radius.data()};
+             at.radius.data(), fuse.accel};
     const std::uint32_t* mask = at.mask.data();
     const std::uint32_t bit = groupbit;
     at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
@@ -60,15 +64,22 @@ class FixNveSphere : public Fix {
     double* __restrict t;
     const double* __restrict rmass;
     const double* __restrict radius;
+    const double* accel;  // kAccel: the folded gravity
   };
   // kFinalFirst: the same two additions as a final pass followed by an initial
-  // one (same forces, same order), so the same bits.
+  // one (same forces, same order), so the same bits; kAccel: gravity's addition
+  // to the force first, as its own pass would have made it.
   template <unsigned kMode>
   [[gnu::always_inline]] static inline void step(const Arrays& p, std::size_t i, double dt, double h) {
     const double m = p.rmass[i], r = p.radius[i];
     const double hm = h / m, hi = h / (0.4 * m * r * r);
     for (int k = 0; k < 3; ++k) {
-      const double f = p.f[3 * i + k], t = p.t[3 * i + k];
+      double f = p.f[3 * i + k];
+      const double t = p.t[3 * i + k];
+      if constexpr ((kMode & kAccel) != 0) {  // fix gravity's own addition, stored as it stores it
+        f += m * p.accel[k];
+        p.f[3 * i + k] = f;
+      }
       double v = p.v[3 * i + k], w = p.w[3 * i + k];
       if constexpr ((kMode & kFinalFirst) != 0) {
         v += hm * f;
