@@ -697,8 +697,7 @@ def scaling_table(rows):
         return "-" if m is None else "%.2f (%s)" % (m, ", ".join("%.2f" % q[k] for q in row["ratios"] if q[k]))
     h = ["case", "sable 2 / 1 threads", "two 1-thread sable jobs at once / one alone",
          "LIGGGHTS 2 / 1 MPI processes", "sable 1 thread / LIGGGHTS 1 process",
-         "sable 2 threads / LIGGGHTS 2 processes"]
-    h.append("core round trip, us (per repeat)")
+         "sable 2 threads / LIGGGHTS 2 processes", "core round trip, us (per repeat)"]
     md = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
     for row in rows:
         md.append("| " + " | ".join([row["case"]] + [cell(k, row) for k in keys] +
