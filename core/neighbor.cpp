@@ -9,7 +9,33 @@
 #include "core/domain.h"
 #include "core/threads.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace sable {
+
+int ContactStore::thread_slot() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+std::size_t ContactStore::slack() {
+#ifdef _OPENMP
+  const int nt = omp_get_max_threads();
+#else
+  const int nt = 1;
+#endif
+  return static_cast<std::size_t>(std::min(nt, kSlots)) * kBlock;
+}
+
+void ContactStore::set_used(int rows) {
+  used_ = rows;
+  for (int t = 0; t < kSlots; ++t) cursor_[t] = Cursor{};
+}
 
 void ContactStore::configure(const std::vector<HistorySlot>& s) {
   slots = s;
@@ -19,7 +45,7 @@ void ContactStore::configure(const std::vector<HistorySlot>& s) {
 }
 
 void ContactStore::reserve_rows(std::size_t rows) {
-  used_ = 0;
+  set_used(0);
   if (rows <= cap_ && buf_) return;
   cap_ = rows;
   buf_ = std::make_unique_for_overwrite<double[]>(std::max<std::size_t>(cap_ * size, 1));
@@ -29,21 +55,21 @@ void ContactStore::reserve_rows(std::size_t rows) {
 // as there are entries, which a rebuild usually comes well before.
 void ContactStore::resize(std::size_t entries) {
   row.assign(entries, kNone);
-  reserve_rows(2 * entries + 16);
+  reserve_rows(2 * entries + 16 + slack());
 }
 
 void ContactStore::make_room() {
   const std::size_t entries = row.size();
-  if (static_cast<std::size_t>(used_) + entries <= cap_) return;
+  if (static_cast<std::size_t>(used_) + entries + slack() <= cap_) return;
   std::vector<double> live;
   for (int& r : row)
     if (r >= 0) {
       live.insert(live.end(), buf_.get() + static_cast<std::size_t>(r) * size, buf_.get() + (r + 1ul) * size);
       r = static_cast<int>(live.size() / size) - 1;
     }
-  reserve_rows(std::max(2 * entries + 16, cap_));
+  reserve_rows(std::max(2 * entries + 16 + slack(), cap_));
   std::copy(live.begin(), live.end(), buf_.get());
-  used_ = static_cast<int>(live.size() / size);
+  set_used(static_cast<int>(live.size() / size));
 }
 
 std::size_t ContactStore::contacts() const {
@@ -165,7 +191,7 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
       }
     }
   }
-  used_ = base[nth];
+  set_used(base[nth]);
   saved_.clear();
 }
 

@@ -54,15 +54,30 @@ class ContactStore {
   void resize(std::size_t entries);
   double* rows() { return buf_.get(); }
   const double* history(std::size_t k) const { return row[k] < 0 ? nullptr : buf_.get() + row[k] * size; }
-  // A zeroed row for a contact that begins now (safe from several threads at once).
+  // A zeroed row for a contact that begins now (safe from several threads at
+  // once). Each thread takes its rows from its own block of kBlock: rows that
+  // two threads rewrite every step never share a cache line, and the shared
+  // counter moves once per block (a row each made them bounce between cores).
   int new_row() {
-    const int r = used_.fetch_add(1, std::memory_order_relaxed);
+    const int t = thread_slot();
+    int r;
+    if (t < kSlots) {
+      Cursor& c = cursor_[t];
+      if (c.next == c.end) {
+        c.next = used_.fetch_add(kBlock, std::memory_order_relaxed);
+        c.end = c.next + kBlock;
+      }
+      r = c.next++;
+    } else {
+      r = used_.fetch_add(1, std::memory_order_relaxed);
+    }
     for (int m = 0; m < size; ++m) buf_[static_cast<std::size_t>(r) * size + m] = 0.0;
     return r;
   }
   // Entry k starts a contact now; returns its (zeroed) history.
   double* begin_contact(std::size_t k) { return buf_.get() + (row[k] = new_row()) * static_cast<std::size_t>(size); }
-  // Before a force pass: room for one new contact per list entry (compacts when short).
+  // Before a force pass: room for one new contact per list entry, and a block
+  // per thread (compacts when short).
   void make_room();
   std::size_t contacts() const;  // entries in contact
   std::size_t rows_used() const { return static_cast<std::size_t>(used_); }
@@ -81,6 +96,14 @@ class ContactStore {
 
  private:
   void reserve_rows(std::size_t rows);  // capacity for `rows` rows; contents dropped
+  void set_used(int rows);              // rows taken; the threads' blocks are given up
+  static int thread_slot();             // the calling thread's cursor
+  static constexpr int kBlock = 64, kSlots = 64;  // rows per block; cursors (more threads share the counter)
+  static std::size_t slack();           // rows the threads' blocks may take beyond the new contacts
+  struct alignas(64) Cursor {
+    int next = 0, end = 0;  // the thread's free rows [next, end)
+  };
+  std::unique_ptr<Cursor[]> cursor_ = std::make_unique<Cursor[]>(kSlots);
   std::unique_ptr<double[]> buf_;       // not zeroed: new rows are zeroed when taken
   std::size_t cap_ = 0;                 // rows
   std::atomic<int> used_{0};            // rows taken

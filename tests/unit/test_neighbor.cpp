@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -13,6 +14,10 @@
 #include "core/atoms.h"
 #include "core/domain.h"
 #include "core/neighbor.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 using namespace sable;
 
@@ -265,3 +270,46 @@ TEST(ContactStore, CompactionKeepsEachEntrysHistory) {
   EXPECT_GT(compactions, 5);
   EXPECT_EQ(s.contacts(), static_cast<std::size_t>(std::count_if(expect.begin(), expect.end(), [](double v) { return v >= 0; })));
 }
+
+#ifdef _OPENMP
+// Two threads starting contacts in strict alternation (the worst case: with
+// one shared row counter every cache line of new rows would hold rows of both,
+// which both then rewrite at every step) get rows from blocks of their own:
+// distinct, zeroed, within capacity, and few cache lines shared.
+TEST(ContactStore, ThreadsTakeRowsInBlocksOfTheirOwn) {
+  ContactStore s;
+  s.configure({{"a", false}, {"b", true}, {"c", true}});
+  const std::size_t entries = 4000;
+  s.resize(entries);
+  s.make_room();
+  std::atomic<int> turn{0};
+#pragma omp parallel num_threads(2)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    for (std::size_t k = t; k < entries; k += 2) {
+      while (nt == 2 && turn.load() % 2 != t) {
+      }
+      double* h = s.begin_contact(k);
+      EXPECT_TRUE(h[0] == 0.0 && h[1] == 0.0 && h[2] == 0.0);
+      h[0] = h[1] = h[2] = static_cast<double>(k);
+      turn.fetch_add(1);
+    }
+  }
+  EXPECT_LE(s.rows_used(), s.capacity());
+  std::set<int> rows;
+  std::set<std::uintptr_t> lines[2];  // 64-byte lines each thread's rows touch
+  for (std::size_t k = 0; k < entries; ++k) {
+    ASSERT_GE(s.row[k], 0);
+    rows.insert(s.row[k]);
+    const double* h = s.history(k);
+    EXPECT_EQ(h[2], static_cast<double>(k));  // no row written by two contacts
+    for (int m = 0; m < 3; ++m) lines[k % 2].insert(reinterpret_cast<std::uintptr_t>(h + m) / 64);
+  }
+  EXPECT_EQ(rows.size(), entries);
+  std::size_t shared = 0;
+  for (std::uintptr_t l : lines[0]) shared += lines[1].count(l);
+  // At most the two ends of each block; alternating single rows shared ~all of
+  // the 1500 lines.
+  EXPECT_LE(shared, 2 * (s.rows_used() / 64 + 1)) << "of " << lines[0].size() << " lines";
+}
+#endif
