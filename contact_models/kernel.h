@@ -79,6 +79,7 @@ struct PairBatch {
   std::uint32_t groupbit = ~0u;           // records: both grains must be in this group
   long list_version = -1;                 // changes whenever the list is rebuilt (thread partition cache)
   AtomSplit* split = nullptr;             // receives the threads' atom ranges (per-atom passes follow them)
+  const RangeTail* tail = nullptr;        // run on each range once its forces are final (Pair::compute_then)
   int span = 0;                           // NeighborList::span: j <= i + span (without image shift)
   // LIGGGHTS 3.8 mode (pair_gran.h): a separated pair keeps its history until
   // the first force pass after a neighbour rebuild (`rebuilt`), then loses it.
@@ -94,6 +95,7 @@ struct WallBatch {
   const double* deltan = nullptr;  // overlap
   const double* en = nullptr;      // 3 per contact: unit normal, wall -> particle centre
   const double* vwall = nullptr;   // 3 per contact: wall velocity at the contact
+  double* force = nullptr;         // out, 3 per contact: force on the grain
   double* hist = nullptr;          // history of contact k at hist + hist_index[k] * hist_stride
   const int* hist_index = nullptr;
   int hist_stride = 0;
@@ -309,7 +311,7 @@ class ContactKernel {
   virtual void pair_records(const PairBatch& b, ContactRecords& out) = 0;
   // Adds forces to the grains; returns the summed force on the grains. Called
   // concurrently on batches with disjoint grains (FixWallGran's blocks).
-  virtual Vec3 wall_forces(const WallBatch& b) = 0;
+  virtual void wall_forces(const WallBatch& b) = 0;
   virtual void wall_records(const WallBatch& b, ContactRecords& out) = 0;
   virtual double contact_time(const ContactTimeInput& in) const = 0;
 };
@@ -349,7 +351,7 @@ class GranKernel final : public ContactKernel {
     out.hist_size = kH;
     pair_loop<true>(b, &out);
   }
-  Vec3 wall_forces(const WallBatch& b) override { return wall_forces_staged(b); }
+  void wall_forces(const WallBatch& b) override { wall_forces_staged(b); }
   void wall_records(const WallBatch& b, ContactRecords& out) override {
     out.clear();
     out.hist_size = kH;
@@ -481,6 +483,7 @@ class GranKernel final : public ContactKernel {
       if (b.split) b.split->n = 0;
       Chunk ch;
       pair_range(b, 0, static_cast<int>(b.a.n), nullptr, 0, ch);
+      if (b.tail) for_atom_ranges(b.split ? *b.split : AtomSplit{}, b.a.n, *b.tail);  // equal ranges
       return;
     }
 #ifdef _OPENMP
@@ -517,6 +520,7 @@ class GranKernel final : public ContactKernel {
         const double t0 = omp_get_wtime();
         apply_incoming(b, pp, t);
         pair_range(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
+        if (b.tail) (*b.tail)(t, static_cast<std::size_t>(pp.lo[t]), static_cast<std::size_t>(pp.lo[t + 1]));
         const double dt = omp_get_wtime() - t0;
         pp.busy[t] += dt;
         busy += dt;
@@ -1167,10 +1171,9 @@ class GranKernel final : public ContactKernel {
   }
 
   // Wall contacts: gathered into columns and evaluated like pair contacts
-  // (stage 2 above); forces added to the grains and summed in contact order.
-  Vec3 wall_forces_staged(const WallBatch& b) {
+  // (stage 2 above); forces added to the grains and written to b.force.
+  void wall_forces_staged(const WallBatch& b) {
     const AtomView& a = b.a;
-    double sum[3] = {0, 0, 0};
     WallChunk<kH> ch;
     ch.tp0 = a.stride > 2 ? -1 : a.stride + b.wall_type;  // one atom type (1): one type pair
     for (std::size_t k0 = 0; k0 < b.n; k0 += WallChunk<kH>::kCap) {
@@ -1202,7 +1205,7 @@ class GranKernel final : public ContactKernel {
         for (int d = 0; d < 3; ++d) {
           a.f[3 * i + d] += ch.f[d][m];
           a.torque[3 * i + d] += ch.ti[d][m];
-          sum[d] += ch.f[d][m];
+          b.force[3 * k + d] = ch.f[d][m];
         }
         if constexpr (kH > 0)
           if (b.ctx.update) {
@@ -1211,7 +1214,6 @@ class GranKernel final : public ContactKernel {
           }
       }
     }
-    return {sum[0], sum[1], sum[2]};
   }
 
   // Per-contact records of wall contacts (compute wall/gran/local); history is copied, never written.

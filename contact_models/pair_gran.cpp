@@ -87,8 +87,11 @@ static bool list_usable(const Simulation& sim) {
   return !first.empty() && first.size() - 1 <= sim.atoms.n;
 }
 
-void PairGran::compute() {
-  if (!list_usable(sim)) return;
+void PairGran::compute_then(const RangeTail& tail) {
+  if (!list_usable(sim)) {
+    if (tail) sim.atoms.for_ranges(tail);
+    return;
+  }
   if (history()) store_.make_room();  // before batch(): it may move the rows
   PairBatch b = batch();
   b.ctx.update = !setup_pass_;
@@ -96,6 +99,7 @@ void PairGran::compute() {
   b.keep_until_rebuild = keep_history_until_rebuild_;
   b.rebuilt = sim.neighbor.builds != last_builds_;
   last_builds_ = sim.neighbor.builds;
+  b.tail = tail ? &tail : nullptr;
   kernel_->pair_forces(b);
 }
 

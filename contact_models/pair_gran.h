@@ -29,7 +29,8 @@ class PairGran : public Pair {
   PairGran(Simulation& sim, const Args& args);
   void coeff(const Args& args) override;
   void init() override;
-  void compute() override;
+  void compute() override { compute_then(RangeTail{}); }
+  void compute_then(const RangeTail& tail) override;
   ContactStore* history() override { return kernel_->history_slots().empty() ? nullptr : &store_; }
   double contact_time(std::size_t i, std::size_t j, double v) const override;
   double rayleigh_time(std::size_t i) const override;

@@ -75,6 +75,20 @@ class Fix {
   // integrator's (Fusion::accel): one pass over the grains fewer.
   virtual bool uniform_acceleration(double /*a*/[3]) const { return false; }
 
+  // Pipelining (Simulation::run): a post_force that treats every atom on its
+  // own says post_force_ranged(); the run may then call post_force_prepare()
+  // serially, post_force_range(t, lo, hi) inside the force pass on each
+  // thread's atoms as soon as their pair forces are final
+  // (Pair::compute_then), and post_force_finish() serially after it: the same
+  // additions to each atom, in the same order, as post_force().
+  virtual bool post_force_ranged() const { return false; }
+  virtual void post_force_prepare() {}
+  virtual void post_force_range(int /*t*/, std::size_t /*lo*/, std::size_t /*hi*/) {}
+  virtual void post_force_finish() {}
+  // A fusing integrator's initial pass (with the `fuse` settings) on the atoms
+  // [lo, hi) only, run there too on steps whose final half kick is deferred.
+  virtual void initial_integrate_range(int /*t*/, std::size_t /*lo*/, std::size_t /*hi*/) {}
+
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }
   // Acceleration this fix imposes on free grains (gravity), for the speed estimate.

@@ -139,6 +139,8 @@ class Neighbor {
   std::vector<long> ids_;  // atom ids at the last build, to read the old list
   double cutoff_ = 0.0;
   std::vector<int> bin_of_, bin_start_, bin_atoms_;
+  int slow_axis_ = -1;  // slowest-varying bin axis at the last build
+  int pick_slow_axis(const Atoms& atoms, const Domain& domain, const int nb[3], const double inv[3]);
   struct alignas(64) ScanBlock {
     std::vector<int> j;
     std::vector<std::uint8_t> shift;

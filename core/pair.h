@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/args.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -18,6 +19,12 @@ class Pair {
   virtual void coeff(const Args& args) = 0;   // pair_coeff
   virtual void init() = 0;                    // derive per-type tables, check properties
   virtual void compute() = 0;                 // add contact forces and torques
+  // compute(), then tail(t, lo, hi) on each thread range of Atoms::split, run
+  // by the thread that computed the range's forces as soon as they are final:
+  // per-atom work that follows the force pass stays on the core whose cache
+  // holds those atoms, with no wait for the other threads in between. The
+  // default runs compute() and then the ranges.
+  virtual void compute_then(const RangeTail& tail);
   virtual ContactStore* history() { return nullptr; }
   // Shortest contact duration for the time-step check, for atoms i and j touching at speed v.
   virtual double contact_time(std::size_t i, std::size_t j, double v) const = 0;

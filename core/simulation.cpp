@@ -373,6 +373,18 @@ void Simulation::run(long nsteps) {
     return true;
   };
   bool deferred = false;  // last step's final half kick is still to do
+  // Pipelining, when fused and every post_force fix is ranged: each thread
+  // runs the post_force fixes on its own atoms inside the force pass as soon
+  // as their pair forces are final (Pair::compute_then) and, when the final
+  // half kick is deferred, the next step's fused initial pass too. One
+  // parallel region per step instead of four; the threads' uneven shares of
+  // the passes add up to one wait; the atoms are still in the core's cache.
+  // Every atom sees the same operations in the same order: the same bits.
+  bool ranged = fused && pair;
+  for (Fix* f : hook[3]) ranged = ranged && f->post_force_ranged();
+  bool pre_integrated = false;  // this step's initial pass ran in the last force pass
+  std::vector<Fix*> tail_fixes;
+  double tail_fix_s = 0.0, tail_int_s = 0.0;  // thread 0's seconds in them (time split)
 
   while (step < run_last) {
     ++step;
@@ -380,19 +392,46 @@ void Simulation::run(long nsteps) {
     tic = clock::now();
     if (fused) fused->fuse = {deferred, clear_in_integrate, deferred && folded ? accel : nullptr};
     deferred = false;
-    for (Fix* f : hook[0]) f->initial_integrate();
+    if (!pre_integrated)
+      for (Fix* f : hook[0]) f->initial_integrate();
+    pre_integrated = false;
     for (Fix* f : hook[1]) f->post_integrate();
     lap(timers.integrate);
     rebuild_if_due();
     lap(timers.neigh);
     for (Fix* f : hook[2]) f->pre_force();
     if (!clear_in_integrate) clear_forces_threaded(atoms);
-    if (pair) pair->compute();
-    lap(timers.pair);
     deferred = fused && quiet(step);
-    for (Fix* f : hook[3])
-      if (!(deferred && f == folded)) f->post_force();
-    lap(timers.fixes);
+    if (ranged) {
+      tail_fixes.clear();
+      for (Fix* f : hook[3])
+        if (!(deferred && f == folded)) tail_fixes.push_back(f);
+      for (Fix* f : tail_fixes) f->post_force_prepare();
+      if (deferred) fused->fuse = {true, clear_in_integrate, folded ? accel : nullptr};  // next step's pass
+      tail_fix_s = tail_int_s = 0.0;
+      pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
+        const auto t0 = t == 0 ? clock::now() : clock::time_point{};
+        for (Fix* f : tail_fixes) f->post_force_range(t, lo, hi);
+        const auto t1 = t == 0 ? clock::now() : clock::time_point{};
+        if (deferred) fused->initial_integrate_range(t, lo, hi);
+        if (t == 0) {
+          tail_fix_s += std::chrono::duration<double>(t1 - t0).count();
+          tail_int_s += std::chrono::duration<double>(clock::now() - t1).count();
+        }
+      });
+      for (Fix* f : tail_fixes) f->post_force_finish();
+      pre_integrated = deferred;
+      lap(timers.pair);
+      timers.pair -= tail_fix_s + tail_int_s;  // thread 0's share, as the time split counts
+      timers.fixes += tail_fix_s;
+      timers.integrate += tail_int_s;
+    } else {
+      if (pair) pair->compute();
+      lap(timers.pair);
+      for (Fix* f : hook[3])
+        if (!(deferred && f == folded)) f->post_force();
+      lap(timers.fixes);
+    }
     fused_steps += deferred;
     folded_steps += deferred && folded;
     if (!deferred)

@@ -8,6 +8,7 @@
 #include "core/dump.h"
 #include "core/error.h"
 #include "core/fix.h"
+#include "core/pair.h"
 #include "core/region.h"
 #include "core/simulation.h"
 
@@ -17,6 +18,11 @@ static int group_arg(Simulation& sim, const Args& a, std::size_t i) {
   const int g = sim.groups.find(a.word(i, "a group ID"));
   if (g < 0) a.fail(i, "an existing group ID (define it with 'group' first)");
   return g;
+}
+
+void Pair::compute_then(const RangeTail& tail) {
+  compute();
+  sim.atoms.for_ranges(tail);
 }
 
 Fix::Fix(Simulation& s, const Args& a) : sim(s), args(a) {

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdio>
+#include <functional>
 #include <vector>
 
 #ifdef _OPENMP
@@ -100,10 +101,13 @@ class PairTrace {
   std::FILE* out_;
 };
 
+// Per-atom work on the atoms [lo, hi) of thread t's range (Pair::compute_then).
+using RangeTail = std::function<void(int t, std::size_t lo, std::size_t hi)>;
+
 // Runs body(t, lo, hi) once per thread t on its range [lo, hi) of the n atoms
 // (one call, t = 0, over all of them when the pass is not threaded).
 template <class Body>
-void for_atom_ranges(const AtomSplit& split, std::size_t n, Body&& body) {
+void for_atom_ranges([[maybe_unused]] const AtomSplit& split, std::size_t n, Body&& body) {
 #ifdef _OPENMP
   if (atom_pass_threaded(n)) {
     ThreadBalance& tb = thread_balance(PassKind::Atoms);

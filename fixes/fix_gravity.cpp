@@ -22,6 +22,10 @@ class FixGravity : public Fix {
     for (int k = 0; k < 3; ++k) acc_[k] = g_ * d[k] / std::sqrt(n);
   }
   void post_force() override {
+    sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
+  }
+  bool post_force_ranged() const override { return true; }
+  void post_force_range(int, std::size_t lo, std::size_t hi) override {
     Atoms& at = sim.atoms;
     double* f = at.f.data();
     const double* rmass = at.rmass.data();
@@ -29,14 +33,12 @@ class FixGravity : public Fix {
     const std::uint32_t bit = groupbit;
     const bool all = bit == 1u;  // group all: the mask test leaves the loop, which vectorises
     const double a0 = acc_[0], a1 = acc_[1], a2 = acc_[2];
-    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        if (!all && !(mask[i] & bit)) continue;
-        f[3 * i] += rmass[i] * a0;
-        f[3 * i + 1] += rmass[i] * a1;
-        f[3 * i + 2] += rmass[i] * a2;
-      }
-    });
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!all && !(mask[i] & bit)) continue;
+      f[3 * i] += rmass[i] * a0;
+      f[3 * i + 1] += rmass[i] * a1;
+      f[3 * i + 2] += rmass[i] * a2;
+    }
   }
   double acceleration() const override { return std::fabs(g_); }
   bool uniform_acceleration(double a[3]) const override {

@@ -20,41 +20,45 @@ class FixNveSphere : public Fix {
   // with last step's final half kick (and gravity) before it and the force
   // clear after it.
   void initial_integrate() override {
+    sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { initial_integrate_range(t, lo, hi); });
+  }
+  void initial_integrate_range(int, std::size_t lo, std::size_t hi) override {
     const bool accel = fuse.final && fuse.accel;
     const unsigned m = kDrift | (fuse.final ? kFinalFirst : 0u) | (fuse.clear ? kClear : 0u) | (accel ? kAccel : 0u);
     switch (m) {
-      case kDrift: return integrate<kDrift>();
-      case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>();
-      case kDrift | kClear: return integrate<kDrift | kClear>();
-      case kDrift | kFinalFirst | kClear: return integrate<kDrift | kFinalFirst | kClear>();
-      case kDrift | kFinalFirst | kAccel: return integrate<kDrift | kFinalFirst | kAccel>();
-      default: return integrate<kDrift | kFinalFirst | kClear | kAccel>();
+      case kDrift: return integrate<kDrift>(lo, hi);
+      case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>(lo, hi);
+      case kDrift | kClear: return integrate<kDrift | kClear>(lo, hi);
+      case kDrift | kFinalFirst | kClear: return integrate<kDrift | kFinalFirst | kClear>(lo, hi);
+      case kDrift | kFinalFirst | kAccel: return integrate<kDrift | kFinalFirst | kAccel>(lo, hi);
+      default: return integrate<kDrift | kFinalFirst | kClear | kAccel>(lo, hi);
     }
   }
-  void final_integrate() override { integrate<0>(); }
+  void final_integrate() override {
+    sim.atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) { integrate<0>(lo, hi); });
+  }
   // Fusion needs every atom integrated (the clear must reach them all).
   bool can_fuse() const override { return groupbit == 1u; }
 
  private:
   static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4, kAccel = 8;
 
-  // Half-step velocity and spin update from force and torque (and the drift x += dt v).
+  // Half-step velocity and spin update from force and torque (and the drift
+  // x += dt v) of the atoms [lo, hi).
   template <unsigned kMode>
-  void integrate() {
+  void integrate(std::size_t lo, std::size_t hi) {
     Atoms& at = sim.atoms;
     const double dt = sim.dt, h = 0.5 * sim.dt;
     Arrays p{at.x.data(), at.v.data(), at.omega.data(), at.f.data(), at.torque.data(), at.rmass.data(),
              at.radius.data(), fuse.accel};
     const std::uint32_t* mask = at.mask.data();
     const std::uint32_t bit = groupbit;
-    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
-      if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
-        for (std::size_t i = lo; i < hi; ++i) step<kMode>(p, i, dt, h);
-      } else {
-        for (std::size_t i = lo; i < hi; ++i)
-          if (mask[i] & bit) step<kMode>(p, i, dt, h);
-      }
-    });
+    if (bit == 1u) {  // group all (bit 0): every atom, a loop without a test (vectorised)
+      for (std::size_t i = lo; i < hi; ++i) step<kMode>(p, i, dt, h);
+    } else {
+      for (std::size_t i = lo; i < hi; ++i)
+        if (mask[i] & bit) step<kMode>(p, i, dt, h);
+    }
   }
   struct Arrays {
     double* __restrict x;

@@ -104,6 +104,8 @@ double FixWallGran::max_speed() const {
 
 void FixWallGran::Staged::clear() {
   atom.clear();
+  place.clear();
+  force.clear();
   deltan.clear();
   en.clear();
   vwall.clear();
@@ -152,9 +154,10 @@ bool FixWallGran::geometry(std::size_t i, const Now& w, double n[3], double vw[3
 
 void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, const Now& w, Staged& out) const {
   const Atoms& at = sim.atoms;
-  auto add = [&](std::size_t i, const double n[3], const double vw[3], double dist, double overlap) {
+  auto add = [&](std::size_t c, std::size_t i, const double n[3], const double vw[3], double dist, double overlap) {
     const double* x = &at.x[3 * i];
     out.atom.push_back(static_cast<int>(i));
+    out.place.push_back(static_cast<int>(c));
     out.deltan.push_back(overlap);
     for (int k = 0; k < 3; ++k) {
       out.en.push_back(n[k]);
@@ -174,7 +177,7 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
       if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
       double n[3], vw[3], dist = 0.0;
       geometry(i, w, n, vw, dist);
-      add(i, n, vw, dist, at.radius[i] - dist);
+      add(c, i, n, vw, dist, at.radius[i] - dist);
     }
     return;
   }
@@ -191,7 +194,7 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
     double n[3], vw[3], dist = 0.0;
     if (!geometry(i, w, n, vw, dist)) continue;
     const double overlap = at.radius[i] - dist;
-    if (overlap > 0.0) add(i, n, vw, dist, overlap);
+    if (overlap > 0.0) add(c, i, n, vw, dist, overlap);
   }
 }
 
@@ -302,31 +305,66 @@ WallBatch FixWallGran::batch(const Staged& st) {
   return b;
 }
 
-// Blocks touch disjoint grains (near_ holds each grain once), so they can run
-// on any thread; ContactKernel::wall_forces keeps no state between calls.
+// Each thread searches and evaluates the near grains of its own atoms (the
+// ranges of the pair pass and the integrator): a grain's state, forces and
+// wall history stay in the cache of the core that integrates it. (Blocks of
+// the near list run on any thread made the integrator fetch every wall
+// grain's lines from the other core at each step.)
 void FixWallGran::post_force() {
+  post_force_prepare();
+  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
+  post_force_finish();
+}
+
+void FixWallGran::post_force_prepare() {
   refresh_near();
-  const Now w = now();
-  const bool update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
+  pass_now_ = now();
+  pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
+  const std::size_t parts = static_cast<std::size_t>(atom_pass_threads());
+  if (parts_.size() < parts) parts_.resize(parts);
+  for (auto& p : parts_) p.clear();
+}
+
+void FixWallGran::post_force_range(int t, std::size_t lo, std::size_t hi) {
+  const auto c0 = std::lower_bound(near_.begin(), near_.end(), static_cast<int>(lo)) - near_.begin();
+  const auto c1 = std::lower_bound(near_.begin(), near_.end(), static_cast<int>(hi)) - near_.begin();
+  Staged& st = parts_[t];
+  collect(static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), ~0u, pass_now_, st);
+  st.force.resize(3 * st.atom.size());
+  WallBatch b = batch(st);
+  b.force = st.force.data();
+  b.ctx.update = pass_update_;
+  kernel_->wall_forces(b);
+}
+
+void FixWallGran::post_force_finish() {
+  atoms_now_.clear();
+  for (const Staged& p : parts_) atoms_now_.insert(atoms_now_.end(), p.atom.begin(), p.atom.end());
+  if (hist_col_ >= 0) forget_departed(pass_now_);
+  sum_force(parts_.size());
+}
+
+// Per block of ThreadSettings::wall_block near grains, the contacts' forces in
+// order; then the blocks' sums in order: bits independent of the threads.
+void FixWallGran::sum_force(std::size_t parts) {
   const std::size_t block = std::max<std::size_t>(thread_settings().wall_block, 1);
   const std::size_t nb = (near_.size() + block - 1) / block;
-  if (blocks_.size() < nb) blocks_.resize(nb);
-  const auto on_grains = block_sum3(near_.size(), block, 128, [&](std::size_t k, std::size_t lo, std::size_t hi, double* sum) {
-    Staged& st = blocks_[k];
-    st.clear();
-    collect(lo, hi, ~0u, w, st);
-    WallBatch b = batch(st);
-    b.ctx.update = update;
-    const Vec3 f = kernel_->wall_forces(b);
-    sum[0] = f.x;
-    sum[1] = f.y;
-    sum[2] = f.z;
-  });
-  atoms_now_.clear();
-  for (std::size_t k = 0; k < nb; ++k) atoms_now_.insert(atoms_now_.end(), blocks_[k].atom.begin(), blocks_[k].atom.end());
-  if (hist_col_ >= 0) forget_departed(w);
-  for (int k = 0; k < 3; ++k) force_[k] = 0.0 - on_grains[k];  // (0.0 - x, not -x: no "-0" in thermo output)
+  double total[3] = {0.0, 0.0, 0.0}, part[3] = {0.0, 0.0, 0.0};
+  std::size_t k = 0;  // block of `part`
+  auto flush_to = [&](std::size_t upto) {
+    for (; k < upto; ++k)
+      for (int d = 0; d < 3; ++d) total[d] += part[d], part[d] = 0.0;
+  };
+  for (std::size_t t = 0; t < parts; ++t) {
+    const Staged& p = parts_[t];
+    for (std::size_t c = 0; c < p.atom.size(); ++c) {
+      flush_to(static_cast<std::size_t>(p.place[c]) / block);
+      for (int d = 0; d < 3; ++d) part[d] += p.force[3 * c + d];
+    }
+  }
+  flush_to(nb);
+  for (int d = 0; d < 3; ++d) force_[d] = 0.0 - total[d];  // (0.0 - x, not -x: no "-0" in thermo output)
 }
 
 void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {

@@ -27,6 +27,10 @@ class FixWallGran : public Fix {
   FixWallGran(Simulation& sim, const Args& args);
   void init() override;
   void post_force() override;
+  bool post_force_ranged() const override { return true; }
+  void post_force_prepare() override;
+  void post_force_range(int t, std::size_t lo, std::size_t hi) override;
+  void post_force_finish() override;
   double compute_vector(int i) override;  // 1..3: force on the wall
   double max_speed() const override;
 
@@ -53,23 +57,23 @@ class FixWallGran : public Fix {
   bool check_all_ = true;  // next forget_departed looks at every grain (first pass of a run)
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
-  // Overlapping grains found by one search: atom index, overlap, unit normal,
-  // wall velocity and wall point per contact. Own cache lines: neighbouring
-  // blocks grow their vectors on different threads.
+  // Overlapping grains found by one search: atom index, its place in the near
+  // list, overlap, unit normal, wall velocity, wall point and (force pass)
+  // force per contact. Own cache lines: each thread grows its own.
   struct alignas(64) Staged {
-    std::vector<int> atom;
-    std::vector<double> deltan, en, vwall, point;
+    std::vector<int> atom, place;
+    std::vector<double> deltan, en, vwall, point, force;
     void clear();
   };
-  // Wall position along its normal and normal velocity at this step (wiggle).
+  // Wall position along its normal and normal velocity at this step (wiggle): Now.
+  // The force pass: each thread's contacts (Atoms::split ranges, in order),
+  // the wall's state and whether history is updated.
+  std::vector<Staged> parts_;
   struct Now {
     double pos, vnormal;
   };
-  // The force pass searches and evaluates fixed blocks of the near list (in
-  // parallel when large): each block's force sum is kept apart and the sums
-  // are added in block order, so the result does not depend on the threads
-  // (block size: ThreadSettings::wall_block).
-  std::vector<Staged> blocks_;
+  Now pass_now_{0.0, 0.0};
+  bool pass_update_ = true;
   Staged records_;  // the contacts of the last records() call
   // Contacts of the last force pass (atom indices), valid while no rebuild or insertion changed the indices.
   std::vector<int> prev_atoms_, atoms_now_;
@@ -91,6 +95,8 @@ class FixWallGran : public Fix {
   // Zeroes the history of the grains that left the wall since the last force pass.
   void forget_departed(const Now& w);
   WallBatch batch(const Staged& s);
+  // The total force on the grains, summed in fixed blocks of the near list.
+  void sum_force(std::size_t parts);
 };
 
 }  // namespace sable

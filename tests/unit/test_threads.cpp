@@ -281,8 +281,10 @@ TEST(Threads, BalanceCountsEveryThreadedPass) {
   const sable::ThreadBalance& p = sable::thread_balance(sable::PassKind::Pair);
   const sable::ThreadBalance& a = sable::thread_balance(sable::PassKind::Atoms);
   EXPECT_EQ(p.calls, 1500);  // one per step (the setup pass is before the count starts)
-  EXPECT_GE(a.calls, 2 * 1500 - 10);  // fused integrate (with gravity) and displacement check per step
-  EXPECT_LT(a.calls, 3 * 1500 - 10);  // no gravity pass of its own on fused steps
+  // The displacement check per step; the fused integrate (with gravity) runs
+  // in the pair pass's ranges (pipelining), apart only around output steps.
+  EXPECT_GE(a.calls, 1500 - 10) << a.calls;
+  EXPECT_LT(a.calls, 1500 + 150) << a.calls;
   for (const sable::ThreadBalance* b : {&p, &a}) {
     ASSERT_EQ(b->busy.size(), 2u);
     for (double s : b->busy) {
