@@ -195,49 +195,72 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   saved_.clear();
 }
 
+static double max_of_parts(const std::vector<double>& part);
+
 bool Neighbor::decide(const Atoms& atoms, long step) {
   if (last_build_step < 0 || xhold_.size() != 3 * atoms.n) return true;
   const long since = step - last_build_step;
   if (since < delay || (every > 0 && since % every != 0)) return false;
   if (!check) return true;
   positions_scanned_step = step;
-  return !(max_displacement_sq(atoms) <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
+  const bool ahead = prescan_.step == step && prescan_.n == atoms.n;  // announced for this step
+  const double d2 = ahead ? max_of_parts(prescan_.part) : max_displacement_sq(atoms);
+  prescan_.step = -1;
+  return !(d2 <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
 }
 
-double Neighbor::max_displacement_sq(const Atoms& atoms) const {
-  const double* x = atoms.x.data();
-  const double* xh = xhold_.data();
-  // A maximum does not depend on the order: threads and SIMD give the same value.
-  // A non-finite position gives NaN (a comparison alone would skip it). Kept
-  // in kLanes independent lanes: one chain of dependent maxima and sums made
-  // this pass latency-bound.
+// The largest squared displacement since the last build over atoms [lo, hi).
+// A maximum does not depend on the order: threads and SIMD give the same value.
+// A non-finite position gives NaN (a comparison alone would skip it). Kept in
+// kLanes independent lanes: one chain of dependent maxima and sums made this
+// pass latency-bound.
+static double range_max_displacement_sq(const double* x, const double* xh, std::size_t lo, std::size_t hi) {
   constexpr long kLanes = 8;
-  std::vector<double> part(atom_pass_threads(), 0.0);
-  atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
-    double ml[kLanes] = {}, nl[kLanes] = {};
-    auto lane = [&](long l, long i) {
-      const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
-      const double d2 = dx * dx + dy * dy + dz * dz;
-      ml[l] = d2 > ml[l] ? d2 : ml[l];
-      nl[l] += d2 - d2;  // 0, or NaN for an infinite or NaN d2
-    };
-    long i = static_cast<long>(lo);
-    for (; i + kLanes <= static_cast<long>(hi); i += kLanes)
-      for (long l = 0; l < kLanes; ++l) lane(l, i + l);
-    for (; i < static_cast<long>(hi); ++i) lane(0, i);
-    double m = 0.0, nan = 0.0;
-    for (long l = 0; l < kLanes; ++l) {
-      m = ml[l] > m ? ml[l] : m;
-      nan += nl[l];
-    }
-    part[t] = m + nan;
-  });
+  double ml[kLanes] = {}, nl[kLanes] = {};
+  auto lane = [&](long l, long i) {
+    const double dx = x[3 * i] - xh[3 * i], dy = x[3 * i + 1] - xh[3 * i + 1], dz = x[3 * i + 2] - xh[3 * i + 2];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    ml[l] = d2 > ml[l] ? d2 : ml[l];
+    nl[l] += d2 - d2;  // 0, or NaN for an infinite or NaN d2
+  };
+  long i = static_cast<long>(lo);
+  for (; i + kLanes <= static_cast<long>(hi); i += kLanes)
+    for (long l = 0; l < kLanes; ++l) lane(l, i + l);
+  for (; i < static_cast<long>(hi); ++i) lane(0, i);
+  double m = 0.0, nan = 0.0;
+  for (long l = 0; l < kLanes; ++l) {
+    m = ml[l] > m ? ml[l] : m;
+    nan += nl[l];
+  }
+  return m + nan;
+}
+
+// The ranges' maxima: the largest, or NaN if any is.
+static double max_of_parts(const std::vector<double>& part) {
   double m = 0.0, nan = 0.0;
   for (double p : part) {
     m = p > m ? p : m;
     nan += p - p;
   }
   return m + nan;
+}
+
+double Neighbor::max_displacement_sq(const Atoms& atoms) const {
+  const double* x = atoms.x.data();
+  const double* xh = xhold_.data();
+  std::vector<double> part(atom_pass_threads(), 0.0);
+  atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { part[t] = range_max_displacement_sq(x, xh, lo, hi); });
+  return max_of_parts(part);
+}
+
+void Neighbor::expect_prescan(const Atoms& atoms, long step) {
+  prescan_.step = xhold_.size() == 3 * atoms.n ? step : -1;
+  prescan_.n = atoms.n;
+  prescan_.part.assign(atom_pass_threads(), 0.0);
+}
+
+void Neighbor::prescan_range(const Atoms& atoms, int t, std::size_t lo, std::size_t hi) {
+  if (prescan_.step >= 0) prescan_.part[t] = range_max_displacement_sq(atoms.x.data(), xhold_.data(), lo, hi);
 }
 
 // One atom's entries by partner index, then image code (insertion sort: a

@@ -130,6 +130,12 @@ class Neighbor {
   // one there forces a rebuild, which checks the atoms).
   long positions_scanned_step = -1;
   double max_displacement_sq(const Atoms& atoms) const;
+  // The check's scan done ahead, range by range, by the threads that just
+  // moved those atoms (Simulation::run's pipelined step): expect_prescan()
+  // announces it for `step` (serially), prescan_range() scans [lo, hi) on
+  // thread t; decide() at that step then uses it instead of its own pass.
+  void expect_prescan(const Atoms& atoms, long step);
+  void prescan_range(const Atoms& atoms, int t, std::size_t lo, std::size_t hi);
   double cutoff() const { return cutoff_; }
   // Atom ids in index order at the last build: how to read `list` after atoms moved.
   const std::vector<long>& built_ids() const { return ids_; }
@@ -140,6 +146,11 @@ class Neighbor {
   double cutoff_ = 0.0;
   std::vector<int> bin_of_, bin_start_, bin_atoms_;
   int slow_axis_ = -1;  // slowest-varying bin axis at the last build
+  struct {
+    long step = -1;  // the step it is for (-1: none)
+    std::size_t n = 0;
+    std::vector<double> part;  // per range
+  } prescan_;
   int pick_slow_axis(const Atoms& atoms, const Domain& domain, const int nb[3], const double inv[3]);
   struct alignas(64) ScanBlock {
     std::vector<int> j;

@@ -407,13 +407,17 @@ void Simulation::run(long nsteps) {
       for (Fix* f : hook[3])
         if (!(deferred && f == folded)) tail_fixes.push_back(f);
       for (Fix* f : tail_fixes) f->post_force_prepare();
-      if (deferred) fused->fuse = {true, clear_in_integrate, folded ? accel : nullptr};  // next step's pass
+      // next step's pass, and its rebuild check's scan (nothing moves atoms in between)
+      if (deferred) fused->fuse = {true, clear_in_integrate, folded ? accel : nullptr};
+      const bool prescan = deferred && hook[1].empty();
+      if (prescan) neighbor.expect_prescan(atoms, step + 1);
       tail_fix_s = tail_int_s = 0.0;
       pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
         const auto t0 = t == 0 ? clock::now() : clock::time_point{};
         for (Fix* f : tail_fixes) f->post_force_range(t, lo, hi);
         const auto t1 = t == 0 ? clock::now() : clock::time_point{};
         if (deferred) fused->initial_integrate_range(t, lo, hi);
+        if (prescan) neighbor.prescan_range(atoms, t, lo, hi);
         if (t == 0) {
           tail_fix_s += std::chrono::duration<double>(t1 - t0).count();
           tail_int_s += std::chrono::duration<double>(clock::now() - t1).count();
