@@ -309,8 +309,8 @@ class ContactKernel {
   virtual const std::vector<HistorySlot>& history_slots() const = 0;
   virtual void pair_forces(const PairBatch& b) = 0;
   virtual void pair_records(const PairBatch& b, ContactRecords& out) = 0;
-  // Adds forces to the grains; returns the summed force on the grains. Called
-  // concurrently on batches with disjoint grains (FixWallGran's blocks).
+  // Adds forces to the grains and writes each contact's force to b.force.
+  // Called concurrently on batches with disjoint grains (FixWallGran's ranges).
   virtual void wall_forces(const WallBatch& b) = 0;
   virtual void wall_records(const WallBatch& b, ContactRecords& out) = 0;
   virtual double contact_time(const ContactTimeInput& in) const = 0;

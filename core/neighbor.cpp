@@ -280,21 +280,24 @@ static void sort_entries(int* j, std::uint8_t* shift, std::size_t n) {
   }
 }
 
-// The threads' atom ranges are contiguous in bin order: each boundary between
-// them is a slab of bins across the slowest axis, and every contact across it
-// costs the threaded force pass a cross entry, whose grains' cache lines both
-// cores touch at each step. So the slowest axis is the one whose slab at the
+// The slowest axis has the most bins (or nearly: within 20 %), so that the
+// two faster ones span the fewest bins (cache locality, above). Among those,
+// the threads' atom ranges being contiguous in bin order, each boundary
+// between them is a slab of bins across the slowest axis, and every contact
+// across it costs the threaded force pass a cross entry, whose grains' cache
+// lines both cores touch at each step. So it is the one whose slab at the
 // median grain holds the fewest grains (a periodic axis counts twice: its
 // ranges meet again across the wrap), counted on a sample of at most ~4096
 // grains; the last build's axis stays unless another is 20 % better (a flip
-// re-deals every grain between the threads). A rotating drum is then cut
-// across its bed's height, not along its thin periodic axis or across its
-// wide free surface. Any choice gives a valid list; only speed depends on it.
+// re-deals every grain between the threads). A rotating drum (47 x 47 x 8
+// bins) is then cut across its bed's height, not across its wide free
+// surface. Any choice gives a valid list; only speed depends on it.
 int Neighbor::pick_slow_axis(const Atoms& atoms, const Domain& domain, const int nb[3], const double inv[3]) {
   const std::size_t n = atoms.n, step = std::max<std::size_t>(1, n / 4096);
+  const int most = std::max({nb[0], nb[1], nb[2]});
   double cut[3] = {1e300, 1e300, 1e300};
   for (int k = 0; k < domain.dimension; ++k) {
-    if (nb[k] < 2) continue;
+    if (nb[k] < 2 || 1.2 * nb[k] < most) continue;
     std::vector<int> count(nb[k], 0);
     std::size_t samples = 0;
     for (std::size_t i = 0; i < n; i += step, ++samples) {

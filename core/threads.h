@@ -32,7 +32,7 @@ struct ThreadSettings {
   std::size_t pair_atoms = 4096;    // pair pass threaded from this many grains ...
   std::size_t pair_entries = 8192;  // ... and list entries
   std::size_t loop_work = 32768;    // per-atom loops: atoms x cost units
-  std::size_t wall_block = 256;     // wall grains searched and evaluated per block (FixWallGran)
+  std::size_t wall_block = 256;     // near-wall grains per block of FixWallGran's force sum
   Simd simd = Simd::AVX512;         // widest contact loops allowed (the CPU and SABLE_SIMD may allow less)
 };
 ThreadSettings& thread_settings();

@@ -65,13 +65,13 @@ class FixWallGran : public Fix {
     std::vector<double> deltan, en, vwall, point, force;
     void clear();
   };
-  // Wall position along its normal and normal velocity at this step (wiggle): Now.
-  // The force pass: each thread's contacts (Atoms::split ranges, in order),
-  // the wall's state and whether history is updated.
-  std::vector<Staged> parts_;
+  // Wall position along its normal and normal velocity at this step (wiggle).
   struct Now {
     double pos, vnormal;
   };
+  // The force pass: each thread's contacts (Atoms::split ranges, in order),
+  // the wall's state and whether history is updated (post_force_prepare).
+  std::vector<Staged> parts_;
   Now pass_now_{0.0, 0.0};
   bool pass_update_ = true;
   Staged records_;  // the contacts of the last records() call
