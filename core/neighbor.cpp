@@ -287,21 +287,25 @@ static void sort_entries(int* j, std::uint8_t* shift, std::size_t n) {
 // across it costs the threaded force pass a cross entry, whose grains' cache
 // lines both cores touch at each step. So it is the one whose slab at the
 // median grain holds the fewest grains (a periodic axis counts twice: its
-// ranges meet again across the wrap), counted on a sample of at most ~4096
+// ranges meet again across the wrap), counted on a sample of at most 4096
 // grains; the last build's axis stays unless another is 20 % better (a flip
 // re-deals every grain between the threads). A rotating drum (47 x 47 x 8
 // bins) is then cut across its bed's height, not across its wide free
 // surface. Any choice gives a valid list; only speed depends on it.
 int Neighbor::pick_slow_axis(const Atoms& atoms, const Domain& domain, const int nb[3], const double inv[3]) {
-  const std::size_t n = atoms.n, step = std::max<std::size_t>(1, n / 4096);
+  // Every grain, or 4096 spread by the golden ratio (a fixed stride can alias
+  // with a lattice of grains just created).
+  const std::size_t n = atoms.n, samples = std::min<std::size_t>(n, 4096);
+  auto sample = [&](std::size_t s) {
+    return samples == n ? s : static_cast<std::size_t>(std::fmod(s * 0.6180339887498949, 1.0) * n);
+  };
   const int most = std::max({nb[0], nb[1], nb[2]});
   double cut[3] = {1e300, 1e300, 1e300};
   for (int k = 0; k < domain.dimension; ++k) {
     if (nb[k] < 2 || 1.2 * nb[k] < most) continue;
     std::vector<int> count(nb[k], 0);
-    std::size_t samples = 0;
-    for (std::size_t i = 0; i < n; i += step, ++samples) {
-      const int c = static_cast<int>(std::floor((atoms.x[3 * i + k] - domain.lo[k]) * inv[k]));
+    for (std::size_t s = 0; s < samples; ++s) {
+      const int c = static_cast<int>(std::floor((atoms.x[3 * sample(s) + k] - domain.lo[k]) * inv[k]));
       ++count[std::clamp(c, 0, nb[k] - 1)];
     }
     std::size_t below = 0;

@@ -137,6 +137,8 @@ class Neighbor {
   void expect_prescan(const Atoms& atoms, long step);
   void prescan_range(const Atoms& atoms, int t, std::size_t lo, std::size_t hi);
   double cutoff() const { return cutoff_; }
+  // The bin axis that varied slowest at the last build (pick_slow_axis).
+  int slow_axis() const { return slow_axis_; }
   // Atom ids in index order at the last build: how to read `list` after atoms moved.
   const std::vector<long>& built_ids() const { return ids_; }
 

@@ -313,3 +313,50 @@ TEST(ContactStore, ThreadsTakeRowsInBlocksOfTheirOwn) {
   EXPECT_LE(shared, 2 * (s.rows_used() / 64 + 1)) << "of " << lines[0].size() << " lines";
 }
 #endif
+
+// Grains on a cubic lattice filling the part of the box [0, L) below `top` on
+// each axis: spacing 0.0125, radius 0.003, skin 0.019, so the bins are
+// 0.025-0.026 wide and hold two lattice layers each (box lengths 0.51, 0.11,
+// 0.36: 20, 4 and 14 bins).
+Scene lattice(const double L[3], const double top[3], bool px, bool py, bool pz) {
+  Scene s;
+  s.domain.dimension = 3;
+  const bool per[3] = {px, py, pz};
+  for (int k = 0; k < 3; ++k) {
+    s.domain.periodic[k] = per[k];
+    s.domain.lo[k] = 0.0;
+    s.domain.hi[k] = L[k];
+  }
+  long id = 0;
+  for (double x = 0.00625; x < top[0]; x += 0.0125)
+    for (double y = 0.00625; y < top[1]; y += 0.0125)
+      for (double z = 0.00625; z < top[2]; z += 0.0125) {
+        const double p[3] = {x, y, z};
+        s.atoms.add(++id, 1, p, 0.003, 2500.0);
+      }
+  s.neighbor.skin = 0.019;
+  return s;
+}
+
+// The threads' ranges are contiguous in bin order, so the slowest bin axis is
+// the one they cut across: among the axes with the most bins (within 20 %),
+// the one whose middle slab holds the fewest grains. A drum's bed (20 x 20 x
+// 4 bins, grains in half the box along x, periodic along its thin z) is cut
+// across y, where a slab holds half as many grains as across x; the same bed
+// turned (half the box along y) across x. A flat bed periodic along x and y
+// (20 x 20 x 14 bins, grains in the lower 12) keeps x or y, although its z
+// slab (1/12 of the grains) is thinner than theirs (1/20, counted twice: the
+// ranges meet again across the wrap): z has too few bins for the cache order.
+TEST(Neighbor, SlowestBinAxisCutsTheThinnestSlab) {
+  const double drum[3] = {0.51, 0.51, 0.11}, half_x[3] = {0.25, 0.51, 0.11}, half_y[3] = {0.51, 0.25, 0.11};
+  Scene a = lattice(drum, half_x, false, false, true);
+  a.neighbor.build(a.atoms, a.domain, nullptr, 0);
+  EXPECT_EQ(a.neighbor.slow_axis(), 1);
+  Scene t = lattice(drum, half_y, false, false, true);
+  t.neighbor.build(t.atoms, t.domain, nullptr, 0);
+  EXPECT_EQ(t.neighbor.slow_axis(), 0);
+  const double box[3] = {0.51, 0.51, 0.36}, bed[3] = {0.51, 0.51, 0.3};
+  Scene b = lattice(box, bed, true, true, false);
+  b.neighbor.build(b.atoms, b.domain, nullptr, 0);
+  EXPECT_NE(b.neighbor.slow_axis(), 2);
+}
