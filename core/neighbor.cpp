@@ -79,11 +79,19 @@ std::size_t ContactStore::contacts() const {
 // In blocks of atoms, in parallel for large lists: each block counts its
 // contacts, then writes them at its offset (atom order, as a serial pass).
 SavedContacts ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
-  if (row.empty() || row.size() != list.size()) return {};
+  SavedContacts out;
+  touching(list, ids, out);
+  return out;
+}
+
+// Into `out`, whose buffers are reused: fresh ones each rebuild cost page
+// faults and zero-filling in the serial part.
+void ContactStore::touching(const NeighborList& list, const std::vector<long>& ids, SavedContacts& out) const {
+  out.clear();
+  if (row.empty() || row.size() != list.size()) return;
   const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
   const int nth = loop_thread_count(list.size(), 2);
   std::vector<std::size_t> base(nth + 1, 0);
-  SavedContacts out;
   auto entries = [&](int t) { return std::pair(list.first[n * t / nth], list.first[n * (t + 1) / nth]); };
 #pragma omp parallel num_threads(nth) if (nth > 1)
   {
@@ -112,11 +120,10 @@ SavedContacts ContactStore::touching(const NeighborList& list, const std::vector
         }
     }
   }
-  return out;
 }
 
 void ContactStore::save(const NeighborList& list, const std::vector<long>& ids) {
-  saved_ = touching(list, ids);
+  touching(list, ids, saved_);
   // Restart contacts go after the list's own: restore() sees them the same way.
   saved_.ids.insert(saved_.ids.end(), injected_.ids.begin(), injected_.ids.end());
   saved_.hist.insert(saved_.hist.end(), injected_.hist.begin(), injected_.hist.end());
@@ -294,24 +301,34 @@ static void sort_entries(int* j, std::uint8_t* shift, std::size_t n) {
 // surface. Any choice gives a valid list; only speed depends on it.
 int Neighbor::pick_slow_axis(const Atoms& atoms, const Domain& domain, const int nb[3], const double inv[3]) {
   // Every grain, or 4096 spread by the golden ratio (a fixed stride can alias
-  // with a lattice of grains just created).
+  // with a lattice of grains just created), in one pass for all axes.
   const std::size_t n = atoms.n, samples = std::min<std::size_t>(n, 4096);
-  auto sample = [&](std::size_t s) {
-    return samples == n ? s : static_cast<std::size_t>(std::fmod(s * 0.6180339887498949, 1.0) * n);
-  };
   const int most = std::max({nb[0], nb[1], nb[2]});
-  double cut[3] = {1e300, 1e300, 1e300};
-  for (int k = 0; k < domain.dimension; ++k) {
-    if (nb[k] < 2 || 1.2 * nb[k] < most) continue;
-    std::vector<int> count(nb[k], 0);
-    for (std::size_t s = 0; s < samples; ++s) {
-      const int c = static_cast<int>(std::floor((atoms.x[3 * sample(s) + k] - domain.lo[k]) * inv[k]));
-      ++count[std::clamp(c, 0, nb[k] - 1)];
+  bool candidate[3] = {false, false, false};
+  std::vector<int> count[3];
+  for (int k = 0; k < domain.dimension; ++k)
+    if (nb[k] >= 2 && 1.2 * nb[k] >= most) {
+      candidate[k] = true;
+      count[k].assign(nb[k], 0);
     }
+  double u = 0.0;  // s times the golden ratio, modulo 1
+  for (std::size_t s = 0; s < samples; ++s) {
+    const std::size_t i = samples == n ? s : std::min(static_cast<std::size_t>(u * n), n - 1);
+    u += 0.6180339887498949;
+    u -= u >= 1.0 ? 1.0 : 0.0;
+    for (int k = 0; k < 3; ++k)
+      if (candidate[k]) {
+        const int c = static_cast<int>((atoms.x[3 * i + k] - domain.lo[k]) * inv[k]);
+        ++count[k][std::clamp(c, 0, nb[k] - 1)];
+      }
+  }
+  double cut[3] = {1e300, 1e300, 1e300};
+  for (int k = 0; k < 3; ++k) {
+    if (!candidate[k]) continue;
     std::size_t below = 0;
     int c = 0;
-    while (c + 1 < nb[k] && 2 * (below + count[c]) < samples) below += count[c++];
-    cut[k] = count[c] * (domain.wraps(k) ? 2.0 : 1.0);
+    while (c + 1 < nb[k] && 2 * (below + count[k][c]) < samples) below += count[k][c++];
+    cut[k] = count[k][c] * (domain.wraps(k) ? 2.0 : 1.0);
   }
   int best = 0;
   for (int k = 1; k < 3; ++k)

@@ -89,6 +89,7 @@ class ContactStore {
   void restore(const NeighborList& list, const Atoms& atoms);
   // The touching contacts of `list` (built over atoms whose ids were `ids`), as save() keeps them.
   SavedContacts touching(const NeighborList& list, const std::vector<long>& ids) const;
+  void touching(const NeighborList& list, const std::vector<long>& ids, SavedContacts& out) const;
   // Contacts from a restart file with slots `from`, matched to ours by name; the
   // next rebuild restores them like its own. Returns our slot names absent from
   // `from` (those values start at zero).
