@@ -1078,10 +1078,10 @@ class GranKernel final : public ContactKernel {
 #pragma omp parallel for schedule(static) num_threads(nparts)
 #endif
       for (long i = 0; i < nl; ++i) {
-        double w = 1.0 + (b.first[i + 1] - b.first[i]);
+        int touching = 0;  // an integer count: no chain of dependent floating-point adds
         if constexpr (kH > 0)
-          for (int k = b.first[i]; k < b.first[i + 1]; ++k) w += 3.0 * (b.row[k] >= 0);
-        pp.cum[i + 1] = w;
+          for (int k = b.first[i]; k < b.first[i + 1]; ++k) touching += b.row[k] >= 0;
+        pp.cum[i + 1] = 1.0 + (b.first[i + 1] - b.first[i]) + 3.0 * touching;
       }
       for (std::size_t i = 0; i < n; ++i) pp.cum[i + 1] += pp.cum[i];
     }
