@@ -38,7 +38,7 @@ class Fix {
   virtual void initial_integrate() {}
   virtual void post_integrate() {}
   virtual void pre_force() {}
-  virtual void post_force() {}
+  virtual void post_force();    // ranged fixes (below): prepare, every thread range, finish
   virtual void final_integrate() {}
   virtual void end_of_step() {}
   virtual void post_run() {}

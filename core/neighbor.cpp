@@ -202,20 +202,6 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   saved_.clear();
 }
 
-static double max_of_parts(const std::vector<double>& part);
-
-bool Neighbor::decide(const Atoms& atoms, long step) {
-  if (last_build_step < 0 || xhold_.size() != 3 * atoms.n) return true;
-  const long since = step - last_build_step;
-  if (since < delay || (every > 0 && since % every != 0)) return false;
-  if (!check) return true;
-  positions_scanned_step = step;
-  const bool ahead = prescan_.step == step && prescan_.n == atoms.n;  // announced for this step
-  const double d2 = ahead ? max_of_parts(prescan_.part) : max_displacement_sq(atoms);
-  prescan_.step = -1;
-  return !(d2 <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
-}
-
 // The largest squared displacement since the last build over atoms [lo, hi).
 // A maximum does not depend on the order: threads and SIMD give the same value.
 // A non-finite position gives NaN (a comparison alone would skip it). Kept in
@@ -250,6 +236,18 @@ static double max_of_parts(const std::vector<double>& part) {
     nan += p - p;
   }
   return m + nan;
+}
+
+bool Neighbor::decide(const Atoms& atoms, long step) {
+  if (last_build_step < 0 || xhold_.size() != 3 * atoms.n) return true;
+  const long since = step - last_build_step;
+  if (since < delay || (every > 0 && since % every != 0)) return false;
+  if (!check) return true;
+  positions_scanned_step = step;
+  const bool ahead = prescan_.step == step && prescan_.n == atoms.n;  // announced for this step
+  const double d2 = ahead ? max_of_parts(prescan_.part) : max_displacement_sq(atoms);
+  prescan_.step = -1;
+  return !(d2 <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
 }
 
 double Neighbor::max_displacement_sq(const Atoms& atoms) const {

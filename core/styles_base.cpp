@@ -25,6 +25,13 @@ void Pair::compute_then(const RangeTail& tail) {
   sim.atoms.for_ranges(tail);
 }
 
+void Fix::post_force() {
+  if (!post_force_ranged()) return;
+  post_force_prepare();
+  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
+  post_force_finish();
+}
+
 Fix::Fix(Simulation& s, const Args& a) : sim(s), args(a) {
   id = a.word(1, "a fix ID");
   group = group_arg(s, a, 2);

@@ -29,9 +29,6 @@ class FixEnforce2d : public Fix {
   }
   // Threaded on the pair pass's atom ranges, so each thread finds its grains'
   // forces in its own cache (one thread here made the step slower with two).
-  void post_force() override {
-    sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
-  }
   bool post_force_ranged() const override { return true; }
   void post_force_range(int, std::size_t lo, std::size_t hi) override {
     Atoms& at = sim.atoms;

@@ -21,9 +21,6 @@ class FixGravity : public Fix {
     if (n == 0) a.fail(6, "a non-zero direction vector");
     for (int k = 0; k < 3; ++k) acc_[k] = g_ * d[k] / std::sqrt(n);
   }
-  void post_force() override {
-    sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
-  }
   bool post_force_ranged() const override { return true; }
   void post_force_range(int, std::size_t lo, std::size_t hi) override {
     Atoms& at = sim.atoms;

@@ -310,12 +310,6 @@ WallBatch FixWallGran::batch(const Staged& st) {
 // wall history stay in the cache of the core that integrates it. (Blocks of
 // the near list run on any thread made the integrator fetch every wall
 // grain's lines from the other core at each step.)
-void FixWallGran::post_force() {
-  post_force_prepare();
-  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
-  post_force_finish();
-}
-
 void FixWallGran::post_force_prepare() {
   refresh_near();
   pass_now_ = now();

@@ -26,7 +26,6 @@ class FixWallGran : public Fix {
  public:
   FixWallGran(Simulation& sim, const Args& args);
   void init() override;
-  void post_force() override;
   bool post_force_ranged() const override { return true; }
   void post_force_prepare() override;
   void post_force_range(int t, std::size_t lo, std::size_t hi) override;
