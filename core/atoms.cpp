@@ -63,18 +63,26 @@ void Atoms::remove_if(const std::vector<char>& doomed) {
 // Each array is gathered into a kept buffer of its type and stride, which then
 // swaps with it: after the first sort no allocation, zero-fill or page fault
 // (fresh arrays cost a serial memset and the kernel's page clearing at every
-// neighbour rebuild).
+// neighbour rebuild). On the per-atom passes' ranges (atom_pass_threaded): each
+// thread writes the grains it owns (a sort moves them little).
 void Atoms::permute(const std::vector<std::size_t>& order) {
   const std::size_t m = order.size();
-  const long ml = static_cast<long>(m);
   const bool threads = loop_thread_count(m, 4) > 1;
   for_each_array([&](auto& vec, int stride) {
     using Vec = std::remove_reference_t<decltype(vec)>;
     Vec& out = std::get<std::map<int, Vec>>(scratch_)[stride];
     out.resize(m * stride);
-#pragma omp parallel for schedule(static) if (threads)
-    for (long i = 0; i < ml; ++i)
-      for (int k = 0; k < stride; ++k) out[i * stride + k] = vec[order[i] * stride + k];
+#pragma omp parallel if (threads)
+    {
+#ifdef _OPENMP
+      std::size_t lo, hi;
+      split.range(m, omp_get_thread_num(), omp_get_num_threads(), lo, hi);
+#else
+      const std::size_t lo = 0, hi = m;
+#endif
+      for (std::size_t i = lo; i < hi; ++i)
+        for (int k = 0; k < stride; ++k) out[i * stride + k] = vec[order[i] * stride + k];
+    }
     vec.swap(out);
   });
   n = m;

@@ -560,8 +560,13 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     list.span = span;
   }
   if (store) store->restore(list, atoms);
-  ids_.assign(atoms.id.begin(), atoms.id.begin() + n);
-  xhold_.assign(atoms.x.begin(), atoms.x.begin() + 3 * n);
+  // On the per-atom passes' ranges (atom_pass_threaded), not serially.
+  ids_.resize(n);
+  xhold_.resize(3 * n);
+  atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) {
+    std::copy(atoms.id.begin() + lo, atoms.id.begin() + hi, ids_.begin() + lo);
+    std::copy(atoms.x.begin() + 3 * lo, atoms.x.begin() + 3 * hi, xhold_.begin() + 3 * lo);
+  });
   last_build_step = step;
   ++builds;
 }

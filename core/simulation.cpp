@@ -154,10 +154,28 @@ void Simulation::check_atoms(bool positions) {
   }
 }
 
+// Whether an atom lies beyond a fixed boundary, on the per-atom passes' ranges
+// (atom_pass_threaded), not serially.
+static bool any_outside(const Atoms& a, const Domain& d) {
+  const double* x = a.x.data();
+  std::vector<char> part(atom_pass_threads(), 0);
+  a.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+    bool out = false;
+    for (int k = 0; k < d.dimension; ++k) {
+      if (d.periodic[k]) continue;
+      const double lo_k = d.lo[k], hi_k = d.hi[k];
+      for (std::size_t i = lo; i < hi; ++i) out |= x[3 * i + k] < lo_k || x[3 * i + k] > hi_k;
+    }
+    part[t] = out;
+  });
+  return std::find(part.begin(), part.end(), 1) != part.end();
+}
+
 // Atoms beyond a fixed boundary are lost: stop (or delete them with thermo_modify lost ignore).
 static void handle_lost(Simulation& sim) {
   Atoms& a = sim.atoms;
   const Domain& d = sim.domain;
+  if (!any_outside(a, d)) return;
   std::vector<char> lost(a.n, 0);
   bool any = false;
   for (std::size_t i = 0; i < a.n; ++i)

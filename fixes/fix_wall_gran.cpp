@@ -265,25 +265,32 @@ void FixWallGran::prefetch_near(std::size_t c) const {
 // Between rebuilds no grain moves more than skin/2 (the rebuild rule) and a
 // wiggling plane at most |A| from POS: a grain whose gap to the wall at POS
 // was skin + |A| or more at the rebuild cannot touch it before the next one.
+// On the per-atom passes' ranges (atom_pass_threaded), joined in atom order.
 void FixWallGran::refresh_near() {
   const Atoms& at = sim.atoms;
   if (near_builds_ == sim.neighbor.builds && near_n_ == at.n) return;
   near_builds_ = sim.neighbor.builds;
   near_n_ = at.n;
-  near_.clear();
   const double reach = sim.neighbor.skin + std::fabs(wiggle_amp_);
   const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
-  for (std::size_t i = 0; i < at.n; ++i) {
-    const double* x = &at.x[3 * i];
-    double dist;
-    if (shape_ == Shape::Plane) {
-      dist = std::fabs(x[axis_] - pos0_);
-    } else {
-      const double d1 = x[a1] - c1_, d2 = x[a2] - c2_;
-      dist = std::fabs(std::sqrt(d1 * d1 + d2 * d2) - radius_);
+  near_parts_.resize(atom_pass_threads());
+  for (std::vector<int>& found : near_parts_) found.clear();  // a serial pass fills only the first
+  at.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+    std::vector<int>& found = near_parts_[t];
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double* x = &at.x[3 * i];
+      double dist;
+      if (shape_ == Shape::Plane) {
+        dist = std::fabs(x[axis_] - pos0_);
+      } else {
+        const double d1 = x[a1] - c1_, d2 = x[a2] - c2_;
+        dist = std::fabs(std::sqrt(d1 * d1 + d2 * d2) - radius_);
+      }
+      if (dist - at.radius[i] < reach) found.push_back(static_cast<int>(i));
     }
-    if (dist - at.radius[i] < reach) near_.push_back(static_cast<int>(i));
-  }
+  });
+  near_.clear();
+  for (const std::vector<int>& found : near_parts_) near_.insert(near_.end(), found.begin(), found.end());
 }
 
 WallBatch FixWallGran::batch(const Staged& st) {

@@ -82,6 +82,7 @@ class FixWallGran : public Fix {
   // Grains that can reach the wall before the next neighbour rebuild (indices
   // hold until then): the per-step search looks at these only.
   std::vector<int> near_;
+  std::vector<std::vector<int>> near_parts_;  // refresh_near's per-thread finds
   long near_builds_ = -1;
   std::size_t near_n_ = 0;
   void refresh_near();
