@@ -11,7 +11,6 @@
 // When the cores are shared (other jobs, ctest -j), libgomp's default
 // spin-waiting at barriers can cost whole scheduler time slices per step:
 // there, run with OMP_WAIT_POLICY=passive (or one thread).
-#include <array>
 #include <cstddef>
 #include <cstdio>
 #include <functional>
@@ -141,27 +140,6 @@ inline int atom_pass_threads() {
 #else
   return 1;
 #endif
-}
-
-// Runs body(b, lo, hi, sum) on the blocks [lo, hi) = [b block, (b + 1) block)
-// of n items (threaded when n x cost is large) and returns the blocks' 3-vector
-// sums added in block order: the same bits for any thread count.
-template <class Body>
-std::array<double, 3> block_sum3(std::size_t n, std::size_t block, std::size_t cost, Body&& body) {
-  const std::size_t nb = (n + block - 1) / block;
-  std::vector<std::array<double, 3>> part(nb, {0.0, 0.0, 0.0});
-  const long nbl = static_cast<long>(nb);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) if (loop_thread_count(n, cost) > 1)
-#endif
-  for (long b = 0; b < nbl; ++b) {
-    const std::size_t lo = static_cast<std::size_t>(b) * block;
-    body(static_cast<std::size_t>(b), lo, lo + block < n ? lo + block : n, part[b].data());
-  }
-  std::array<double, 3> sum = {0.0, 0.0, 0.0};
-  for (const auto& p : part)
-    for (int k = 0; k < 3; ++k) sum[k] += p[k];
-  return sum;
 }
 
 // The contact loops' variant: the widest that the CPU has and that

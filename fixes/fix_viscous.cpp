@@ -21,9 +21,11 @@ class FixViscous : public Fix {
       gamma_[t] = g * a.num(i + 2, "the scale factor for this type");
     }
   }
-  void post_force() override {
+  // Each grain on its own: on the threads' ranges, in the pipelined step too.
+  bool post_force_ranged() const override { return true; }
+  void post_force_range(int, std::size_t lo, std::size_t hi) override {
     Atoms& at = sim.atoms;
-    for (std::size_t i = 0; i < at.n; ++i) {
+    for (std::size_t i = lo; i < hi; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       const double g = gamma_[at.type[i]];
       for (int k = 0; k < 3; ++k) at.f[3 * i + k] -= g * at.v[3 * i + k];

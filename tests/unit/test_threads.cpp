@@ -64,12 +64,14 @@ struct State {
   long builds = 0, fused_steps = 0, folded_steps = 0;
   std::size_t contacts = 0;  // touching pair entries at the end
   double floor_force[3] = {0, 0, 0};
+  double freeze_force[3] = {0, 0, 0};  // f_fr, where the deck has fix fr
   bool operator==(const State& o) const {
     auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
       return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
     };
-    return id == o.id && std::memcmp(floor_force, o.floor_force, sizeof floor_force) == 0 && same(x, o.x) && same(v, o.v) && same(omega, o.omega) && same(f, o.f) &&
-           same(torque, o.torque);
+    return id == o.id && std::memcmp(floor_force, o.floor_force, sizeof floor_force) == 0 &&
+           std::memcmp(freeze_force, o.freeze_force, sizeof freeze_force) == 0 && same(x, o.x) && same(v, o.v) &&
+           same(omega, o.omega) && same(f, o.f) && same(torque, o.torque);
   }
 };
 
@@ -105,6 +107,8 @@ State run(int threads, sable::Simd simd, const std::string& before_run = "", boo
   s.id.assign(a.id.begin(), a.id.begin() + a.n);
   s.builds = d->neighbor.builds;
   for (int k = 0; k < 3; ++k) s.floor_force[k] = d->find_fix("floor")->compute_vector(k + 1);
+  if (sable::Fix* fr = d->find_fix("fr"))
+    for (int k = 0; k < 3; ++k) s.freeze_force[k] = fr->compute_vector(k + 1);
   s.fused_steps = d->fused_steps;
   s.folded_steps = d->folded_steps;
   if (const sable::ContactStore* h = d->pair->history())
@@ -167,6 +171,23 @@ fix fr stuck freeze
 #endif
 }
 
+// fix freeze in the pipelined step: each thread sums its frozen grains'
+// forces in fixed blocks of 1024 atoms, and a block cut by a range bound is
+// finished in atom order, so f_ID has the bits of one serial pass. Every third
+// grain frozen (1331 grains, two blocks): 2 threads cut the first block, 3
+// and 6 leave ranges inside it.
+TEST(Threads, FreezeForceSameBitsForAnyThreadCount) {
+  std::string deck = kDeck;
+  deck.insert(deck.find("fix integr"), "group stuck id 1:100000:3\nfix fr stuck freeze\n");
+  const State serial = run(1, kWide, "", true, deck);
+  ASSERT_GT(serial.id.size(), 1024u);
+  ASSERT_GT(serial.fused_steps, 1000);  // the pipelined step (all post_force fixes ranged)
+  EXPECT_GT(std::fabs(serial.freeze_force[2]), 1e-4);  // gravity and contacts on ~440 grains of ~1.3e-5 N weight
+#ifdef _OPENMP
+  for (int t : {2, 3, 6}) EXPECT_TRUE(run(t, kWide, "", true, deck) == serial) << t << " threads differ from 1";
+#endif
+}
+
 // A final half kick deferred into the next initial pass, forces zeroed by the
 // integrator and gravity (kDeck's last post_force fix) added by it: the same
 // bits (and the same rebuilds) as separate passes.
@@ -202,35 +223,6 @@ TEST(StepFusion, GravityFoldedOnlyAsTheLastPostForceFix) {
   EXPECT_EQ(fused.folded_steps, 0);
   EXPECT_TRUE(fused == separate) << "fused and separate passes differ";
   EXPECT_FALSE(fused == run(1, kWide)) << "the order of gravity and wall made no difference: the test shows nothing";
-}
-
-// Block sums (walls, freeze): the blocks' sums added in block order, whatever
-// the thread count; values spread over 12 decades so any other order rounds
-// differently.
-TEST(Threads, BlockSumAddsBlocksInOrder) {
-  std::vector<double> v(10007);
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::ldexp(0.6180339887 * ((i * 7919) % 1000 + 1), (i * 31) % 40);
-  auto sum = [&] {
-    return sable::block_sum3(v.size(), 64, 1000, [&](std::size_t, std::size_t lo, std::size_t hi, double* s) {
-      for (std::size_t i = lo; i < hi; ++i) s[i % 3] += v[i];
-    });
-  };
-  std::array<double, 3> expect = {0, 0, 0};
-  for (std::size_t lo = 0; lo < v.size(); lo += 64) {
-    double s[3] = {0, 0, 0};
-    for (std::size_t i = lo; i < std::min(v.size(), lo + 64); ++i) s[i % 3] += v[i];
-    for (int k = 0; k < 3; ++k) expect[k] += s[k];
-  }
-#ifdef _OPENMP
-  const int before = omp_get_max_threads();
-  for (int t = 1; t <= 3; ++t) {
-    omp_set_num_threads(t);
-    EXPECT_TRUE(sum() == expect) << t << " threads";
-  }
-  omp_set_num_threads(before);
-#else
-  EXPECT_TRUE(sum() == expect);
-#endif
 }
 
 // Per-atom passes run on the pair pass's atom ranges while these describe the
