@@ -84,11 +84,13 @@ SavedContacts ContactStore::touching(const NeighborList& list, const std::vector
   return out;
 }
 
-// Into `out`, whose buffers are reused: fresh ones each rebuild cost page
-// faults and zero-filling in the serial part.
+// Into `out`, whose buffers are reused and resized, not cleared: fresh ones
+// each rebuild cost page faults and zero-filling in the serial part.
 void ContactStore::touching(const NeighborList& list, const std::vector<long>& ids, SavedContacts& out) const {
-  out.clear();
-  if (row.empty() || row.size() != list.size()) return;
+  if (row.empty() || row.size() != list.size()) {
+    out.clear();
+    return;
+  }
   const std::size_t n = list.first.empty() ? 0 : list.first.size() - 1;
   const int nth = loop_thread_count(list.size(), 2);
   std::vector<std::size_t> base(nth + 1, 0);
@@ -150,56 +152,65 @@ std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& fr
 // Each saved contact finds its entries in the new list directly: the half list
 // holds a pair (a, b), a < b, among the few entries of a; where two saved
 // contacts name the same entry, the later one (a restart's) wins. Rows are
-// then taken in list order. Both passes run in parallel for large lists and
-// give the serial result.
+// then taken in list order. In parallel for large lists, with the serial
+// result; each thread fills the arrays of its own block of entries (a serial
+// fill took the lines from the other core: 2x slower on two threads).
 void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
-  resize(list.size());
-  if (saved_.ids.empty()) return;
   const std::size_t entries = list.size(), listed = list.first.size() - 1, count = saved_.count();
-  // Entry k <- saved contact s: from[k] = 2 (s + 1) + (pair seen reversed), 0 for none.
-  std::vector<int> from(entries, 0);
-  atoms.index_of(saved_.ids[0]);  // builds the id map here, before the threads read it
-  const long nc = static_cast<long>(count);
-#pragma omp parallel for schedule(static) if (loop_thread_count(count, 8) > 1)
-  for (long s = 0; s < nc; ++s) {
-    const std::size_t a = atoms.index_of(saved_.ids[2 * s]), b = atoms.index_of(saved_.ids[2 * s + 1]);
-    if (a == Atoms::npos || b == Atoms::npos || a == b) continue;
-    const std::size_t lo = std::min(a, b), hi = std::max(a, b);
-    if (lo >= listed) continue;
-    const int tag = 2 * static_cast<int>(s + 1) + (a > b);
-    for (int k = list.first[lo]; k < list.first[lo + 1]; ++k)
-      if (list.j[k] == static_cast<int>(hi)) {
-        std::atomic_ref<int> f(from[k]);
-        int cur = f.load(std::memory_order_relaxed);
-        while (cur < tag && !f.compare_exchange_weak(cur, tag, std::memory_order_relaxed)) {
-        }
-      }
-  }
-  // Rows in list order: each block counts its contacts, then fills its rows.
+  row.resize(entries);  // every entry is set below
+  reserve_rows(2 * entries + 16 + slack());
+  from_.resize(entries);  // entry k <- saved contact s: 2 (s + 1) + (pair seen reversed), 0 for none
+  if (count) atoms.index_of(saved_.ids[0]);  // builds the id map here, before the threads read it
   const int nth = loop_thread_count(entries, 2);
   std::vector<int> base(nth + 1, 0);
+  auto block = [&](int t) { return std::pair(entries * t / nth, entries * (t + 1) / nth); };
 #pragma omp parallel num_threads(nth) if (nth > 1)
   {
 #pragma omp for schedule(static, 1)
-    for (int t = 0; t < nth; ++t)
-      base[t + 1] = static_cast<int>(
-          std::count_if(from.begin() + entries * t / nth, from.begin() + entries * (t + 1) / nth, [](int v) { return v; }));
+    for (int t = 0; t < nth; ++t) {
+      const auto [k0, k1] = block(t);
+      std::fill(from_.begin() + k0, from_.begin() + k1, 0);
+    }
+#pragma omp for schedule(static)
+    for (long s = 0; s < static_cast<long>(count); ++s) {
+      const std::size_t a = atoms.index_of(saved_.ids[2 * s]), b = atoms.index_of(saved_.ids[2 * s + 1]);
+      if (a == Atoms::npos || b == Atoms::npos || a == b) continue;
+      const std::size_t lo = std::min(a, b), hi = std::max(a, b);
+      if (lo >= listed) continue;
+      const int tag = 2 * static_cast<int>(s + 1) + (a > b);
+      for (int k = list.first[lo]; k < list.first[lo + 1]; ++k)
+        if (list.j[k] == static_cast<int>(hi)) {
+          std::atomic_ref<int> f(from_[k]);
+          int cur = f.load(std::memory_order_relaxed);
+          while (cur < tag && !f.compare_exchange_weak(cur, tag, std::memory_order_relaxed)) {
+          }
+        }
+    }
+    // Rows in list order: each block counts its contacts, then fills its rows.
+#pragma omp for schedule(static, 1)
+    for (int t = 0; t < nth; ++t) {
+      const auto [k0, k1] = block(t);
+      base[t + 1] = static_cast<int>(std::count_if(from_.begin() + k0, from_.begin() + k1, [](int v) { return v; }));
+    }
 #pragma omp single
     std::partial_sum(base.begin(), base.end(), base.begin());
 #pragma omp for schedule(static, 1)
     for (int t = 0; t < nth; ++t) {
+      const auto [k0, k1] = block(t);
       int r = base[t];
-      for (std::size_t k = entries * t / nth; k < entries * (t + 1) / nth; ++k) {
-        if (!from[k]) continue;
-        const bool swapped = from[k] & 1;
-        const double* v = &saved_.hist[(from[k] / 2 - 1) * static_cast<std::size_t>(size)];
+      for (std::size_t k = k0; k < k1; ++k) {
+        if (!from_[k]) {
+          row[k] = kNone;
+          continue;
+        }
+        const bool swapped = from_[k] & 1;
+        const double* v = &saved_.hist[(from_[k] / 2 - 1) * static_cast<std::size_t>(size)];
         double* h = buf_.get() + static_cast<std::size_t>(row[k] = r++) * size;
         for (int m = 0; m < size; ++m) h[m] = (swapped && slots[m].flip) ? -v[m] : v[m];
       }
     }
   }
-  set_used(base[nth]);
-  saved_.clear();
+  set_used(base[nth]);  // saved_ stays: the next save() overwrites it in place
 }
 
 // The largest squared displacement since the last build over atoms [lo, hi).
@@ -309,17 +320,29 @@ int Neighbor::pick_slow_axis(const Atoms& atoms, const Domain& domain, const int
       candidate[k] = true;
       count[k].assign(nb[k], 0);
     }
-  double u = 0.0;  // s times the golden ratio, modulo 1
-  for (std::size_t s = 0; s < samples; ++s) {
-    const std::size_t i = samples == n ? s : std::min(static_cast<std::size_t>(u * n), n - 1);
-    u += 0.6180339887498949;
-    u -= u >= 1.0 ? 1.0 : 0.0;
-    for (int k = 0; k < 3; ++k)
-      if (candidate[k]) {
-        const int c = static_cast<int>((atoms.x[3 * i + k] - domain.lo[k]) * inv[k]);
-        ++count[k][std::clamp(c, 0, nb[k] - 1)];
-      }
-  }
+  // Each thread counts the samples among its own grains (a serial look took
+  // the other core's lines: 4x slower on two threads with the cores apart).
+  std::vector<std::vector<int>> part(atom_pass_threads());
+  atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+    std::vector<int>& cnt = part[t];
+    cnt.assign(nb[0] + nb[1] + nb[2], 0);
+    double u = 0.0;  // s times the golden ratio, modulo 1
+    for (std::size_t s = 0; s < samples; ++s) {
+      const std::size_t i = samples == n ? s : std::min(static_cast<std::size_t>(u * n), n - 1);
+      u += 0.6180339887498949;
+      u -= u >= 1.0 ? 1.0 : 0.0;
+      if (i < lo || i >= hi) continue;
+      for (int k = 0, at = 0; k < 3; at += nb[k++])
+        if (candidate[k]) {
+          const int c = static_cast<int>((atoms.x[3 * i + k] - domain.lo[k]) * inv[k]);
+          ++cnt[at + std::clamp(c, 0, nb[k] - 1)];
+        }
+    }
+  });
+  for (const std::vector<int>& cnt : part)
+    for (int k = 0, at = 0; k < 3; at += nb[k++])
+      if (candidate[k] && !cnt.empty())
+        for (int c = 0; c < nb[k]; ++c) count[k][c] += cnt[at + c];
   double cut[3] = {1e300, 1e300, 1e300};
   for (int k = 0; k < 3; ++k) {
     if (!candidate[k]) continue;
@@ -393,20 +416,27 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
     const double* xi = &xa[3 * i];
     bin_of[i] = coord(xi[0], 0) * stride[0] + coord(xi[1], 1) * stride[1] + coord(xi[2], 2) * stride[2];
   }
-  // Counting sort by bin.
+  // Counting sort by bin: the atoms in bin order, as the new order of the
+  // atoms (sorted: then a bin's atoms are consecutive indices) or as a list.
   bin_start_.assign(nbins + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++bin_start_[bin_of_[i] + 1];
   std::partial_sum(bin_start_.begin(), bin_start_.end(), bin_start_.begin());
-  bin_atoms_.resize(n);
+  const bool sorted = sort && n > 0;
   {
     std::vector<int> fill(bin_start_.begin(), bin_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) bin_atoms_[fill[bin_of_[i]]++] = static_cast<int>(i);
+    if (sorted) {
+      order_.resize(n);
+      for (std::size_t i = 0; i < n; ++i) order_[fill[bin_of_[i]]++] = i;
+    } else {
+      bin_atoms_.resize(n);
+      for (std::size_t i = 0; i < n; ++i) bin_atoms_[fill[bin_of_[i]]++] = static_cast<int>(i);
+    }
   }
-  if (sort && n > 0) {
-    std::vector<std::size_t> order(bin_atoms_.begin(), bin_atoms_.end());
-    atoms.permute(order);
-    for (std::size_t i = 0; i < n; ++i) bin_atoms_[i] = static_cast<int>(i);
-    for (int b = 0; b < nbins; ++b)
+  if (sorted) {
+    atoms.permute(order_);
+    const int nbl = nbins;
+#pragma omp parallel for schedule(static) if (nth > 1)
+    for (int b = 0; b < nbl; ++b)
       for (int s = bin_start_[b]; s < bin_start_[b + 1]; ++s) bin_of_[s] = b;
   }
 
@@ -416,7 +446,6 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   }
 
   const int zr = domain.dimension == 3 ? 1 : 0;
-  const bool sorted = sort && n > 0;
   const double* x = atoms.x.data();  // after the sort
   radius = atoms.radius.data();
   // The bins around bin b with the image code of each (through a periodic

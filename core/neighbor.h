@@ -109,6 +109,7 @@ class ContactStore {
   std::size_t cap_ = 0;                 // rows
   std::atomic<int> used_{0};            // rows taken
   SavedContacts saved_, injected_;
+  std::vector<int> from_;  // restore(): each entry's saved contact
 };
 
 class Neighbor {
@@ -147,7 +148,8 @@ class Neighbor {
   std::vector<double> xhold_;
   std::vector<long> ids_;  // atom ids at the last build, to read the old list
   double cutoff_ = 0.0;
-  std::vector<int> bin_of_, bin_start_, bin_atoms_;
+  std::vector<int> bin_of_, bin_start_, bin_atoms_;  // bin_atoms_: unsorted builds only
+  std::vector<std::size_t> order_;                  // sorted builds: the atoms in bin order
   int slow_axis_ = -1;  // slowest-varying bin axis at the last build
   struct {
     long step = -1;  // the step it is for (-1: none)

@@ -275,11 +275,12 @@ TEST(Threads, BalanceCountsEveryThreadedPass) {
   EXPECT_EQ(p.calls, 1500);  // one per step (the setup pass is before the count starts)
   // The fused integrate (with gravity) and the rebuild check's scan run in the
   // pair pass's ranges (pipelined step): passes of their own only for the
-  // first step's initial pass and scan, the last step's final pass, and four
+  // first step's initial pass and scan, the last step's final pass, and five
   // at each rebuild in the run (`builds` counts the setup's too): the atom
-  // check, the look for lost atoms, the wall's near-grain search and the
-  // positions kept for the next check (each thread on its own grains).
-  EXPECT_EQ(a.calls, 3 + 4 * (p_builds - 1)) << a.calls;
+  // check, the look for lost atoms, the bins' slow-axis sample, the positions
+  // kept for the next check and the wall's near-grain search (each thread on
+  // its own grains).
+  EXPECT_EQ(a.calls, 3 + 5 * (p_builds - 1)) << a.calls;
   for (const sable::ThreadBalance* b : {&p, &a}) {
     ASSERT_EQ(b->busy.size(), 2u);
     for (double s : b->busy) {
