@@ -17,11 +17,13 @@
 //   tangential: Vec3 force(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 //   rolling:    Vec3 torque(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <memory>
 #include <numeric>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "contact_models/contact.h"
@@ -290,8 +292,22 @@ struct PairPartition {
   std::vector<int> lo;                   // nparts + 1 atom bounds of the ranges
   std::vector<int> cross_first;          // nparts + 1: cross entries of range t
   std::vector<int> cross_k, cross_i, cross_j;  // per cross entry (list order): entry, its atoms i and j
-  std::vector<double> val;               // 9 per cross entry: force on i, torque on i, torque on j
+  std::vector<int> cross_u;              // per cross entry: the range of j, whose thread evaluates it
+  std::vector<int> in_first, in_s;       // range u's incoming cross entries (j in u): in_s[in_first[u] ..], list order
   std::vector<std::uint8_t> on;          // cross entry touching this step
+  // What range u's phase A wrote, one row per touching entry in in_s order:
+  // only these lines go to the cores of the i ranges.
+  struct Slots {
+    std::vector<double> fi;  // 6 per row: force and torque on i (read by i's thread)
+    std::vector<double> tj;  // 3 per row: torque on j (read by u's thread itself)
+    std::vector<int> at;     // nparts: the first row of range t's entries
+  };
+  std::vector<Slots> slots;              // per range u
+  std::vector<int> cursor;               // per range, padded to cache lines: apply_outgoing's next row per later u
+  std::size_t cursor_stride() const { return (static_cast<std::size_t>(nparts) + 15) / 16 * 16; }
+  std::unique_ptr<std::atomic<long>[]> done_a;  // per range: the last pass whose phase A is done
+  int done_a_size = 0;
+  long pass = 0;                         // threaded passes so far
   // Balance from measured time (the results do not depend on the split):
   std::vector<double> cum;               // n + 1: cumulative work weight by atom
   std::vector<double> seg_u, seg_d;      // cost profile: range bounds as weight fractions, seconds per weight
@@ -465,17 +481,21 @@ class GranKernel final : public ContactKernel {
   //   3. scatter: forces and torques added to the grains in list order.
   //
   // Threads (OpenMP, when the list is long enough) own contiguous atom ranges
-  // balanced by work. A contact whose j lies in a later range (a "cross" entry)
-  // is evaluated first, into its own slot (phase A); after a barrier each thread
-  // adds, for each of its atoms, the slots aimed at it, then runs its range
-  // (phase B) and adds the slots of its own cross entries last. An atom's
-  // entries are sorted by j (Neighbor::build), so its cross entries are the
-  // last of them and phase B runs the serial loop on the rest. Every atom thus
+  // balanced by work. A contact whose j lies in a later range (a "cross"
+  // entry) is evaluated into its own slot by the thread of j's range, first
+  // (phase A), which then adds the slots aimed at its atoms and runs its range
+  // (phase B). The thread of i's range runs its range (phase B) and adds the
+  // slots of its own cross entries last, once phase A of the later ranges is
+  // done (a flag each, long since set by then: no barrier). An atom's entries
+  // are sorted by j (Neighbor::build), so its cross entries are the last of
+  // them and phase B runs the serial loop on the rest. Every atom thus
   // receives exactly the serial sequence of additions: j-side contributions by
   // increasing list entry (all from lower atoms), then its own entries in list
   // order (nothing else adds to an atom once its own entries are done). The
   // result is bit-identical to the serial pass for any thread count, with no
-  // atomics and no per-thread force copies.
+  // atomics on forces and no per-thread force copies. Only j's thread reads the
+  // other range's grains (i's), and only i's forces go back: the fewest cache
+  // lines crossing between the cores.
 
   void pair_forces_staged(const PairBatch& b) {
     const int nparts = pair_thread_count(b.a.n, b.a.n ? static_cast<std::size_t>(b.first[b.a.n]) : 0);
@@ -496,6 +516,7 @@ class GranKernel final : public ContactKernel {
     const double plan = omp_get_wtime() - w0;
     if (trace) trace->begin(nparts);
     ++pp.calls;
+    const long pass = ++pp.pass;
     if (b.split) {
       b.split->n = b.a.n;
       b.split->lo = pp.lo;
@@ -506,15 +527,19 @@ class GranKernel final : public ContactKernel {
     {
       const int nt = omp_get_num_threads(), tid = omp_get_thread_num();
       Chunk ch;
-      const int ncross = pp.cross_first[nparts];  // shared evenly: each has its own slot
+      // Phase A of all this thread's ranges before any waiting (fewer threads
+      // than ranges must not wait on themselves).
       const double a0 = omp_get_wtime();
-      cross_range(b, pp, ncross * tid / nt, ncross * (tid + 1) / nt, ch);
+      for (int t = tid; t < nparts; t += nt) {
+        const double t0 = omp_get_wtime();
+        cross_range(b, pp, t, ch);
+        pp.busy[t] += omp_get_wtime() - t0;
+        pp.done_a[t].store(pass, std::memory_order_release);
+      }
       double busy = omp_get_wtime() - a0;
-      const double a1 = a0 + busy;
-#pragma omp barrier
       if (trace) {
         double* r = &trace->t[4 * static_cast<std::size_t>(tid)];
-        r[0] = a0 - w0, r[1] = a1 - w0, r[2] = omp_get_wtime() - w0;
+        r[0] = a0 - w0, r[1] = r[2] = a0 + busy - w0;
       }
       for (int t = tid; t < nparts; t += nt) {
         const double t0 = omp_get_wtime();
@@ -839,7 +864,7 @@ class GranKernel final : public ContactKernel {
   // in list order. Threaded, an atom's entries with j >= hi (its last ones,
   // the list being sorted by j) were evaluated in phase A: their slots are
   // added after the range, when each atom's own entries are done.
-  void pair_range(const PairBatch& b, int lo, int hi, const PairPartition* pp, int t, Chunk& ch) const {
+  void pair_range(const PairBatch& b, int lo, int hi, PairPartition* pp, int t, Chunk& ch) const {
     ch.n = 0;
 #if defined(__x86_64__) && defined(__GNUC__)
     if (b.simd == Simd::AVX512)
@@ -984,70 +1009,92 @@ class GranKernel final : public ContactKernel {
     __builtin_prefetch(a.torque + 3 * p, 1);
   }
 
-  // Phase A: cross entries [s0, s1), into their slots.
-  void cross_range(const PairBatch& b, PairPartition& pp, int s0, int s1, Chunk& ch) const {
+  // Phase A of range u: the cross entries whose j lies in it, the touching
+  // ones into rows of its slots.
+  void cross_range(const PairBatch& b, PairPartition& pp, int u, Chunk& ch) const {
     const ListView L = list_view(b);
-    int n = 0;
-    for (int s = s0; s < s1; ++s) {
+    PairPartition::Slots& out = pp.slots[u];
+    int n = 0, rows = 0, t = 0;
+    for (int q = pp.in_first[u]; q < pp.in_first[u + 1]; ++q) {
+      const int s = pp.in_s[q];
+      while (t < u && s >= pp.cross_first[t + 1]) out.at[++t] = rows;  // range t's entries start here
       const int i = pp.cross_i[s], k = pp.cross_k[s];
       const int before = n;
       filter_entry(L, ch, n, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
       pp.on[s] = static_cast<std::uint8_t>(n != before);
-      ch.slot[before] = s;
+      ch.slot[before] = rows;
+      rows += n != before;
       if (n == Chunk::kCap) {
         ch.n = n;
-        cross_flush(b, pp, ch);
+        cross_flush(b, out, ch);
         n = 0;
       }
     }
+    while (t < u) out.at[++t] = rows;
     ch.n = n;
-    cross_flush(b, pp, ch);
+    cross_flush(b, out, ch);
   }
 
-  [[gnu::noinline]] void cross_flush(const PairBatch& b, PairPartition& pp, Chunk& ch) const {
+  [[gnu::noinline]] void cross_flush(const PairBatch& b, PairPartition::Slots& out, Chunk& ch) const {
     gather(b, ch);
     evaluate_columns_any(ch, b.ctx.dt, b.ctx.update, b.simd);
     for (int m = 0; m < ch.n; ++m) {
-      double* val = &pp.val[9 * static_cast<std::size_t>(ch.slot[m])];
+      const std::size_t r = static_cast<std::size_t>(ch.slot[m]);
+      double* fi = &out.fi[6 * r];
+      double* tj = &out.tj[3 * r];
       for (int d = 0; d < 3; ++d) {
-        val[d] = ch.f[d][m];
-        val[3 + d] = ch.ti[d][m];
-        val[6 + d] = ch.tj[d][m];
+        fi[d] = ch.f[d][m];
+        fi[3 + d] = ch.ti[d][m];
+        tj[d] = ch.tj[d][m];
       }
     }
     store_history(b, ch);
     ch.n = 0;
   }
 
-  // Phase B, last: the i-side of range t's own cross entries, in list order.
-  void apply_outgoing(const PairBatch& b, const PairPartition& pp, int t) const {
+  // Phase B, last: the i-side of range t's own cross entries, in list order,
+  // once the later ranges' phase A has filled their slots.
+  void apply_outgoing(const PairBatch& b, PairPartition& pp, int t) const {
+    const int s0 = pp.cross_first[t], s1 = pp.cross_first[t + 1];
+    if (s0 == s1) return;
+    const long pass = pp.pass;
+    for (int u = t + 1; u < pp.nparts; ++u)
+      for (int spins = 0; pp.done_a[u].load(std::memory_order_acquire) != pass; ++spins)
+        if (spins > 1000) std::this_thread::yield();  // more threads than cores
+    int* next = &pp.cursor[pp.cursor_stride() * static_cast<std::size_t>(t)];
+    for (int u = t + 1; u < pp.nparts; ++u) next[u - t - 1] = pp.slots[u].at[t];
     double* f = b.a.f;
     double* tq = b.a.torque;
-    for (int s = pp.cross_first[t]; s < pp.cross_first[t + 1]; ++s) {
+    for (int s = s0; s < s1; ++s) {
       if (!pp.on[s]) continue;
-      const int i = pp.cross_i[s];
-      const double* val = &pp.val[9 * static_cast<std::size_t>(s)];
+      const int u = pp.cross_u[s], i = pp.cross_i[s];
+      const double* fi = &pp.slots[u].fi[6 * static_cast<std::size_t>(next[u - t - 1]++)];
       for (int d = 0; d < 3; ++d) {
-        f[3 * i + d] += val[d];
-        tq[3 * i + d] += val[3 + d];
+        f[3 * i + d] += fi[d];
+        tq[3 * i + d] += fi[3 + d];
       }
     }
   }
 
   // Phase B, first: j-side contributions of cross entries to the atoms of
-  // range t. They come from earlier ranges; taken in list order, each atom
-  // receives its own in list order, as in the serial pass.
+  // range t (evaluated by this thread in phase A). They come from earlier
+  // ranges; taken in list order, each atom receives its own in list order, as
+  // in the serial pass.
   void apply_incoming(const PairBatch& b, const PairPartition& pp, int t) const {
     double* f = b.a.f;
     double* tq = b.a.torque;
-    const int lo = pp.lo[t], hi = pp.lo[t + 1];
-    for (int s = 0; s < pp.cross_first[t]; ++s) {
+    const PairPartition::Slots& in = pp.slots[t];
+    std::size_t r = 0;
+    for (int q = pp.in_first[t]; q < pp.in_first[t + 1]; ++q) {
+      const int s = pp.in_s[q];
+      if (!pp.on[s]) continue;
       const int a = pp.cross_j[s];
-      if (!pp.on[s] || a < lo || a >= hi) continue;
-      const double* val = &pp.val[9 * static_cast<std::size_t>(s)];
+      const double* fi = &in.fi[6 * r];
+      const double* tj = &in.tj[3 * r];
+      ++r;
       for (int d = 0; d < 3; ++d) {
-        f[3 * a + d] -= val[d];
-        tq[3 * a + d] += val[6 + d];
+        f[3 * a + d] -= fi[d];
+        tq[3 * a + d] += tj[d];
       }
     }
   }
@@ -1166,8 +1213,32 @@ class GranKernel final : public ContactKernel {
     }
     const int ncross = static_cast<int>(pp.cross_k.size());
     pp.cross_first[nparts] = ncross;
-    pp.val.resize(9 * static_cast<std::size_t>(ncross));  // read only where `on`, both set in phase A
-    pp.on.resize(ncross);
+    // Each range's incoming entries, by a counting sort on j's range (stable:
+    // list order within each).
+    pp.cross_u.resize(ncross);
+    pp.in_first.assign(nparts + 1, 0);
+    for (int s = 0; s < ncross; ++s) {
+      pp.cross_u[s] = static_cast<int>(std::upper_bound(pp.lo.begin(), pp.lo.end(), pp.cross_j[s]) - pp.lo.begin()) - 1;
+      ++pp.in_first[pp.cross_u[s] + 1];
+    }
+    for (int u = 0; u < nparts; ++u) pp.in_first[u + 1] += pp.in_first[u];
+    pp.in_s.resize(ncross);
+    std::vector<int> at(pp.in_first.begin(), pp.in_first.end() - 1);
+    for (int s = 0; s < ncross; ++s) pp.in_s[at[pp.cross_u[s]]++] = s;
+    pp.on.resize(ncross);  // each entry's, and its slot row, written in phase A
+    pp.slots.resize(nparts);
+    for (int u = 0; u < nparts; ++u) {
+      const std::size_t m = static_cast<std::size_t>(pp.in_first[u + 1] - pp.in_first[u]);
+      pp.slots[u].fi.resize(6 * m);
+      pp.slots[u].tj.resize(3 * m);
+      pp.slots[u].at.assign(nparts, 0);
+    }
+    pp.cursor.resize(pp.cursor_stride() * static_cast<std::size_t>(nparts));
+    if (!pp.done_a || pp.done_a_size < nparts) {
+      pp.done_a = std::make_unique<std::atomic<long>[]>(nparts);
+      pp.done_a_size = nparts;
+      for (int u = 0; u < nparts; ++u) pp.done_a[u].store(0, std::memory_order_relaxed);
+    }
   }
 
   // Wall contacts: gathered into columns and evaluated like pair contacts

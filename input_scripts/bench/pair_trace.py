@@ -10,7 +10,8 @@ scatter from pass to pass.
 
 Shares are of the threads' capacity (threads x wall time of the passes):
   plan     choosing the split (kept, re-split or new list) before the threads start
-  phase A  cross entries (j in a later range), then the barrier
+  phase A  cross entries, each by the thread of j's range (the later one); a
+           barrier followed it until the i-side waited on a flag instead
   phase B  each thread's own range
   waiting  a thread done with phase B while another still works
 """
@@ -48,7 +49,7 @@ def summary(path, last=0):
         m = kind == k
         if m.any():
             out.append("  plan %-8s %5d passes, %.4f ms each" % (name, m.sum(), 1e3 * plan[m].mean()))
-    out.append("  share of the threads' capacity: plan %.1f %%, phase A + barrier %.1f %% (phase A busy %.1f %%), "
+    out.append("  share of the threads' capacity: plan %.1f %%, phase A (+ barrier) %.1f %% (phase A busy %.1f %%), "
                "phase B busy %.1f %%, phase B waiting %.1f %%, after the last thread %.1f %%"
                % (100 * nt * plan.sum() / cap, 100 * (b_start - plan[:, None]).sum() / cap, 100 * busy_a / cap,
                   100 * busy_b / cap, 100 * wait_b / cap, 100 * nt * (wall - last).sum() / cap))
