@@ -305,8 +305,7 @@ struct PairPartition {
   std::vector<Slots> slots;              // per range u
   std::vector<int> cursor;               // per range, padded to cache lines: apply_outgoing's next row per later u
   std::size_t cursor_stride() const { return (static_cast<std::size_t>(nparts) + 15) / 16 * 16; }
-  std::unique_ptr<std::atomic<long>[]> done_a;  // per range: the last pass whose phase A is done
-  int done_a_size = 0;
+  std::vector<std::atomic<long>> done_a;  // per range: the last pass whose phase A is done
   long pass = 0;                         // threaded passes so far
   bool rehome = false;                   // a new list: phase A moves its cross entries' history rows
   // Balance from measured time (the results do not depend on the split):
@@ -1042,7 +1041,8 @@ class GranKernel final : public ContactKernel {
   // same values). The list hands out rows in list order, so a cross entry's
   // row sat among those of i's other contacts, which i's thread rewrites at
   // every step as this one rewrites it: each line went between the cores
-  // twice a step. (bed_30k, two threads with the cores apart: +2 %.)
+  // twice a step. (Restarted bed_30k, two threads with the cores apart:
+  // +3.5 to +6 % in paired runs.)
   static void rehome_rows(const PairBatch& b, const PairPartition& pp, int u) {
     if constexpr (kH > 0) {
       if (!b.store) return;
@@ -1258,11 +1258,7 @@ class GranKernel final : public ContactKernel {
       pp.slots[u].at.assign(nparts, 0);
     }
     pp.cursor.resize(pp.cursor_stride() * static_cast<std::size_t>(nparts));
-    if (!pp.done_a || pp.done_a_size < nparts) {
-      pp.done_a = std::make_unique<std::atomic<long>[]>(nparts);
-      pp.done_a_size = nparts;
-      for (int u = 0; u < nparts; ++u) pp.done_a[u].store(0, std::memory_order_relaxed);
-    }
+    if (pp.done_a.size() < static_cast<std::size_t>(nparts)) pp.done_a = std::vector<std::atomic<long>>(nparts);  // zeroed
   }
 
   // Wall contacts: gathered into columns and evaluated like pair contacts
