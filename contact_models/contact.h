@@ -14,44 +14,18 @@
 #include <string>
 #include <vector>
 
+#include "core/contact_columns.h"
 #include "core/neighbor.h"  // HistorySlot
 
 namespace sable {
 
 class Args;
 
-struct Vec3 {
-  double x = 0, y = 0, z = 0;
-};
-
-inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-struct Contact {
-  double en[3];      // unit normal, j (or wall) -> i
-  double deltan;     // overlap (> 0)
-  double r;          // centre distance (wall: centre to wall = radi - deltan)
-  double radi, radj;  // radj = 0 for a wall (infinite radius)
-  double reff, meff;  // R* (wall: radi) and m* (wall: m_i)
-  double cri, crj;    // contact radii r - deltan/2 (crj = 0 for a wall)
-  double vn;          // normal relative velocity
-  double vtr[3];      // tangential relative velocity at the contact point
-  double wroll[3];    // relative spin for rolling friction (pair: w_i - w_j; wall: cri w_i / r as LIGGGHTS)
-  int itype, jtype;   // jtype = wall material type for walls
-  int tp;             // itype * (ntypes + 1) + jtype: index into per-type-pair tables
-  bool is_wall;
-};
-
 // Normal sub-model result. kt/gammat feed the tangential model, as LIGGGHTS'
 // normal models set sidata.kt/gammat; Fn (damped, possibly limited) is the
 // force the Coulomb cap uses.
 struct NormalForce {
   double Fn = 0, kn = 0, kt = 0, gamman = 0, gammat = 0;
-};
-
-// Per-step context shared by all contacts of one loop.
-struct StepContext {
-  double dt = 0;
-  bool update = true;  // false during setup and for per-contact output: history is read, never written
 };
 
 // Stability check inputs for one pair of grains touching at speed v.

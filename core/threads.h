@@ -22,7 +22,7 @@
 
 namespace sable {
 
-// Vector width of the contact loops (GranKernel::evaluate_columns).
+// Vector width of the contact loops (the laws' column loops, contact_models/kernel.h).
 enum class Simd { SSE2, AVX2, AVX512 };
 
 // Size thresholds and the SIMD switch. Tests lower the thresholds to run the
