@@ -11,6 +11,7 @@
 //   force on i = Fn en + Ft, force on j = -(Fn en + Ft)
 //   torque on i = -cri en x Ft - Mr, torque on j = -crj en x Ft + Mr
 #include <cmath>
+#include <concepts>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,18 @@
 namespace sable {
 
 class Args;
+class PropertyRequest;
 
-// Normal sub-model result. kt/gammat feed the tangential model, as LIGGGHTS'
-// normal models set sidata.kt/gammat; Fn (damped, possibly limited) is the
-// force the Coulomb cap uses.
+// The normal force of one contact, built along the axes: the normal model
+// sets kn, kt, the elastic force Fel (and s, a factor its own damping reuses),
+// the damping model gamman and gammat; then Fn = Fel - gamman vn, limited by
+// the normal model (limitForce), plus the cohesion force. kt and gammat feed
+// the tangential model, as LIGGGHTS' normal models set sidata.kt/gammat; Fn
+// (damped, possibly limited) is the force the Coulomb cap uses.
 struct NormalForce {
   double Fn = 0, kn = 0, kt = 0, gamman = 0, gammat = 0;
+  double Fel = 0;  // elastic part
+  double s = 0;    // the normal model's own: sqrt(R* dn) for Hertz-type models
 };
 
 // Stability check inputs for one pair of grains touching at speed v.
@@ -55,4 +62,48 @@ class ModelSettings {
   std::vector<Entry> entries_;
 };
 
+// What each axis asks of a sub-model (contact_models/README.md). A header
+// under contact_models/<axis>/ ends with SABLE_<AXIS>_MODEL(Type); the build
+// finds that line and composes the type with every model of the other axes
+// (no list to edit); the macro itself checks the interface.
+template <class M>
+concept SubModel = requires(M m, ModelSettings& s, std::vector<HistorySlot>& h) {
+  { M::kName } -> std::convertible_to<const char*>;
+  { M::kHistory } -> std::convertible_to<int>;
+  M::history_slots(h);
+  m.settings(s);
+};
+template <class M>
+concept NormalSubModel = SubModel<M> && requires(const M& m, M& mm, const Contact& c, NormalForce& n, double* h,
+                                                 const StepContext& x, const ContactTimeInput& t, PropertyRequest& p) {
+  { m.force(c, h, x) } -> std::same_as<NormalForce>;
+  m.damping(c, n);
+  m.limit(n);
+  mm.connect_damping(p);
+  { m.contact_time(t) } -> std::convertible_to<double>;
+};
+template <class M>
+concept TangentialSubModel = SubModel<M> && requires(const M& m, const Contact& c, const NormalForce& n, double* h,
+                                                     const StepContext& x) {
+  { m.force(c, n, h, x) } -> std::same_as<Vec3>;
+};
+template <class M>
+concept RollingSubModel = SubModel<M> && requires(const M& m, const Contact& c, const NormalForce& n, double* h,
+                                                  const StepContext& x) {
+  { m.torque(c, n, h, x) } -> std::same_as<Vec3>;
+};
+template <class M>
+concept CohesionSubModel = SubModel<M> && requires(const M& m, const Contact& c, const NormalForce& n, double* h,
+                                                   const StepContext& x) {
+  { M::kActive } -> std::convertible_to<bool>;
+  { m.force(c, n, h, x) } -> std::convertible_to<double>;
+};
+
 }  // namespace sable
+
+#define SABLE_NORMAL_MODEL(T) static_assert(::sable::NormalSubModel<T>, #T ": not a normal model")
+#define SABLE_DAMPING_MODEL(T) static_assert(::sable::SubModel<T>, #T ": not a damping model")
+#define SABLE_TANGENTIAL_MODEL(T) static_assert(::sable::TangentialSubModel<T>, #T ": not a tangential model")
+#define SABLE_ROLLING_MODEL(T) static_assert(::sable::RollingSubModel<T>, #T ": not a rolling model")
+#define SABLE_COHESION_MODEL(T) static_assert(::sable::CohesionSubModel<T>, #T ": not a cohesion model")
+

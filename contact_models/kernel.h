@@ -1,6 +1,7 @@
 #pragma once
 // A contact law: the compile-time composition of one sub-model per axis
-// (normal, tangential, rolling), GranKernel<N, T, R>, evaluating a chunk of
+// (normal, damping, tangential, rolling, cohesion), GranKernel<N, D, T, R, C>,
+// evaluating a chunk of
 // contacts from their kinematics (core/contact_columns.h) and nothing else.
 // The sub-model structs inline into one branch-free loop over the chunk's
 // columns, which the compiler vectorises; the virtual interfaces are crossed
@@ -14,10 +15,16 @@
 //   static constexpr const char* kName;  static constexpr int kHistory;
 //   static void history_slots(std::vector<HistorySlot>&);
 //   void settings(ModelSettings&);  void connect(PropertyRequest&);
-//   normal:     NormalForce force(const Contact&, double* hist, const StepContext&) const;
+//   normal:     NormalForce force(const Contact&, double* hist, const StepContext&) const;  (kn, kt, Fel)
+//               void damping(const Contact&, NormalForce&) const;  (its LIGGGHTS damping)
+//               void limit(NormalForce&) const;  (limitForce)
 //               double contact_time(const ContactTimeInput&) const;
+//   damping:    template <class N> void damp(const N&, const Contact&, NormalForce&) const;  (gamman, gammat)
 //   tangential: Vec3 force(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 //   rolling:    Vec3 torque(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
+//   cohesion:   static constexpr bool kActive;
+//               double force(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
+// History columns follow the axes' order: normal, damping, tangential, rolling, cohesion.
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,7 +40,8 @@ namespace sable {
 class ContactKernel {
  public:
   virtual ~ContactKernel() = default;
-  virtual std::string name() const = 0;  // "model hertz tangential history rolling_friction cdt"
+  // "model hertz damping liggghts tangential history rolling_friction cdt cohesion off"
+  virtual std::string name() const = 0;
   virtual void settings(ModelSettings& s) = 0;
   // Look up coefficient tables; errors name `line` (the pair_style / fix wall/gran command).
   virtual void connect(const std::shared_ptr<Materials>& m, const Args& line) = 0;
@@ -51,35 +59,46 @@ class ContactKernel {
   std::unique_ptr<ContactLoop> loop_;
 };
 
-template <class N, class T, class R>
-class GranKernel final : public ContactKernel, public ColumnLaw<N::kHistory + T::kHistory + R::kHistory> {
+template <class N, class D, class T, class R, class C>
+class GranKernel final
+    : public ContactKernel,
+      public ColumnLaw<N::kHistory + D::kHistory + T::kHistory + R::kHistory + C::kHistory> {
  public:
-  static constexpr int kHN = N::kHistory, kHT = T::kHistory, kHR = R::kHistory;
-  static constexpr int kH = kHN + kHT + kHR;
+  static constexpr int kHN = N::kHistory, kHD = D::kHistory, kHT = T::kHistory, kHR = R::kHistory;
+  static constexpr int kH = kHN + kHD + kHT + kHR + C::kHistory;
   static_assert(kH <= kMaxLoopHistory, "more history values per contact than core/contact_loop.cpp builds loops for");
 
   GranKernel() {
     N::history_slots(slots_);
+    D::history_slots(slots_);
     T::history_slots(slots_);
     R::history_slots(slots_);
+    C::history_slots(slots_);
     loop_ = make_contact_loop<kH>(*this);
   }
   std::string name() const override {
-    return std::string("model ") + N::kName + " tangential " + T::kName + " rolling_friction " + R::kName;
+    return std::string("model ") + N::kName + " damping " + D::kName + " tangential " + T::kName +
+           " rolling_friction " + R::kName + " cohesion " + C::kName;
   }
   void settings(ModelSettings& s) override {
     normal_.settings(s);
+    damping_.settings(s);
     tangential_.settings(s);
     rolling_.settings(s);
+    cohesion_.settings(s);
   }
   void connect(const std::shared_ptr<Materials>& m, const Args& line) override {
     materials_ = m;  // keeps the tables the sub-models point into alive
     PropertyRequest p(*m, line, std::string("model ") + N::kName);
     normal_.connect(p);
+    p.set_who(std::string("damping ") + D::kName);
+    damping_.connect(p, normal_);
     p.set_who(std::string("tangential ") + T::kName);
     tangential_.connect(p);
     p.set_who(std::string("rolling_friction ") + R::kName);
     rolling_.connect(p);
+    p.set_who(std::string("cohesion ") + C::kName);
+    cohesion_.connect(p);
   }
   const std::vector<HistorySlot>& history_slots() const override { return slots_; }
   double contact_time(const ContactTimeInput& in) const override { return normal_.contact_time(in); }
@@ -91,8 +110,10 @@ class GranKernel final : public ContactKernel, public ColumnLaw<N::kHistory + T:
   }
 
   N normal_;
+  D damping_;
   T tangential_;
   R rolling_;
+  C cohesion_;
 
  private:
   std::vector<HistorySlot> slots_;
@@ -101,9 +122,13 @@ class GranKernel final : public ContactKernel, public ColumnLaw<N::kHistory + T:
 
   // All sub-models on one contact: force on i and torques on i and j.
   [[gnu::always_inline]] inline Parts evaluate_one(const Contact& c, double* h, const StepContext& ctx) const {
-    const NormalForce nf = normal_.force(c, h, ctx);
-    const Vec3 ft = tangential_.force(c, nf, h + kHN, ctx);
-    const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHT, ctx);
+    NormalForce nf = normal_.force(c, h, ctx);
+    damping_.damp(normal_, c, nf);
+    nf.Fn = nf.Fel - nf.gamman * c.vn;
+    normal_.limit(nf);
+    if constexpr (C::kActive) nf.Fn += cohesion_.force(c, nf, h + kHN + kHD + kHT + kHR, ctx);
+    const Vec3 ft = tangential_.force(c, nf, h + kHN + kHD, ctx);
+    const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHD + kHT, ctx);
     const double* en = c.en;
     Parts p;
     p.f[0] = nf.Fn * en[0] + ft.x;

@@ -6,7 +6,7 @@
 
 #include "core/args.h"
 #include "core/simulation.h"
-#include "fixes/fix_property_global.h"
+#include "core/global_property.h"
 
 namespace sable {
 
@@ -26,16 +26,16 @@ std::map<const Simulation*, std::weak_ptr<Materials>>& cache() {
 std::shared_ptr<Materials> Materials::of(Simulation& sim) {
   auto& c = cache();
   if (auto p = c[&sim].lock())
-    if (p->generation_ == FixPropertyGlobal::generation() && p->ntypes_ == sim.atoms.ntypes) return p;
+    if (p->generation_ == GlobalProperty::generation() && p->ntypes_ == sim.atoms.ntypes) return p;
   auto p = std::make_shared<Materials>(sim);
   c[&sim] = p;
   return p;
 }
 
 Materials::Materials(Simulation& sim)
-    : sim_(sim), ntypes_(sim.atoms.ntypes), generation_(FixPropertyGlobal::generation()) {}
+    : sim_(sim), ntypes_(sim.atoms.ntypes), generation_(GlobalProperty::generation()) {}
 
-bool Materials::has(const std::string& property) const { return FixPropertyGlobal::find(sim_, property) != nullptr; }
+bool Materials::has(const std::string& property) const { return GlobalProperty::find(sim_, property) != nullptr; }
 
 std::string Materials::example_line(const std::string& name, const char* style) const {
   std::string s = "fix ID all property/global " + name + " " + style;
@@ -51,29 +51,29 @@ std::string Materials::example_line(const std::string& name, const char* style) 
   return s + "' (N = " + std::to_string(ntypes_) + " atom types, then N*N symmetric values)";
 }
 
-const FixPropertyGlobal& Materials::require(const std::string& name, const char* style, const std::string& who,
+const GlobalProperty& Materials::require(const std::string& name, const char* style, const std::string& who,
                                            const Args& line) const {
-  const FixPropertyGlobal* f = FixPropertyGlobal::find(sim_, name);
+  const GlobalProperty* f = GlobalProperty::find(sim_, name);
   std::string ex = example_line(name, style);
   if (ex.back() != ')') ex += "'";
   if (!f) line.fail_line(who + " needs material property '" + name + "', which no fix defines: add '" + ex);
-  using K = FixPropertyGlobal::Kind;
+  using K = GlobalProperty::Kind;
   const std::string st = style;
   const K want = st == "scalar" ? K::Scalar : st == "peratomtype" ? K::Vector : K::Matrix;
   if (f->kind != want)
-    f->args.fail_line("property " + name + " is given as '" + f->style_word + "' but " + who + " (" +
+    f->line->fail_line("property " + name + " is given as '" + f->style_word + "' but " + who + " (" +
                       line.where().file + ":" + std::to_string(line.where().line) + ") needs " + style + ": '" + ex);
   if (want == K::Vector && static_cast<int>(f->values.size()) < ntypes_)
-    f->args.fail_line(name + " has " + std::to_string(f->values.size()) + " value(s) but the box has " +
+    f->line->fail_line(name + " has " + std::to_string(f->values.size()) + " value(s) but the box has " +
                       std::to_string(ntypes_) + " atom types: '" + ex);
   if (want == K::Matrix && f->ncols < ntypes_)
-    f->args.fail_line(name + " is given for " + std::to_string(f->ncols) + " atom type(s) but the box has " +
+    f->line->fail_line(name + " is given for " + std::to_string(f->ncols) + " atom type(s) but the box has " +
                       std::to_string(ntypes_) + ": '" + ex);
   return *f;
 }
 
 std::vector<double> Materials::raw_pair(const std::string& name, const std::string& who, const Args& line) const {
-  const FixPropertyGlobal& f = require(name, "peratomtypepair", who, line);
+  const GlobalProperty& f = require(name, "peratomtypepair", who, line);
   const int s = stride();
   std::vector<double> t(s * s, 0.0);
   for (int i = 1; i <= ntypes_; ++i)
@@ -82,7 +82,7 @@ std::vector<double> Materials::raw_pair(const std::string& name, const std::stri
 }
 
 std::vector<double> Materials::raw_type(const std::string& name, const std::string& who, const Args& line) const {
-  const FixPropertyGlobal& f = require(name, "peratomtype", who, line);
+  const GlobalProperty& f = require(name, "peratomtype", who, line);
   std::vector<double> t(stride(), 0.0);
   for (int i = 1; i <= ntypes_; ++i) t[i] = f.values[i - 1];
   return t;
@@ -93,13 +93,13 @@ const double* Materials::type_vector(const std::string& name, const std::string&
   if (auto it = tables_.find(key); it != tables_.end()) return it->second.data();
   std::vector<double> t = raw_type(name, who, line);
   // LIGGGHTS' sanity checks (global_properties.cpp), so a deck LIGGGHTS refuses is refused here too.
-  const FixPropertyGlobal* f = FixPropertyGlobal::find(sim_, name);
+  const GlobalProperty* f = GlobalProperty::find(sim_, name);
   for (int i = 1; i <= ntypes_; ++i) {
     if (name == "youngsModulus" && sim_.units == "si" && t[i] < 5e6)
-      f->args.fail_line("youngsModulus >= 5e6 required for SI units (as in LIGGGHTS); type " + std::to_string(i) +
+      f->line->fail_line("youngsModulus >= 5e6 required for SI units (as in LIGGGHTS); type " + std::to_string(i) +
                         " has " + fmt(t[i]));
     if (name == "poissonsRatio" && (t[i] < 0.0 || t[i] > 0.5))
-      f->args.fail_line("0 <= poissonsRatio <= 0.5 required (as in LIGGGHTS); type " + std::to_string(i) + " has " +
+      f->line->fail_line("0 <= poissonsRatio <= 0.5 required (as in LIGGGHTS); type " + std::to_string(i) + " has " +
                         fmt(t[i]));
   }
   auto& stored = tables_[key];
@@ -138,11 +138,11 @@ const double* Materials::pair_table(const std::string& name, const std::string& 
   } else {
     t = raw_pair(name, who, line);
     if (name == "coefficientRestitution") {
-      const FixPropertyGlobal* f = FixPropertyGlobal::find(sim_, name);
+      const GlobalProperty* f = GlobalProperty::find(sim_, name);
       each([&](int i, int j) {
         const double e = t[i * s + j];
         if (!(e > 0.05 && e <= 1.0))
-          f->args.fail_line("0.05 < coefficientRestitution <= 1 required (as in LIGGGHTS); types " + std::to_string(i) +
+          f->line->fail_line("0.05 < coefficientRestitution <= 1 required (as in LIGGGHTS); types " + std::to_string(i) +
                             "," + std::to_string(j) + " have " + fmt(e));
         return e;
       });
@@ -155,10 +155,10 @@ const double* Materials::pair_table(const std::string& name, const std::string& 
 
 double Materials::scalar(const std::string& name, const std::string& who, const Args& line) {
   if (auto it = scalars_.find(name); it != scalars_.end()) return it->second;
-  const FixPropertyGlobal& f = require(name, "scalar", who, line);
+  const GlobalProperty& f = require(name, "scalar", who, line);
   const double v = f.values[0];
   if (name == "characteristicVelocity" && sim_.units == "si" && v < 1e-2)
-    f.args.fail_line("characteristicVelocity >= 1e-2 required for SI units (as in LIGGGHTS)");
+    f.line->fail_line("characteristicVelocity >= 1e-2 required for SI units (as in LIGGGHTS)");
   return scalars_[name] = v;
 }
 

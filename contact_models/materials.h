@@ -17,7 +17,7 @@ namespace sable {
 
 class Args;
 class Simulation;
-class FixPropertyGlobal;
+class GlobalProperty;
 
 class Materials {
  public:
@@ -42,7 +42,7 @@ class Materials {
   std::map<std::string, std::vector<double>> tables_;
   std::map<std::string, double> scalars_;
 
-  const FixPropertyGlobal& require(const std::string& name, const char* style, const std::string& who,
+  const GlobalProperty& require(const std::string& name, const char* style, const std::string& who,
                                    const Args& line) const;
   std::vector<double> raw_pair(const std::string& name, const std::string& who, const Args& line) const;
   std::vector<double> raw_type(const std::string& name, const std::string& who, const Args& line) const;

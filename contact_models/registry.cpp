@@ -7,43 +7,38 @@
 
 namespace sable {
 
-static std::set<std::string> axis_names(int axis) {
+static std::set<std::string> axis_names(ModelAxis axis) {
   std::set<std::string> s;
-  for (auto& [k, f] : GranModelRegistry::table()) {
-    std::istringstream in(k);
-    std::string w[3];
-    in >> w[0] >> w[1] >> w[2];
-    s.insert(w[axis]);
-  }
+  for (auto& [k, f] : GranModelRegistry::table()) s.insert(k[axis]);
   return s;
 }
 
-std::string GranModelRegistry::names(int axis) {
+std::string GranModelRegistry::names(ModelAxis axis) {
   std::string out;
   for (auto& n : axis_names(axis)) out += (out.empty() ? "" : ", ") + n;
   return out;
 }
 
-bool GranModelRegistry::has_name(int axis, const std::string& name) { return axis_names(axis).count(name) > 0; }
+bool GranModelRegistry::has_name(ModelAxis axis, const std::string& name) { return axis_names(axis).count(name) > 0; }
+
+static const char* const kAxisKeyword[kAxes] = {"model", "damping", "tangential", "rolling_friction", "cohesion"};
+static const char* const kAxisWhat[kAxes] = {"a normal model", "a damping model", "a tangential model",
+                                             "a rolling friction model", "a cohesion model"};
 
 ModelSelection parse_model_selection(const Args& a, std::size_t i) {
   ModelSelection s;
-  if (i >= a.size() || a[i] != "model") a.fail(i, "'model' followed by a normal model (" + GranModelRegistry::names(0) + ")");
+  if (i >= a.size() || a[i] != "model")
+    a.fail(i, "'model' followed by a normal model (" + GranModelRegistry::names(kNormalAxis) + ")");
   // LIGGGHTS wants the order model, tangential, cohesion, rolling_friction, surface; any order is accepted here.
   while (i < a.size()) {
     const std::string& k = a[i];
-    if (k == "model") {
-      s.normal = a.word(i + 1, "a normal model (" + GranModelRegistry::names(0) + ")");
-      s.normal_at = i + 1;
-    } else if (k == "tangential") {
-      s.tangential = a.word(i + 1, "a tangential model (" + GranModelRegistry::names(1) + ")");
-      s.tangential_at = i + 1;
-    } else if (k == "rolling_friction") {
-      s.rolling = a.word(i + 1, "a rolling friction model (" + GranModelRegistry::names(2) + ")");
-      s.rolling_at = i + 1;
-    } else if (k == "cohesion") {
-      if (a.word(i + 1, "a cohesion model (off)") != "off")
-        a.fail(i + 1, "cohesion 'off' (cohesion models are not supported yet)");
+    int axis = -1;
+    for (int x = 0; x < kAxes; ++x)
+      if (k == kAxisKeyword[x]) axis = x;
+    if (axis >= 0) {
+      const auto ax = static_cast<ModelAxis>(axis);
+      s.names[ax] = a.word(i + 1, std::string(kAxisWhat[ax]) + " (" + GranModelRegistry::names(ax) + ")");
+      s.at[ax] = i + 1;
     } else if (k == "surface") {
       if (a.word(i + 1, "a surface model (default)") != "default")
         a.fail(i + 1, "surface 'default' (only spheres are supported)");
@@ -57,17 +52,22 @@ ModelSelection parse_model_selection(const Args& a, std::size_t i) {
 }
 
 std::unique_ptr<ContactKernel> make_kernel(const ModelSelection& s, const Args& a) {
-  if (!GranModelRegistry::has_name(0, s.normal))
-    a.fail(s.normal_at, "a normal model: " + GranModelRegistry::names(0) + " (or one a 'plugin load' registers)");
-  if (!GranModelRegistry::has_name(1, s.tangential))
-    a.fail(s.tangential_at, "a tangential model: " + GranModelRegistry::names(1));
-  if (!GranModelRegistry::has_name(2, s.rolling))
-    a.fail(s.rolling_at, "a rolling friction model: " + GranModelRegistry::names(2));
-  const auto* f = GranModelRegistry::find(s.normal, s.tangential, s.rolling);
-  if (!f)
-    a.fail(s.normal_at, "a registered combination: model " + s.normal + " tangential " + s.tangential +
-                            " rolling_friction " + s.rolling +
-                            " was not compiled (register it with SABLE_GRAN_MODEL or SABLE_GRAN_NORMAL)");
+  for (int x = 0; x < kAxes; ++x) {
+    const auto ax = static_cast<ModelAxis>(x);
+    if (GranModelRegistry::has_name(ax, s.names[ax])) continue;
+    const std::string known = GranModelRegistry::names(ax);
+    if (axis_names(ax).size() == 1)  // one choice: name it
+      a.fail(s.at[ax], std::string(kAxisKeyword[ax]) + " '" + known + "'");
+    a.fail(s.at[ax], std::string(kAxisWhat[ax]) + ": " + known +
+                         (ax == kNormalAxis ? " (or one a 'plugin load' registers)" : ""));
+  }
+  const auto* f = GranModelRegistry::find(s.names);
+  if (!f) {
+    std::string combo;
+    for (int x = 0; x < kAxes; ++x) combo += std::string(x ? " " : "") + kAxisKeyword[x] + " " + s.names[x];
+    a.fail(s.at[kNormalAxis], "a registered combination: " + combo +
+                                  " was not compiled (register it with SABLE_GRAN_MODEL or SABLE_GRAN_NORMAL)");
+  }
   return (*f)();
 }
 

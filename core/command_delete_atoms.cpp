@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
-#include "fixes/fix_particletemplate_sphere.h"
+#include "core/random.h"
 
 namespace sable {
 namespace {

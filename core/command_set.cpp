@@ -13,7 +13,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/variable.h"
-#include "fixes/fix_particletemplate_sphere.h"
+#include "core/random.h"
 
 namespace sable {
 namespace {

@@ -269,8 +269,7 @@ class ContactLoopT final : public ContactLoop {
   }
   // Eight rows of three doubles (at base + 3 * idx[l]) into three columns:
   // eight masked loads and a transpose instead of three 8-lane gathers
-  // (24 element loads). On an AMD EPYC (Zen 4) this cut the filter's and the
-  // gather's samples by 30 % and 40 % (bed_30k, 1 thread).
+  // (24 element loads); history.md has the measurement.
   [[gnu::target("avx512f,avx512vl"), gnu::always_inline]] static inline void rows3(const double* base, const int* idx,
                                                                                 __m512d& cx, __m512d& cy, __m512d& cz) {
     __m512d z[4];
@@ -572,8 +571,7 @@ class ContactLoopT final : public ContactLoop {
   // same values). The list hands out rows in list order, so a cross entry's
   // row sat among those of i's other contacts, which i's thread rewrites at
   // every step as this one rewrites it: each line went between the cores
-  // twice a step. (Restarted bed_30k, two threads with the cores apart:
-  // +3.5 to +6 % in paired runs.)
+  // twice a step.
   static void rehome_rows(const PairBatch& b, const PairPartition& pp, int u) {
     if constexpr (kH > 0) {
       if (!b.store) return;
@@ -658,8 +656,8 @@ class ContactLoopT final : public ContactLoop {
   // threads slowed by the machine), re-split as soon as kLearnCalls passes show
   // the ranges more than 4 % apart: on a shared host one core can run at half
   // speed for 10-50 passes and then recover. A re-split costs a search per
-  // bound and one look per atom for the cross entries (0.06 ms on bed_30k),
-  // so following the host is cheap. Any split gives the same bits.
+  // bound and one look per atom for the cross entries, so following the host
+  // is cheap. Any split gives the same bits.
   static constexpr int kLearnCalls = 3;  // passes measured before a re-split
   void plan_partition(const PairBatch& b, int nparts) {
     PairPartition& pp = part_;

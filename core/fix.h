@@ -1,6 +1,7 @@
 #pragma once
 // Base of all fixes (LIGGGHTS `fix ID group style args`). A fix overrides the
 // hooks it needs and says so in `hooks`, so the step loop calls only those.
+#include <cstddef>
 #include <string>
 
 #include "core/args.h"
@@ -35,11 +36,13 @@ class Fix {
 
   virtual void init() {}        // before each run (after all commands are known)
   virtual void setup() {}       // after the first force evaluation of a run
-  virtual void initial_integrate() {}
+  // The hooks: a fix overrides those it needs, or declares them as atom_tasks
+  // (below), which the defaults then run on every thread's atom range.
+  virtual void initial_integrate() { run_task(INITIAL_INTEGRATE); }
   virtual void post_integrate() {}
   virtual void pre_force() {}
-  virtual void post_force();    // ranged fixes (below): prepare, every thread range, finish
-  virtual void final_integrate() {}
+  virtual void post_force() { run_task(POST_FORCE); }
+  virtual void final_integrate() { run_task(FINAL_INTEGRATE); }
   virtual void end_of_step() {}
   virtual void post_run() {}
   // `fix_modify` keywords this fix understands; return false to reject.
@@ -57,37 +60,43 @@ class Fix {
   virtual bool write_state(std::string& /*out*/) const { return false; }
   virtual void read_state(const std::string& /*in*/) {}
 
-  // Step fusion (Simulation::run). An integrator that can_fuse() is told, step
-  // by step, to run last step's deferred final half at the start of its initial
-  // pass (fuse.final: nothing looked at the atoms in between) and to zero forces
-  // and torques at its end (fuse.clear: nothing reads them before the force
-  // pass). Either way the results are those of the separate passes, bit for bit.
-  virtual bool can_fuse() const { return false; }
-  struct Fusion {
-    bool final = false, clear = false;
-    // With final: last step's gravity pass was skipped; add rmass * accel to
-    // each force before using it (what that pass would have stored).
+  // ---- Per-atom tasks: what a hook does, declared; the step plan runs it.
+  // A hook whose work treats every atom on its own is named in `atom_tasks`
+  // and written as range(): core calls begin(hook) serially, range() on each
+  // thread's atoms (Atoms::split, the pair pass's ranges) and end(hook)
+  // serially; POST_FORCE tasks run inside the force pass, each range as soon
+  // as its pair forces are final, and an integrator holding both
+  // INITIAL_INTEGRATE and FINAL_INTEGRATE as tasks is fused across steps
+  // (AtomRange). Each atom sees the operations of one serial pass in the same
+  // order: the same bits for any thread count. A fix writes no threading.
+  unsigned atom_tasks = 0;  // FixHook bits
+  struct AtomRange {
+    int thread = 0;
+    std::size_t lo = 0, hi = 0;
+    // INITIAL_INTEGRATE, when the plan fuses: run last step's FINAL_INTEGRATE
+    // first (nothing looked at the atoms in between), zero every force and
+    // torque of the range after (nothing reads them before the force pass),
+    // and add rmass * accel to each force first (the last post_force task,
+    // which fold_acceleration() declared, was skipped). The same bits.
+    bool final_first = false, clear = false;
     const double* accel = nullptr;
-  } fuse;
-  // A post_force that does nothing but add m a to the force of every atom
-  // (gravity on group all) gives a here. As the last post_force fix, on
-  // steps whose final half kick is deferred, its pass goes into the
-  // integrator's (Fusion::accel): one pass over the grains fewer.
-  virtual bool uniform_acceleration(double /*a*/[3]) const { return false; }
+  };
+  virtual void begin(FixHook) {}
+  virtual void range(FixHook, const AtomRange&) {}
+  virtual void end(FixHook) {}
+  // A POST_FORCE task that only adds m a to every grain (gravity on all) gives
+  // a here: as the last post_force fix, the plan may fold it into the fused
+  // integrator on steps that defer the final half kick.
+  virtual bool fold_acceleration(double /*a*/[3]) const { return false; }
 
-  // Pipelining (Simulation::run): a post_force that treats every atom on its
-  // own says post_force_ranged(); the run may then call post_force_prepare()
-  // serially, post_force_range(t, lo, hi) inside the force pass on each
-  // thread's atoms as soon as their pair forces are final
-  // (Pair::compute_then), and post_force_finish() serially after it: the same
-  // additions to each atom, in the same order, as post_force().
-  virtual bool post_force_ranged() const { return false; }
-  virtual void post_force_prepare() {}
-  virtual void post_force_range(int /*t*/, std::size_t /*lo*/, std::size_t /*hi*/) {}
-  virtual void post_force_finish() {}
-  // A fusing integrator's initial pass (with the `fuse` settings) on the atoms
-  // [lo, hi) only, run there too on steps whose final half kick is deferred.
-  virtual void initial_integrate_range(int /*t*/, std::size_t /*lo*/, std::size_t /*hi*/) {}
+  // Grains of this fix's group count as infinitely heavy in contacts (LIGGGHTS fix freeze).
+  virtual bool freezes_group() const { return false; }
+  // A post_force that never puts force or spin out of a 2D plane (may follow enforce2d).
+  virtual bool keeps_plane() const { return false; }
+
+  // Runs the task declared for hook h (if any) over all atoms: begin, the ranges, end.
+  void run_task(FixHook h);
+  void run_task(FixHook h, const AtomRange& how);
 
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }

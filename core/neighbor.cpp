@@ -154,7 +154,7 @@ std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& fr
 // contacts name the same entry, the later one (a restart's) wins. Rows are
 // then taken in list order. In parallel for large lists, with the serial
 // result; each thread fills the arrays of its own block of entries (a serial
-// fill took the lines from the other core: 2x slower on two threads).
+// fill would take the lines from the other core).
 void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   const std::size_t entries = list.size(), listed = list.first.size() - 1, count = saved_.count();
   row.resize(entries);  // every entry is set below
@@ -320,8 +320,8 @@ int Neighbor::pick_slow_axis(const Atoms& atoms, const Domain& domain, const int
       candidate[k] = true;
       count[k].assign(nb[k], 0);
     }
-  // Each thread counts the samples among its own grains (a serial look took
-  // the other core's lines: 4x slower on two threads with the cores apart).
+  // Each thread counts the samples among its own grains (a serial look would
+  // take the other core's lines).
   std::vector<std::vector<int>> part(atom_pass_threads());
   atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
     std::vector<int>& cnt = part[t];

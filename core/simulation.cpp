@@ -337,6 +337,30 @@ static std::string balance_text(const char* what, const ThreadBalance& b) {
   return buf;
 }
 
+void Simulation::explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix* fused, bool ranged) {
+  auto note = [&](const Fix* f, const std::string& what) {
+    if (!slow_path_noted_.insert(f->id).second) return;
+    print("Note: fix " + f->id + " (" + f->style + ") " + what);
+  };
+  constexpr unsigned kBoth = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+  if (!step_fusion) return;
+  if (!fused) {
+    const bool several = hook[0].size() > 1 || hook[4].size() > 1;
+    for (int h : {0, 4})
+      for (const Fix* f : hook[h])
+        if (several || (f->atom_tasks & kBoth) != kBoth)
+          note(f, std::string(several ? "is one of several integrating fixes" : "integrates outside the step plan") +
+                      ": the two half steps and the force clear run as separate passes over every grain, and "
+                      "the post-force fixes after the force pass (3-4 parallel regions a step instead of 1)");
+    return;
+  }
+  if (ranged || !pair) return;
+  for (const Fix* f : hook[3])
+    if (!(f->atom_tasks & POST_FORCE))
+      note(f, "has a post_force that is not a per-atom task: the force pass, the post-force fixes and the "
+              "integrator run as separate passes over every grain (3 parallel regions a step instead of 1)");
+}
+
 void Simulation::run(long nsteps) {
   run_first = step;
   run_last = step + nsteps;
@@ -372,8 +396,9 @@ void Simulation::run(long nsteps) {
   // pass. Two passes over every grain fewer; the same bits. (Measuring the
   // displacements for the rebuild check there too was slower: the separate
   // pass leaves x in cache for the force pass.)
+  constexpr unsigned kBothHalves = INITIAL_INTEGRATE | FINAL_INTEGRATE;
   Fix* fused = step_fusion && hook[0].size() == 1 && hook[4].size() == 1 && hook[0][0] == hook[4][0] &&
-                       hook[0][0]->can_fuse()
+                       (hook[0][0]->atom_tasks & kBothHalves) == kBothHalves
                    ? hook[0][0]
                    : nullptr;
   const bool clear_in_integrate = fused && hook[1].empty() && hook[2].empty();
@@ -381,7 +406,7 @@ void Simulation::run(long nsteps) {
   // (gravity) is skipped too, and the next initial pass adds m a to the forces
   // it reads: the same additions in the same order.
   double accel[3];
-  Fix* folded = fused && !hook[3].empty() && hook[3].back()->uniform_acceleration(accel) ? hook[3].back() : nullptr;
+  Fix* folded = fused && !hook[3].empty() && hook[3].back()->fold_acceleration(accel) ? hook[3].back() : nullptr;
   auto quiet = [&](long s) {
     if (s >= run_last || (thermo->every > 0 && s % thermo->every == 0)) return false;
     for (Fix* f : hook[5])
@@ -399,7 +424,8 @@ void Simulation::run(long nsteps) {
   // the passes add up to one wait; the atoms are still in the core's cache.
   // Every atom sees the same operations in the same order: the same bits.
   bool ranged = fused && pair;
-  for (Fix* f : hook[3]) ranged = ranged && f->post_force_ranged();
+  for (Fix* f : hook[3]) ranged = ranged && (f->atom_tasks & POST_FORCE);
+  explain_slow_path(hook, fused, ranged);
   bool pre_integrated = false;  // this step's initial pass ran in the last force pass
   std::vector<Fix*> tail_fixes;
   double tail_fix_s = 0.0, tail_int_s = 0.0;  // thread 0's seconds in them (time split)
@@ -408,10 +434,17 @@ void Simulation::run(long nsteps) {
     ++step;
     time += dt;
     tic = clock::now();
-    if (fused) fused->fuse = {deferred, clear_in_integrate, deferred && folded ? accel : nullptr};
+    Fix::AtomRange fusion;  // this step's initial pass (see Fix::AtomRange)
+    fusion.final_first = deferred;
+    fusion.clear = clear_in_integrate;
+    fusion.accel = deferred && folded ? accel : nullptr;
     deferred = false;
-    if (!pre_integrated)
-      for (Fix* f : hook[0]) f->initial_integrate();
+    if (!pre_integrated) {
+      if (fused)
+        fused->run_task(INITIAL_INTEGRATE, fusion);
+      else
+        for (Fix* f : hook[0]) f->initial_integrate();
+    }
     pre_integrated = false;
     for (Fix* f : hook[1]) f->post_integrate();
     lap(timers.integrate);
@@ -424,24 +457,31 @@ void Simulation::run(long nsteps) {
       tail_fixes.clear();
       for (Fix* f : hook[3])
         if (!(deferred && f == folded)) tail_fixes.push_back(f);
-      for (Fix* f : tail_fixes) f->post_force_prepare();
+      for (Fix* f : tail_fixes) f->begin(POST_FORCE);
       // next step's pass, and its rebuild check's scan (nothing moves atoms in between)
-      if (deferred) fused->fuse = {true, clear_in_integrate, folded ? accel : nullptr};
+      Fix::AtomRange next;
+      next.final_first = true;
+      next.clear = clear_in_integrate;
+      next.accel = folded ? accel : nullptr;
+      if (deferred) fused->begin(INITIAL_INTEGRATE);
       const bool prescan = deferred && hook[1].empty();
       if (prescan) neighbor.expect_prescan(atoms, step + 1);
       tail_fix_s = tail_int_s = 0.0;
       pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
         const auto t0 = t == 0 ? clock::now() : clock::time_point{};
-        for (Fix* f : tail_fixes) f->post_force_range(t, lo, hi);
+        Fix::AtomRange r = next;
+        r.thread = t, r.lo = lo, r.hi = hi;
+        for (Fix* f : tail_fixes) f->range(POST_FORCE, r);
         const auto t1 = t == 0 ? clock::now() : clock::time_point{};
-        if (deferred) fused->initial_integrate_range(t, lo, hi);
+        if (deferred) fused->range(INITIAL_INTEGRATE, r);
         if (prescan) neighbor.prescan_range(atoms, t, lo, hi);
         if (t == 0) {
           tail_fix_s += std::chrono::duration<double>(t1 - t0).count();
           tail_int_s += std::chrono::duration<double>(clock::now() - t1).count();
         }
       });
-      for (Fix* f : tail_fixes) f->post_force_finish();
+      for (Fix* f : tail_fixes) f->end(POST_FORCE);
+      if (deferred) fused->end(INITIAL_INTEGRATE);
       pre_integrated = deferred;
       lap(timers.pair);
       timers.pair -= tail_fix_s + tail_int_s;  // thread 0's share, as the time split counts

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,9 @@ class Simulation {
   void check_atoms(bool positions);  // NaN velocities (and positions): stop with step, atom, cause
   void force_and_history();
   void rebuild_if_due();
+  // Says once per fix which fix keeps the step off the fused, pipelined plan and what that costs.
+  void explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix* fused, bool ranged);
+  std::set<std::string> slow_path_noted_;
   void claim_restart_leftovers();
   std::chrono::steady_clock::time_point t0_;
 };

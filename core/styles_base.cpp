@@ -25,11 +25,17 @@ void Pair::compute_then(const RangeTail& tail) {
   sim.atoms.for_ranges(tail);
 }
 
-void Fix::post_force() {
-  if (!post_force_ranged()) return;
-  post_force_prepare();
-  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { post_force_range(t, lo, hi); });
-  post_force_finish();
+void Fix::run_task(FixHook h) { run_task(h, AtomRange{}); }
+
+void Fix::run_task(FixHook h, const AtomRange& how) {
+  if (!(atom_tasks & h)) return;
+  begin(h);
+  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+    AtomRange r = how;
+    r.thread = t, r.lo = lo, r.hi = hi;
+    range(h, r);
+  });
+  end(h);
 }
 
 Fix::Fix(Simulation& s, const Args& a) : sim(s), args(a) {

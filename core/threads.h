@@ -44,12 +44,9 @@ int loop_thread_count(std::size_t n, std::size_t cost = 1);
 
 // Threading of a pass over every atom (integrator, force fixes, checks). All
 // such passes take the same decision and the same split (AtomSplit), so each
-// thread meets the atoms whose cache lines it touched last: a serial gravity
-// pass between threaded ones made the other thread's integrator half 2x slower.
-// Even a serial read costs: the lines are then shared with the first core, and
-// the owner's next write waits for a remote invalidation per line (the first
-// integrate after each rebuild took 4x longer on the second thread, with the
-// cores apart, while the rebuild looked at every position serially).
+// thread meets the atoms whose cache lines it touched last. Even a serial read
+// costs: the lines are then shared with the first core, and the owner's next
+// write waits for a remote invalidation per line.
 inline bool atom_pass_threaded(std::size_t n) { return loop_thread_count(n, 8) > 1; }
 
 // The atom ranges of the threads in per-atom passes: those of the threaded

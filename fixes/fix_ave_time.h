@@ -1,12 +1,13 @@
 #pragma once
 // Pieces shared by fix ave/time and fix ave/histo: the sampling schedule
-// (LIGGGHTS' nextvalid()), the text file and the HDF5 time series. Both
+// (LIGGGHTS' nextvalid()) and the text file (the HDF5 series: core/h5_series.h). Both
 // outputs are kill-safe: a run killed at any instant leaves files that parse.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/args.h"
+#include "core/h5_series.h"
 
 namespace sable::ave {
 
@@ -58,38 +59,6 @@ class TextFile {
   void write_all(int fd, const std::string& s);
 };
 
-// An HDF5 file of growing datasets (rows appended during the run), written in
-// SWMR mode: every append extends, writes and flushes, in an order that keeps
-// the file on disk readable at any instant. A cleanly closed file opens
-// normally; the file of a killed run opens with H5F_ACC_SWMR_READ (h5py:
-// File(name, 'r', swmr=True)). Append the step dataset last: its length is the
-// number of complete records.
-class H5Series {
- public:
-  explicit H5Series(const std::string& path);  // creates (truncates) the file
-  H5Series(const H5Series&) = delete;
-  H5Series& operator=(const H5Series&) = delete;
-  ~H5Series();
-  // Before start(): root attributes, constant datasets, growing datasets.
-  void attribute(const std::string& name, const std::vector<std::string>& values);
-  void constant(const std::string& name, const std::vector<double>& values);
-  int series(const std::string& name, const std::vector<std::size_t>& row_shape, bool integer);
-  void start();
-  void append(int series, const double* row);
-  void append(int series, std::int64_t value);  // integer series of scalars (steps)
-  const std::string& path() const { return path_; }
-
- private:
-  struct Series {
-    std::int64_t dset;
-    std::vector<unsigned long long> shape;  // row shape
-    bool integer;
-    unsigned long long rows = 0;
-  };
-  std::string path_;
-  std::int64_t file_ = -1;
-  std::vector<Series> series_;
-  void append_raw(int series, const void* row);
-};
+using sable::H5Series;  // core/h5_series.h
 
 }  // namespace sable::ave

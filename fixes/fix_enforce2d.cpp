@@ -11,28 +11,23 @@ namespace sable {
 class FixEnforce2d : public Fix {
  public:
   FixEnforce2d(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = POST_FORCE;
+    hooks = atom_tasks = POST_FORCE;
     if (a.size() > 4) a.fail(4, "nothing after 'enforce2d'");
     if (s.domain.dimension != 2) a.fail(3, "a 2D simulation for fix enforce2d ('dimension 2' before create_box)");
   }
   void init() override {
     bool after = false;
     for (auto& f : sim.fixes) {
-      // freeze and viscous (-gamma v, v_z already 0) cannot put force back out of the plane
-      const bool harmless = f->style == "freeze" || f->style == "viscous";
-      if (after && (f->hooks & POST_FORCE) && !harmless)
+      if (after && (f->hooks & POST_FORCE) && !f->keeps_plane())
         sim.warn("fix enforce2d " + id + ": fix " + f->style + " '" + f->id +
                  "' is defined after it and may add out-of-plane force after enforce2d has run; "
                  "define fix enforce2d last (as LIGGGHTS requires)");
       if (f.get() == this) after = true;
     }
   }
-  // Threaded on the pair pass's atom ranges, so each thread finds its grains'
-  // forces in its own cache (one thread here made the step slower with two).
-  bool post_force_ranged() const override { return true; }
-  void post_force_range(int, std::size_t lo, std::size_t hi) override {
+  void range(FixHook, const AtomRange& r) override {
     Atoms& at = sim.atoms;
-    for (std::size_t i = lo; i < hi; ++i) {
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       at.v[3 * i + 2] = at.f[3 * i + 2] = 0;
       at.omega[3 * i] = at.omega[3 * i + 1] = 0;

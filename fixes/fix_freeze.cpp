@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/block_sum.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/threads.h"
@@ -16,10 +17,12 @@ namespace sable {
 class FixFreeze : public Fix {
  public:
   FixFreeze(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = POST_FORCE;
+    hooks = atom_tasks = POST_FORCE;
     vector_size = 3;
     if (a.size() > 4) a.fail(4, "nothing after 'freeze'");
   }
+  bool freezes_group() const override { return true; }
+  bool keeps_plane() const override { return true; }  // zeroes forces
   void init() override {
     bool after = false;
     for (auto& f : sim.fixes) {
@@ -27,7 +30,7 @@ class FixFreeze : public Fix {
         after = true;
         continue;
       }
-      if (f->style == "freeze")
+      if (f->freezes_group())
         args.fail_line("more than one fix freeze (LIGGGHTS allows one; also fix '" + f->id + "')");
       if (after && (f->hooks & POST_FORCE) && f->acceleration() > 0)
         sim.warn("fix freeze " + id + ": fix " + f->style + " '" + f->id +
@@ -48,56 +51,23 @@ class FixFreeze : public Fix {
                " frozen grains have a velocity or spin and keep it (as in LIGGGHTS); use 'velocity " +
                sim.groups.name(group) + " set 0 0 0' to hold them still");
   }
-  // Ranged (pipelined step): each thread zeroes its own grains and sums their
-  // forces in fixed blocks of kBlock atoms. A block cut by a range bound is
-  // continued in finish() with the later ranges' values, in atom order: the
-  // additions of one serial pass over the blocks, so f_ID has the same bits
-  // for any thread count.
-  bool post_force_ranged() const override { return true; }
-  void post_force_prepare() override {
-    block_.assign((sim.atoms.n + kBlock - 1) / kBlock, {0.0, 0.0, 0.0});
-    parts_.resize(atom_pass_threads());
-    for (Part& p : parts_) p.clear();
-  }
-  void post_force_range(int t, std::size_t lo, std::size_t hi) override {
+  // f_ID: the frozen grains' forces summed by core's BlockSum (the same bits for any thread count).
+  void begin(FixHook) override { sum_.begin(sim.atoms.n, kBlock, atom_pass_threads()); }
+  void range(FixHook, const AtomRange& r) override {
     Atoms& at = sim.atoms;
-    Part& head = parts_[t];
-    for (std::size_t a = lo; a < hi;) {
-      const std::size_t b = a / kBlock, end = std::min(hi, (b + 1) * kBlock);
-      const bool cut = a == lo && lo % kBlock != 0;  // the block began in an earlier range
-      if (cut) head.block = b;
-      for (std::size_t i = a; i < end; ++i) {
-        if (!(at.mask[i] & groupbit)) continue;
-        for (int k = 0; k < 3; ++k) {
-          if (cut)
-            head.f.push_back(at.f[3 * i + k]);
-          else
-            block_[b][k] += at.f[3 * i + k];
-          at.f[3 * i + k] = 0;
-          at.torque[3 * i + k] = 0;
-        }
-      }
-      a = end;
+    sum_.range(r.thread, r.lo);
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
+      if (!(at.mask[i] & groupbit)) continue;
+      sum_.add(r.thread, i, &at.f[3 * i]);
+      for (int k = 0; k < 3; ++k) at.f[3 * i + k] = at.torque[3 * i + k] = 0;
     }
   }
-  void post_force_finish() override {
-    for (const Part& p : parts_)  // ranges in atom order
-      for (std::size_t q = 0; q < p.f.size(); ++q) block_[p.block][q % 3] += p.f[q];
-    for (double& s : f0_) s = 0.0;
-    for (const auto& s : block_)
-      for (int k = 0; k < 3; ++k) f0_[k] += s[k];
-  }
+  void end(FixHook) override { sum_.finish(f0_); }
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? f0_[i - 1] : 0.0; }
 
  private:
   static constexpr std::size_t kBlock = 1024;
-  struct alignas(64) Part {  // a range's grains in a block that began before it
-    std::size_t block = 0;
-    std::vector<double> f;   // their forces, 3 per grain of the group, in atom order
-    void clear() { f.clear(); }
-  };
-  std::vector<std::array<double, 3>> block_;  // per block: the forces summed so far
-  std::vector<Part> parts_;                   // per range
+  BlockSum<3> sum_;
   double f0_[3] = {0, 0, 0};
 };
 

@@ -10,7 +10,7 @@ namespace sable {
 class FixGravity : public Fix {
  public:
   FixGravity(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = POST_FORCE;
+    hooks = atom_tasks = POST_FORCE;
     g_ = a.num(4, "the gravity magnitude (m/s^2)");
     if (a.word(5, "'vector'") != "vector") a.fail(5, "'vector' (the only gravity style supported)");
     double d[3], n = 0;
@@ -21,8 +21,8 @@ class FixGravity : public Fix {
     if (n == 0) a.fail(6, "a non-zero direction vector");
     for (int k = 0; k < 3; ++k) acc_[k] = g_ * d[k] / std::sqrt(n);
   }
-  bool post_force_ranged() const override { return true; }
-  void post_force_range(int, std::size_t lo, std::size_t hi) override {
+  void range(FixHook, const AtomRange& r) override {
+    const std::size_t lo = r.lo, hi = r.hi;
     Atoms& at = sim.atoms;
     double* f = at.f.data();
     const double* rmass = at.rmass.data();
@@ -38,7 +38,7 @@ class FixGravity : public Fix {
     }
   }
   double acceleration() const override { return std::fabs(g_); }
-  bool uniform_acceleration(double a[3]) const override {
+  bool fold_acceleration(double a[3]) const override {
     for (int k = 0; k < 3; ++k) a[k] = acc_[k];
     return groupbit == 1u;
   }

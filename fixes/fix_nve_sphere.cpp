@@ -12,33 +12,26 @@ namespace sable {
 class FixNveSphere : public Fix {
  public:
   FixNveSphere(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+    hooks = atom_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
     for (std::size_t i = 4; i < a.size(); ++i)
       if (a[i] != "update" && a[i] != "dipole" && a[i] != "disc") a.fail(i, "nothing (or update dipole/disc)");
   }
-  // Half kick, then drift, in one pass over the atoms; fused (Simulation::run)
-  // with last step's final half kick (and gravity) before it and the force
-  // clear after it.
-  void initial_integrate() override {
-    sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { initial_integrate_range(t, lo, hi); });
-  }
-  void initial_integrate_range(int, std::size_t lo, std::size_t hi) override {
-    const bool accel = fuse.final && fuse.accel;
-    const unsigned m = kDrift | (fuse.final ? kFinalFirst : 0u) | (fuse.clear ? kClear : 0u) | (accel ? kAccel : 0u);
+  // Initial: half kick, then drift, in one pass over the atoms; fused (the
+  // step plan, AtomRange) with last step's final half kick (and gravity)
+  // before it and the force clear after it. Final: the half kick.
+  void range(FixHook h, const AtomRange& r) override {
+    if (h == FINAL_INTEGRATE) return integrate<0>(r);
+    const bool accel = r.final_first && r.accel;
+    const unsigned m = kDrift | (r.final_first ? kFinalFirst : 0u) | (r.clear ? kClear : 0u) | (accel ? kAccel : 0u);
     switch (m) {
-      case kDrift: return integrate<kDrift>(lo, hi);
-      case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>(lo, hi);
-      case kDrift | kClear: return integrate<kDrift | kClear>(lo, hi);
-      case kDrift | kFinalFirst | kClear: return integrate<kDrift | kFinalFirst | kClear>(lo, hi);
-      case kDrift | kFinalFirst | kAccel: return integrate<kDrift | kFinalFirst | kAccel>(lo, hi);
-      default: return integrate<kDrift | kFinalFirst | kClear | kAccel>(lo, hi);
+      case kDrift: return integrate<kDrift>(r);
+      case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>(r);
+      case kDrift | kClear: return integrate<kDrift | kClear>(r);
+      case kDrift | kFinalFirst | kClear: return integrate<kDrift | kFinalFirst | kClear>(r);
+      case kDrift | kFinalFirst | kAccel: return integrate<kDrift | kFinalFirst | kAccel>(r);
+      default: return integrate<kDrift | kFinalFirst | kClear | kAccel>(r);
     }
   }
-  void final_integrate() override {
-    sim.atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) { integrate<0>(lo, hi); });
-  }
-  // Fusion needs every atom integrated (the clear must reach them all).
-  bool can_fuse() const override { return groupbit == 1u; }
 
  private:
   static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4, kAccel = 8;
@@ -46,18 +39,18 @@ class FixNveSphere : public Fix {
   // Half-step velocity and spin update from force and torque (and the drift
   // x += dt v) of the atoms [lo, hi).
   template <unsigned kMode>
-  void integrate(std::size_t lo, std::size_t hi) {
+  void integrate(const AtomRange& r) {
     Atoms& at = sim.atoms;
     const double dt = sim.dt, h = 0.5 * sim.dt;
-    const Arrays p{at.x.data(), at.v.data(), at.omega.data(), at.f.data(), at.torque.data(), at.rmass.data(),
-                   at.radius.data(), fuse.accel};
-    if (groupbit == 1u) {  // group all (bit 0): every atom, in vectorised blocks
-      for (std::size_t a = lo; a < hi; a += kBlock) block<kMode>(p, a, std::min(hi, a + kBlock), dt, h);
-      return;
+    const Arrays p{at.x.data(),      at.v.data(),      at.omega.data(), at.f.data(), at.torque.data(),
+                   at.rmass.data(), at.radius.data(), r.accel,         at.mask.data(), groupbit};
+    for (std::size_t a = r.lo; a < r.hi; a += kBlock) {
+      const std::size_t b = std::min(r.hi, a + kBlock);
+      if (groupbit == 1u)  // group all (bit 0): the mask test leaves the loop
+        block<kMode, false>(p, a, b, dt, h);
+      else
+        block<kMode, true>(p, a, b, dt, h);
     }
-    const std::uint32_t* mask = at.mask.data();
-    for (std::size_t i = lo; i < hi; ++i)
-      if (mask[i] & groupbit) block<kMode>(p, i, i + 1, dt, h);
   }
   struct Arrays {
     double* x;
@@ -68,6 +61,8 @@ class FixNveSphere : public Fix {
     const double* rmass;
     const double* radius;
     const double* accel;  // kAccel: the folded gravity
+    const std::uint32_t* mask;
+    std::uint32_t groupbit;
   };
   // Atoms [a, b), b - a <= kBlock: the per-atom factors first, then one loop
   // over their 3 (b - a) vector components without branches, which the
@@ -76,17 +71,22 @@ class FixNveSphere : public Fix {
   // kFinalFirst: the same two additions as a final pass followed by an
   // initial one (same forces, same order), so the same bits; kAccel: gravity's
   // addition to the force first, as its own pass would have made it.
+  // kMasked (a named group): grains outside it keep x, v and omega (a select,
+  // not arithmetic: bit for bit), and their forces are cleared with kClear.
   static constexpr std::size_t kBlock = 128;
-  template <unsigned kMode>
+  template <unsigned kMode, bool kMasked>
   static void block(const Arrays& p, std::size_t a, std::size_t b, double dt, double h) {
     alignas(64) double hm[3 * kBlock], hw[3 * kBlock], ma[3 * kBlock];
+    alignas(64) unsigned char in[3 * kBlock];
     for (std::size_t i = a; i < b; ++i) {
       const double m = p.rmass[i], r = p.radius[i];
       const double km = h / m, kw = h / (0.4 * m * r * r);
+      const bool member = !kMasked || (p.mask[i] & p.groupbit);
       for (int k = 0; k < 3; ++k) {
         const std::size_t c = 3 * (i - a) + k;
         hm[c] = km;
         hw[c] = kw;
+        in[c] = member;
         if constexpr ((kMode & kAccel) != 0) ma[c] = m * p.accel[k];
       }
     }
@@ -110,9 +110,15 @@ class FixNveSphere : public Fix {
       }
       vc += hm[c] * fc;
       wc += hw[c] * tc;
-      v[c] = vc;
-      w[c] = wc;
-      if constexpr ((kMode & kDrift) != 0) x[c] += dt * vc;
+      if constexpr (kMasked) {
+        v[c] = in[c] ? vc : v[c];
+        w[c] = in[c] ? wc : w[c];
+        if constexpr ((kMode & kDrift) != 0) x[c] = in[c] ? x[c] + dt * vc : x[c];
+      } else {
+        v[c] = vc;
+        w[c] = wc;
+        if constexpr ((kMode & kDrift) != 0) x[c] += dt * vc;
+      }
       if constexpr ((kMode & kClear) != 0) f[c] = t[c] = 0.0;
     }
   }

@@ -7,13 +7,8 @@
 
 namespace sable {
 
-namespace {
-unsigned long g_generation = 0;
-}
-
-unsigned long FixPropertyGlobal::generation() { return g_generation; }
-
 FixPropertyGlobal::FixPropertyGlobal(Simulation& s, const Args& a) : Fix(s, a) {
+  line = &args;
   name = a.word(4, "a property name (e.g. youngsModulus)");
   style_word = a.word(5, "a style: scalar, vector, peratomtype, matrix or peratomtypepair");
   const std::string& st = style_word;
@@ -61,21 +56,12 @@ FixPropertyGlobal::FixPropertyGlobal(Simulation& s, const Args& a) : Fix(s, a) {
       a.fail(4, "a property name not defined yet (fix " + p->id + " already defines " + name + ")");
   if (kind == Kind::Scalar) scalar_flag = 1;
   else vector_size = static_cast<int>(nv);
-  ++g_generation;
 }
-
-FixPropertyGlobal::~FixPropertyGlobal() { ++g_generation; }
 
 double FixPropertyGlobal::compute_vector(int i) {
   if (i < 1 || i > static_cast<int>(values.size()))
     args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1.." + std::to_string(values.size()));
   return values[i - 1];
-}
-
-FixPropertyGlobal* FixPropertyGlobal::find(const Simulation& sim, const std::string& name) {
-  for (auto& f : sim.fixes)
-    if (auto* p = dynamic_cast<FixPropertyGlobal*>(f.get()); p && p->name == name) return p;
-  return nullptr;
 }
 
 SABLE_FIX("property/global", FixPropertyGlobal);

@@ -9,8 +9,9 @@ namespace sable {
 
 class FixViscous : public Fix {
  public:
+  bool keeps_plane() const override { return true; }  // -gamma v: v_z is already 0
   FixViscous(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = POST_FORCE;
+    hooks = atom_tasks = POST_FORCE;
     const double g = a.num(4, "the damping coefficient gamma (N s/m)");
     if (g < 0) a.fail(4, "gamma >= 0");
     gamma_.assign(s.atoms.ntypes + 1, g);
@@ -21,11 +22,9 @@ class FixViscous : public Fix {
       gamma_[t] = g * a.num(i + 2, "the scale factor for this type");
     }
   }
-  // Each grain on its own: on the threads' ranges, in the pipelined step too.
-  bool post_force_ranged() const override { return true; }
-  void post_force_range(int, std::size_t lo, std::size_t hi) override {
+  void range(FixHook, const AtomRange& r) override {
     Atoms& at = sim.atoms;
-    for (std::size_t i = lo; i < hi; ++i) {
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
       const double g = gamma_[at.type[i]];
       for (int k = 0; k < 3; ++k) at.f[3 * i + k] -= g * at.v[3 * i + k];

@@ -16,7 +16,7 @@ namespace sable {
 static int axis_of(const std::string& w) { return w == "x" ? 0 : w == "y" ? 1 : w == "z" ? 2 : -1; }
 
 FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
-  hooks = POST_FORCE;
+  hooks = atom_tasks = POST_FORCE;
   vector_size = 3;
   const ModelSelection sel = parse_model_selection(a, 4);
   kernel_ = make_kernel(sel, a);
@@ -317,7 +317,7 @@ WallBatch FixWallGran::batch(const Staged& st) {
 // wall history stay in the cache of the core that integrates it. (Blocks of
 // the near list run on any thread made the integrator fetch every wall
 // grain's lines from the other core at each step.)
-void FixWallGran::post_force_prepare() {
+void FixWallGran::begin(FixHook) {
   refresh_near();
   pass_now_ = now();
   pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
@@ -325,11 +325,13 @@ void FixWallGran::post_force_prepare() {
   const std::size_t parts = static_cast<std::size_t>(atom_pass_threads());
   if (parts_.size() < parts) parts_.resize(parts);
   for (auto& p : parts_) p.clear();
+  sum_.begin(near_.size(), thread_settings().wall_block, static_cast<int>(parts));
 }
 
-void FixWallGran::post_force_range(int t, std::size_t lo, std::size_t hi) {
-  const auto c0 = std::lower_bound(near_.begin(), near_.end(), static_cast<int>(lo)) - near_.begin();
-  const auto c1 = std::lower_bound(near_.begin(), near_.end(), static_cast<int>(hi)) - near_.begin();
+void FixWallGran::range(FixHook, const AtomRange& r) {
+  const int t = r.thread;
+  const auto c0 = std::lower_bound(near_.begin(), near_.end(), static_cast<int>(r.lo)) - near_.begin();
+  const auto c1 = std::lower_bound(near_.begin(), near_.end(), static_cast<int>(r.hi)) - near_.begin();
   Staged& st = parts_[t];
   collect(static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), ~0u, pass_now_, st);
   st.force.resize(3 * st.atom.size());
@@ -337,34 +339,17 @@ void FixWallGran::post_force_range(int t, std::size_t lo, std::size_t hi) {
   b.force = st.force.data();
   b.ctx.update = pass_update_;
   kernel_->wall_forces(b);
+  // The total force: per block of ThreadSettings::wall_block near grains (core's BlockSum)
+  sum_.range(t, static_cast<std::size_t>(c0));
+  for (std::size_t c = 0; c < st.atom.size(); ++c) sum_.add(t, static_cast<std::size_t>(st.place[c]), &st.force[3 * c]);
 }
 
-void FixWallGran::post_force_finish() {
+void FixWallGran::end(FixHook) {
   atoms_now_.clear();
   for (const Staged& p : parts_) atoms_now_.insert(atoms_now_.end(), p.atom.begin(), p.atom.end());
   if (hist_col_ >= 0) forget_departed(pass_now_);
-  sum_force(parts_.size());
-}
-
-// Per block of ThreadSettings::wall_block near grains, the contacts' forces in
-// order; then the blocks' sums in order: bits independent of the threads.
-void FixWallGran::sum_force(std::size_t parts) {
-  const std::size_t block = std::max<std::size_t>(thread_settings().wall_block, 1);
-  const std::size_t nb = (near_.size() + block - 1) / block;
-  double total[3] = {0.0, 0.0, 0.0}, part[3] = {0.0, 0.0, 0.0};
-  std::size_t k = 0;  // block of `part`
-  auto flush_to = [&](std::size_t upto) {
-    for (; k < upto; ++k)
-      for (int d = 0; d < 3; ++d) total[d] += part[d], part[d] = 0.0;
-  };
-  for (std::size_t t = 0; t < parts; ++t) {
-    const Staged& p = parts_[t];
-    for (std::size_t c = 0; c < p.atom.size(); ++c) {
-      flush_to(static_cast<std::size_t>(p.place[c]) / block);
-      for (int d = 0; d < 3; ++d) part[d] += p.force[3 * c + d];
-    }
-  }
-  flush_to(nb);
+  double total[3];
+  sum_.finish(total);
   for (int d = 0; d < 3; ++d) force_[d] = 0.0 - total[d];  // (0.0 - x, not -x: no "-0" in thermo output)
 }
 

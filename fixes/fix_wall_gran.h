@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
+#include "core/block_sum.h"
 #include "core/fix.h"
 
 namespace sable {
@@ -26,10 +27,9 @@ class FixWallGran : public Fix {
  public:
   FixWallGran(Simulation& sim, const Args& args);
   void init() override;
-  bool post_force_ranged() const override { return true; }
-  void post_force_prepare() override;
-  void post_force_range(int t, std::size_t lo, std::size_t hi) override;
-  void post_force_finish() override;
+  void begin(FixHook) override;
+  void range(FixHook, const AtomRange& r) override;
+  void end(FixHook) override;
   double compute_vector(int i) override;  // 1..3: force on the wall
   double max_speed() const override;
 
@@ -69,7 +69,7 @@ class FixWallGran : public Fix {
     double pos, vnormal;
   };
   // The force pass: each thread's contacts (Atoms::split ranges, in order),
-  // the wall's state and whether history is updated (post_force_prepare).
+  // the wall's state and whether history is updated (begin).
   std::vector<Staged> parts_;
   Now pass_now_{0.0, 0.0};
   bool pass_update_ = true;
@@ -95,8 +95,7 @@ class FixWallGran : public Fix {
   // Zeroes the history of the grains that left the wall since the last force pass.
   void forget_departed(const Now& w);
   WallBatch batch(const Staged& s);
-  // The total force on the grains, summed in fixed blocks of the near list.
-  void sum_force(std::size_t parts);
+  BlockSum<3> sum_;  // the total force on the grains, in fixed blocks of the near list
 };
 
 }  // namespace sable

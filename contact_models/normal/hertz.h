@@ -38,31 +38,41 @@ struct NormalHertz {
   void connect(PropertyRequest& p) {
     Y = p.pair_table("Yeff");
     const double* G = p.pair_table("Geff");
-    const double* beta = p.pair_table("betaeff");
-    constexpr double sqrt_five_sixths = 0.91287092917527685576;
     const int n = p.stride() * p.stride();
-    kn_c.assign(n, 0.0), kt_c.assign(n, 0.0), gn_c.assign(n, 0.0), gt_c.assign(n, 0.0);
+    kn_c.assign(n, 0.0), kt_c.assign(n, 0.0);
     for (int t = 0; t < n; ++t) {
       kn_c[t] = 4.0 / 3.0 * Y[t];
       kt_c[t] = 8.0 * G[t];
-      gn_c[t] = -2.0 * sqrt_five_sixths * beta[t] * std::sqrt(2.0 * Y[t]);
-      gt_c[t] = tangential_damping ? -2.0 * sqrt_five_sixths * beta[t] * std::sqrt(8.0 * G[t]) : 0.0;
     }
     fn_floor = limit_force ? 0.0 : -std::numeric_limits<double>::infinity();
   }
 
   NormalForce force(const Contact& c, double*, const StepContext&) const {
-    const double sq = std::sqrt(c.reff * c.deltan);
-    const double sm = std::sqrt(sq * c.meff);
     NormalForce n;
-    n.kn = kn_c[c.tp] * sq;
-    n.kt = kt_c[c.tp] * sq;
-    n.gamman = gn_c[c.tp] * sm;
-    n.gammat = gt_c[c.tp] * sm;
-    n.Fn = n.kn * c.deltan - n.gamman * c.vn;
-    n.Fn = n.Fn < fn_floor ? fn_floor : n.Fn;  // limitForce: no attraction
+    n.s = std::sqrt(c.reff * c.deltan);
+    n.kn = kn_c[c.tp] * n.s;
+    n.kt = kt_c[c.tp] * n.s;
+    n.Fel = n.kn * c.deltan;
     return n;
   }
+  // LIGGGHTS' damping of this model (damping liggghts, the default).
+  void connect_damping(PropertyRequest& p) {
+    const double* G = p.pair_table("Geff");
+    const double* beta = p.pair_table("betaeff");
+    constexpr double sqrt_five_sixths = 0.91287092917527685576;
+    const int n = p.stride() * p.stride();
+    gn_c.assign(n, 0.0), gt_c.assign(n, 0.0);
+    for (int t = 0; t < n; ++t) {
+      gn_c[t] = -2.0 * sqrt_five_sixths * beta[t] * std::sqrt(2.0 * Y[t]);
+      gt_c[t] = tangential_damping ? -2.0 * sqrt_five_sixths * beta[t] * std::sqrt(8.0 * G[t]) : 0.0;
+    }
+  }
+  void damping(const Contact& c, NormalForce& n) const {
+    const double sm = std::sqrt(n.s * c.meff);
+    n.gamman = gn_c[c.tp] * sm;
+    n.gammat = gt_c[c.tp] * sm;
+  }
+  void limit(NormalForce& n) const { n.Fn = n.Fn < fn_floor ? fn_floor : n.Fn; }  // limitForce: no attraction
 
   // LIGGGHTS' Hertz time (fix check/timestep/gran): 2.87 (m*^2 / (R* Y*^2 v))^(1/5).
   double contact_time(const ContactTimeInput& in) const {
@@ -76,3 +86,5 @@ struct NormalHertz {
 };
 
 }  // namespace sable
+
+SABLE_NORMAL_MODEL(sable::NormalHertz);

@@ -25,20 +25,27 @@ struct NormalHertzStiffness {
   void connect(PropertyRequest& p) {
     kn_ = p.pair_table("kn");
     kt_ = p.pair_table("kt");
-    gn_ = p.pair_table("gamman");
-    gt_ = p.pair_table("gammat");
   }
 
   NormalForce force(const Contact& c, double*, const StepContext&) const {
-    const double s = std::sqrt(c.reff * c.deltan);
     NormalForce n;
-    n.kn = s * kn_[c.tp];
-    n.kt = s * kt_[c.tp];
-    n.gamman = s * c.meff * gn_[c.tp];
-    n.gammat = tangential_damping ? s * c.meff * gt_[c.tp] : 0.0;
-    n.Fn = n.kn * c.deltan - n.gamman * c.vn;
-    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
+    n.s = std::sqrt(c.reff * c.deltan);
+    n.kn = n.s * kn_[c.tp];
+    n.kt = n.s * kt_[c.tp];
+    n.Fel = n.kn * c.deltan;
     return n;
+  }
+  // LIGGGHTS' damping of this model (damping liggghts, the default).
+  void connect_damping(PropertyRequest& p) {
+    gn_ = p.pair_table("gamman");
+    gt_ = p.pair_table("gammat");
+  }
+  void damping(const Contact& c, NormalForce& n) const {
+    n.gamman = n.s * c.meff * gn_[c.tp];
+    n.gammat = tangential_damping ? n.s * c.meff * gt_[c.tp] : 0.0;
+  }
+  void limit(NormalForce& n) const {
+    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
   }
 
   // kn[ij] sqrt(R* dn) dn is Hertz with Y* = 3/4 kn[ij]: 2.87 (m*^2 / (R* Y*^2 v))^(1/5), damping ignored.
@@ -49,3 +56,5 @@ struct NormalHertzStiffness {
 };
 
 }  // namespace sable
+
+SABLE_NORMAL_MODEL(sable::NormalHertzStiffness);

@@ -36,7 +36,6 @@ struct NormalHooke {
   void connect(PropertyRequest& p) {
     Y = p.pair_table("Yeff");
     p.pair_table("Geff");  // LIGGGHTS connects Geff too, so a deck without poissonsRatio fails there as well
-    logE = p.pair_table("coeffRestLog");
     char_vel = p.scalar("characteristicVelocity");
   }
 
@@ -54,19 +53,28 @@ struct NormalHooke {
     NormalForce n;
     n.kn = kn_of(c.meff, c.reff, c.tp);
     n.kt = kt_to_kn ? n.kn * 0.285714286 : n.kn;
+    n.Fel = n.kn * c.deltan;
+    return n;
+  }
+  // LIGGGHTS' damping of this model (damping liggghts, the default).
+  void connect_damping(PropertyRequest& p) { logE = p.pair_table("coeffRestLog"); }
+  void damping(const Contact& c, NormalForce& n) const {
     n.gamman = gamman_of(c.meff, n.kn, c.tp);
     n.gammat = tangential_damping ? n.gamman : 0.0;
-    n.Fn = n.kn * c.deltan - n.gamman * c.vn;
+  }
+  void limit(NormalForce& n) const {
     if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
-    return n;
   }
 
   // Damped linear oscillator: pi / sqrt(kn/m* - (gamman / 2m*)^2).
   double contact_time(const ContactTimeInput& in) const {
-    const double kn = kn_of(in.meff, in.reff, in.tp), g = gamman_of(in.meff, kn, in.tp);
+    const double kn = kn_of(in.meff, in.reff, in.tp);
+    const double g = logE ? gamman_of(in.meff, kn, in.tp) : 0.0;  // another damping model: the undamped time
     const double w2 = kn / in.meff - g * g / (4.0 * in.meff * in.meff);
     return std::numbers::pi / std::sqrt(std::max(w2, 1e-300));
   }
 };
 
 }  // namespace sable
+
+SABLE_NORMAL_MODEL(sable::NormalHooke);

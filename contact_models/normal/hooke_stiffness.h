@@ -32,28 +32,38 @@ struct NormalHookeStiffness {
   void connect(PropertyRequest& p) {
     kn_ = p.pair_table("kn");
     kt_ = p.pair_table("kt");
-    gn_ = p.pair_table(absolute_damping ? "gamman_abs" : "gamman");
-    gt_ = p.pair_table(absolute_damping ? "gammat_abs" : "gammat");
   }
 
   NormalForce force(const Contact& c, double*, const StepContext&) const {
     NormalForce n;
     n.kn = kn_[c.tp];
     n.kt = kt_[c.tp];
+    n.Fel = n.kn * c.deltan;
+    return n;
+  }
+  // LIGGGHTS' damping of this model (damping liggghts, the default).
+  void connect_damping(PropertyRequest& p) {
+    gn_ = p.pair_table(absolute_damping ? "gamman_abs" : "gamman");
+    gt_ = p.pair_table(absolute_damping ? "gammat_abs" : "gammat");
+  }
+  void damping(const Contact& c, NormalForce& n) const {
     const double scale = absolute_damping ? 1.0 : c.meff;
     n.gamman = scale * gn_[c.tp];
     n.gammat = tangential_damping ? scale * gt_[c.tp] : 0.0;
-    n.Fn = n.kn * c.deltan - n.gamman * c.vn;
+  }
+  void limit(NormalForce& n) const {
     if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
-    return n;
   }
 
   // Damped linear oscillator: pi / sqrt(kn/m* - (gamman / 2m*)^2).
   double contact_time(const ContactTimeInput& in) const {
-    const double kn = kn_[in.tp], g = (absolute_damping ? 1.0 : in.meff) * gn_[in.tp];
+    const double kn = kn_[in.tp];
+    const double g = gn_ ? (absolute_damping ? 1.0 : in.meff) * gn_[in.tp] : 0.0;  // another damping model: undamped
     const double w2 = kn / in.meff - g * g / (4.0 * in.meff * in.meff);
     return std::numbers::pi / std::sqrt(std::max(w2, 1e-300));
   }
 };
 
 }  // namespace sable
+
+SABLE_NORMAL_MODEL(sable::NormalHookeStiffness);

@@ -37,3 +37,5 @@ struct RollingCdt {
 };
 
 }  // namespace sable
+
+SABLE_ROLLING_MODEL(sable::RollingCdt);

@@ -50,3 +50,5 @@ struct RollingEpsd2 {
 };
 
 }  // namespace sable
+
+SABLE_ROLLING_MODEL(sable::RollingEpsd2);

@@ -15,3 +15,5 @@ struct RollingOff {
 };
 
 }  // namespace sable
+
+SABLE_ROLLING_MODEL(sable::RollingOff);

@@ -67,3 +67,5 @@ struct TangentialHistory {
 };
 
 }  // namespace sable
+
+SABLE_TANGENTIAL_MODEL(sable::TangentialHistory);

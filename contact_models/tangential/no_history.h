@@ -27,3 +27,5 @@ struct TangentialNoHistory {
 };
 
 }  // namespace sable
+
+SABLE_TANGENTIAL_MODEL(sable::TangentialNoHistory);

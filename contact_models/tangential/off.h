@@ -16,3 +16,5 @@ struct TangentialOff {
 };
 
 }  // namespace sable
+
+SABLE_TANGENTIAL_MODEL(sable::TangentialOff);

@@ -53,6 +53,10 @@ CASES = [
          vars=dict(R=0.06, nzc=7, prep=20000, steps=2000),
          quick=dict(R=0.015, nzc=2, prep=500, steps=200),
          what="rotating drum (spinning zcylinder wall), flowing bed"),
+    dict(key="f", name="box_20k", deck="box.in",
+         vars=dict(n=27, nz=28, prep=4000, steps=2000),
+         quick=dict(n=8, nz=8, prep=500, steps=200),
+         what="monodisperse bed collapsing from a lattice into a closed box (5 walls, ~2.6 half-neighbours)"),
 ]
 
 SABLE_LOOP = re.compile(

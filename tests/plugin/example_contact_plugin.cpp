@@ -40,19 +40,23 @@ struct NormalHertzPetit {
   void connect(PropertyRequest& p) {
     Y = p.pair_table("Yeff");
     G = p.pair_table("Geff");
-    gamma = p.pair_table("dampingPetit");
   }
+  void connect_damping(PropertyRequest& p) { gamma = p.pair_table("dampingPetit"); }
 
   NormalForce force(const Contact& c, double*, const StepContext&) const {
-    const double a = std::sqrt(c.reff * c.deltan);  // contact radius
     NormalForce n;
-    n.kn = 4.0 / 3.0 * Y[c.tp] * a;
-    n.kt = 8.0 * G[c.tp] * a;
-    n.gamman = gamma[c.tp] * a;
-    n.gammat = gamma[c.tp] * a;
-    n.Fn = n.kn * c.deltan - n.gamman * c.vn;
+    n.s = std::sqrt(c.reff * c.deltan);  // contact radius
+    n.kn = 4.0 / 3.0 * Y[c.tp] * n.s;
+    n.kt = 8.0 * G[c.tp] * n.s;
+    n.Fel = n.kn * c.deltan;
     return n;
   }
+  // Its own dashpot (what `damping liggghts`, the default, applies).
+  void damping(const Contact& c, NormalForce& n) const {
+    n.gamman = gamma[c.tp] * n.s;
+    n.gammat = gamma[c.tp] * n.s;
+  }
+  void limit(NormalForce&) const {}
 
   // Undamped Hertz duration, as for model hertz.
   double contact_time(const ContactTimeInput& in) const {

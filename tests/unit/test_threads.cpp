@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/style_registry.h"
 #include "core/threads.h"
 #include "tests/unit/deck_runner.h"
 
@@ -225,6 +226,46 @@ TEST(StepFusion, GravityFoldedOnlyAsTheLastPostForceFix) {
   EXPECT_FALSE(fused == run(1, kWide)) << "the order of gravity and wall made no difference: the test shows nothing";
 }
 
+// An integrator on a named group joins the fused, pipelined step like one on
+// `all`: grains outside the group keep their positions, velocities and spins
+// bit for bit (the integrator's select), and the result equals separate passes.
+// ("group id 1:100000:4": ids 1, 5, 9, ...; create_atoms numbers 1..N.)
+TEST(StepFusion, NamedGroupIntegratorFusedWithTheBitsOfSeparatePasses) {
+  std::string deck = kDeck;
+  const std::string integ = "fix integr all nve/sphere";
+  deck.replace(deck.find(integ), integ.size(), "group moving id 1:100000:4\ngroup still subtract all moving\n"
+                                                   "fix integr moving nve/sphere");
+  const State separate = run(1, kWide, "", false, deck);
+  const State fused = run(1, kWide, "", true, deck);
+  EXPECT_EQ(separate.fused_steps, 0);
+  EXPECT_EQ(fused.fused_steps, 1499);
+  EXPECT_TRUE(fused == separate) << "fused and separate passes differ";
+#ifdef _OPENMP
+  EXPECT_TRUE(run(2, kWide, "", true, deck) == separate) << "fused passes on 2 threads differ";
+#endif
+  // Outside the group: the lattice position and the initial velocity, exactly.
+  Deck d;
+  d(deck.substr(0, deck.find("run 1500")));
+  const sable::Atoms& a = d->atoms;
+  const std::vector<double> x0(a.x.begin(), a.x.begin() + 3 * a.n), v0(a.v.begin(), a.v.begin() + 3 * a.n);
+  const std::vector<long> id0(a.id.begin(), a.id.begin() + a.n);
+  std::size_t still = 0, moved = 0;
+  for (std::size_t i = 0; i < fused.id.size(); ++i) {
+    const std::size_t j = std::find(id0.begin(), id0.end(), fused.id[i]) - id0.begin();
+    ASSERT_LT(j, id0.size());
+    if ((fused.id[i] - 1) % 4 == 0) {
+      moved += fused.x[3 * i + 2] != x0[3 * j + 2];
+      continue;
+    }
+    bool same = true;
+    for (int k = 0; k < 3; ++k) same = same && fused.x[3 * i + k] == x0[3 * j + k] && fused.v[3 * i + k] == v0[3 * j + k];
+    still += same;
+    EXPECT_TRUE(same) << "grain " << fused.id[i] << " is outside the group but moved";
+  }
+  EXPECT_GT(moved, fused.id.size() / 5);  // the group's grains fell
+  EXPECT_EQ(still, fused.id.size() - (fused.id.size() + 3) / 4);
+}
+
 // Per-atom passes run on the pair pass's atom ranges while these describe the
 // atoms and the thread count, else on equal parts; either way every atom once.
 TEST(Threads, AtomPassesFollowThePairSplit) {
@@ -368,4 +409,31 @@ TEST(Threads, PairTraceWritesOnePassPerLine) {
 #else
   GTEST_SKIP() << "built without OpenMP";
 #endif
+}
+
+// A fix whose post_force is not a per-atom task keeps the step off the
+// pipelined plan; sable says which fix and what it costs, once per fix.
+namespace {
+class FixPlainPostForce : public sable::Fix {
+ public:
+  FixPlainPostForce(sable::Simulation& s, const sable::Args& a) : Fix(s, a) { hooks = sable::POST_FORCE; }
+  void post_force() override {}
+};
+SABLE_FIX("test/plain_post_force", FixPlainPostForce);
+}  // namespace
+
+TEST(StepFusion, SlowPathNamedOncePerFix) {
+  std::string deck = kDeck;
+  deck.replace(deck.find("run 1500"), 8, "fix plain all test/plain_post_force\nrun 10\nrun 10\n");
+  Deck d;
+  const std::string out = sable::test::printed(deck, d);
+  const std::string note = "Note: fix plain (test/plain_post_force) has a post_force that is not a per-atom task";
+  const std::size_t first = out.find(note);
+  ASSERT_NE(first, std::string::npos) << out;
+  EXPECT_EQ(out.find(note, first + 1), std::string::npos) << "printed twice:\n" << out;
+  EXPECT_EQ(d->fused_steps, 18);  // still fused, not pipelined: all but each run's last step
+  std::string plain = kDeck;
+  plain.replace(plain.find("run 1500"), 8, "run 10");
+  Deck quiet;
+  EXPECT_EQ(sable::test::printed(plain, quiet).find("Note: fix"), std::string::npos);
 }

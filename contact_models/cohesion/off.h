@@ -1,0 +1,21 @@
+#pragma once
+// cohesion off — LIGGGHTS' default: no attraction. kActive = false removes the
+// axis from the compiled law (not even an added zero).
+#include "contact_models/contact.h"
+#include "contact_models/materials.h"
+
+namespace sable {
+
+struct CohesionOff {
+  static constexpr const char* kName = "off";
+  static constexpr int kHistory = 0;
+  static constexpr bool kActive = false;
+  static void history_slots(std::vector<HistorySlot>&) {}
+  void settings(ModelSettings&) {}
+  void connect(PropertyRequest&) {}
+  double force(const Contact&, const NormalForce&, double*, const StepContext&) const { return 0.0; }
+};
+
+}  // namespace sable
+
+SABLE_COHESION_MODEL(sable::CohesionOff);

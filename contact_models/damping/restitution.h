@@ -1,0 +1,42 @@
+#pragma once
+// damping restitution (sable; LAMMPS' granular `damping coeff_restitution`
+// for a linear spring) — the dashpot that gives restitution e to a linear
+// spring of stiffness kn, evaluated with the normal model's current kn:
+//   gamman = 2 |beta| sqrt(m* kn),  beta = ln e / sqrt(ln^2 e + pi^2),  gammat = 0
+// e = coefficientRestitution. The cavity study's law (kneib2017 Appendix B:
+// c_n from e = 0.5, no tangential dashpot; YADE's FrictViscoPhys) with
+// model hooke/stiffness. With a Hertz spring it is the same formula on the
+// current tangent stiffness, and e is then only approximate.
+#include <cmath>
+
+#include "contact_models/contact.h"
+#include "contact_models/materials.h"
+
+namespace sable {
+
+struct DampingRestitution {
+  static constexpr const char* kName = "restitution";
+  static constexpr int kHistory = 0;
+  static void history_slots(std::vector<HistorySlot>&) {}
+  void settings(ModelSettings&) {}
+  template <class Normal>
+  void connect(PropertyRequest& p, Normal&) {
+    const double* beta = p.pair_table("betaeff");  // ln e / sqrt(ln^2 e + pi^2), LIGGGHTS' betaeff
+    const int n = p.stride() * p.stride();
+    two_beta.assign(n, 0.0);
+    for (int t = 0; t < n; ++t) two_beta[t] = 2.0 * std::fabs(beta[t]);
+  }
+
+  template <class Normal>
+  void damp(const Normal&, const Contact& c, NormalForce& n) const {
+    n.gamman = two_beta[c.tp] * std::sqrt(c.meff * n.kn);
+    n.gammat = 0.0;
+  }
+
+ private:
+  std::vector<double> two_beta;  // per type pair: 2 |beta|
+};
+
+}  // namespace sable
+
+SABLE_DAMPING_MODEL(sable::DampingRestitution);
