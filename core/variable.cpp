@@ -47,11 +47,13 @@ class SimContext : public ExprContext {
         out = c->peratom[atom * nc + std::max(0, index - 1)];
         return true;
       }
+      // No global scalar, or no such element: the caller names the reference in its error.
+      if (index == 0 ? !c->scalar_flag : index > c->vector_size) return false;
       out = index == 0 ? c->scalar() : c->vector(index);
       return true;
     }
     Fix* f = sim.find_fix(id);
-    if (!f) return false;
+    if (!f || (index == 0 ? !f->scalar_flag : index > f->vector_size)) return false;
     out = index == 0 ? f->compute_scalar() : f->compute_vector(index);
     return true;
   }
