@@ -174,3 +174,21 @@ run 1)");
             std::string::npos);
   EXPECT_NE(error_of(d, "fix bad all ave/time 1 1 1 f_floor[4]").find("f_floor[4]"), std::string::npos);
 }
+
+// LAMMPS group functions take an optional region (count(all,low)): it was ignored.
+TEST(GroupFunctions, RegionArgumentRestricts) {
+  Deck d;
+  three_grains(d);  // z = 0.9, 0.4, 0.2
+  d(R"(region low block INF INF INF INF INF 0.5 units box
+variable n equal count(all,low)
+variable m equal mass(all,low)
+variable zc equal xcm(all,z,low)
+variable top equal bound(all,zmax,low))");
+  const auto& a = d->atoms;
+  EXPECT_EQ(var(d, "n"), 2.0);
+  EXPECT_EQ(var(d, "m"), a.rmass[1] + a.rmass[2]);
+  EXPECT_DOUBLE_EQ(var(d, "zc"), (a.rmass[1] * 0.4 + a.rmass[2] * 0.2) / (a.rmass[1] + a.rmass[2]));
+  EXPECT_EQ(var(d, "top"), 0.4);
+  d("variable bad equal count(all,nowhere)");
+  EXPECT_NE(error_of(d, "print \"$(v_bad)\"").find("region 'nowhere' in count() does not exist"), std::string::npos);
+}
