@@ -45,6 +45,7 @@ class SimContext : public ExprContext {
       if (atom != Atoms::npos && c->peratom_flag) {
         c->peratom_now();
         const int nc = std::max(1, c->peratom_cols);
+        if (c->peratom.size() != sim.atoms.n * nc) c->compute_peratom();  // cached for other atoms (delete_atoms)
         out = c->peratom[atom * nc + std::max(0, index - 1)];
         return true;
       }

@@ -192,3 +192,28 @@ variable top equal bound(all,zmax,low))");
   d("variable bad equal count(all,nowhere)");
   EXPECT_NE(error_of(d, "print \"$(v_bad)\"").find("region 'nowhere' in count() does not exist"), std::string::npos);
 }
+
+// delete_atoms between runs, at the same step: the per-atom array and compute
+// reduce's values must not be those cached for the atoms before. (A global
+// scalar c_ID read again at that step still is: Compute::scalar() caches per
+// step, as LIGGGHTS 3.8 does, which prints the stale 0.9 there too.)
+TEST(ComputePropertyAtom, FreshAfterDeleteAtomsAtTheSameStep) {
+  Deck d;
+  three_grains(d);  // z = 0.9, 0.4, 0.2
+  d(R"(compute pz all property/atom z
+compute zmax all reduce max c_pz
+compute both all reduce max c_pz vz
+variable h equal c_zmax
+variable hv equal c_both[1]
+fix integr all nve/sphere
+thermo_style custom step atoms c_zmax c_both[1]
+run 0)");
+  EXPECT_EQ(var(d, "h"), 0.9);
+  EXPECT_EQ(var(d, "hv"), 0.9);
+  d("region hi block INF INF INF INF 0.8 INF units box\ndelete_atoms region hi");
+  EXPECT_EQ(var(d, "hv"), 0.4);
+  d("compute zmax2 all reduce max c_pz\nvariable h2 equal c_zmax2");
+  EXPECT_EQ(var(d, "h2"), 0.4);
+  d("run 0");
+  EXPECT_EQ(var(d, "h"), 0.4);
+}
