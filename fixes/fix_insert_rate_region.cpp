@@ -11,6 +11,7 @@
 // carried over: later steps still ask for n each until N are in. Placement:
 // fixes/fix_insert.cpp.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -95,7 +96,7 @@ class FixInsertRateRegion : public FixInsert {
     if (ninsert_ != kUnlimited) {
       std::snprintf(buf, sizeof buf, " - %ld particles (mass %e) in all, the last of them at about step %ld", ninsert_,
                     ninsert_ * dist_->mass_expect,
-                    next_step_ + static_cast<long>(std::max(0.0, ninsert_ / per_step_ - 1)) * insert_every_);
+                    next_step_ + static_cast<long>(std::max(0.0, std::ceil(ninsert_ / per_step_) - 1)) * insert_every_);
       sim.print(buf);
     }
   }
