@@ -18,9 +18,9 @@ namespace {
 class ComputePropertyAtom : public Compute {
  public:
   ComputePropertyAtom(Simulation& s, const Args& a) : Compute(s, a) {
-    if (a.size() < 5) a.fail(4, std::string("at least one atom attribute: ") + words());
+    if (a.size() < 5) a.fail(4, "at least one atom attribute: " + words());
     for (std::size_t i = 4; i < a.size(); ++i) {
-      if (!known().count(a[i])) a.fail(i, unsupported(a[i]));
+      if (!known(a[i])) a.fail(i, unsupported(a[i]));
       cols_.push_back(parse_atom_column(s, a, i));
     }
     peratom_flag = true;
@@ -44,27 +44,26 @@ class ComputePropertyAtom : public Compute {
  private:
   std::vector<AtomColumn> cols_;
 
-  static const char* words() {
-    return "id, type, mass, x, y, z, xs, ys, zs, xu, yu, zu, ix, iy, iz, vx, vy, vz, fx, fy, fz, omegax, omegay, "
-           "omegaz, tqx, tqy, tqz, radius, diameter";
+  static constexpr const char* kWords[] = {
+      "id", "type", "mass", "x", "y", "z", "xs", "ys", "zs", "xu", "yu", "zu", "ix", "iy", "iz",
+      "vx", "vy", "vz", "fx", "fy", "fz", "omegax", "omegay", "omegaz", "tqx", "tqy", "tqz", "radius", "diameter"};
+  static std::string words() {
+    std::string s;
+    for (const char* w : kWords) s += (s.empty() ? "" : ", ") + std::string(w);
+    return s;
   }
-  static const std::set<std::string>& known() {
-    static const std::set<std::string> k = {"id",     "type",   "mass",   "x",   "y",   "z",      "xs",      "ys",
-                                            "zs",     "xu",     "yu",     "zu",  "ix",  "iy",     "iz",      "vx",
-                                            "vy",     "vz",     "fx",     "fy",  "fz",  "omegax", "omegay",  "omegaz",
-                                            "tqx",    "tqy",    "tqz",    "radius", "diameter"};
-    return k;
+  static bool known(const std::string& w) {
+    return std::find(std::begin(kWords), std::end(kWords), w) != std::end(kWords);
   }
   // LIGGGHTS attributes that sable's spheres do not carry, named as such.
   static std::string unsupported(const std::string& w) {
-    static const std::set<std::string> absent = {"mol",     "q",       "mux",     "muy",     "muz",     "mu",
-                                                 "angmomx", "angmomy", "angmomz", "shapex",  "shapey",  "shapez",
+    static const std::set<std::string> absent = {"mol",     "q",       "mux",     "muy",    "muz",    "mu",
+                                                 "angmomx", "angmomy", "angmomz", "shapex", "shapey", "shapez",
                                                  "quatw",   "quati",   "quatj",   "quatk"};
     if (absent.count(w) || w.starts_with("end") || w.starts_with("corner") || w.starts_with("i_") ||
         w.starts_with("d_"))
-      return std::string("an attribute of sable's spheres ('") + w + "' is a LIGGGHTS attribute of other atom styles): " +
-             words();
-    return std::string("an atom attribute: ") + words();
+      return "an attribute of sable's spheres ('" + w + "' is a LIGGGHTS attribute of other atom styles): " + words();
+    return "an atom attribute: " + words();
   }
 };
 

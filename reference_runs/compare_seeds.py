@@ -2,7 +2,7 @@
 """Compare a random deck's statistics between sable and LIGGGHTS over seeds.
 
     /usr/bin/python3 reference_runs/compare_seeds.py DECK [--out DIR] [--sable PATH]
-        [--var NAME VALUE ...] [--seeds N] [--timeout S]
+        [--var NAME VALUE ...] [--seeds N] [--seed-values V ...] [--timeout S]
 
 Insertion places grains differently in each code for the same seed, so a single
 run of one code cannot be judged against one run of the other. This runs the
@@ -57,6 +57,8 @@ def main():
     p.add_argument('--sable', default=os.path.join(compare.REPO, 'build', 'sable'))
     p.add_argument('--var', nargs=2, action='append', default=[], metavar=('NAME', 'VALUE'))
     p.add_argument('--seeds', type=int, default=0, help='use only the first N seeds')
+    p.add_argument('--seed-values', nargs='+', default=None, metavar='V',
+                   help="these seed values instead of the deck's (primes > 10000 for LIGGGHTS)")
     p.add_argument('--timeout', type=float, default=1800)
     args = p.parse_args()
     args.sable = os.path.abspath(args.sable)
@@ -65,7 +67,7 @@ def main():
     h = compare.parse_header(args.deck)
     if not h['seeds']:
         sys.exit(f'{args.deck}: no "#@ seeds VAR V1 V2 ..." line')
-    var, seeds = h['seeds'][0], h['seeds'][1][:args.seeds or None]
+    var, seeds = h['seeds'][0], (args.seed_values or h['seeds'][1])[:args.seeds or None]
     name = os.path.splitext(os.path.basename(args.deck))[0]
     outdir = os.path.join(args.out, name)
     values = {'sable': {}, 'liggghts': {}}
