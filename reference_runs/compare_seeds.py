@@ -93,7 +93,8 @@ def main():
                      'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
                      'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
     lines = [f'# {name}: sable vs LIGGGHTS over {len(seeds)} seeds ({datetime.date.today().isoformat()})', '',
-             f'Deck `{compare.show(args.deck)}`, {var} = {" ".join(seeds)}; each code ran once per seed. '
+             f'Deck `{compare.show(args.deck)}`' + ''.join(f' -var {k} {v}' for k, v in args.var) +
+             f', {var} = {" ".join(seeds)}; each code ran once per seed. '
              'SE = sqrt(sd_s^2/n + sd_l^2/n), the standard error of the difference of the means.', '',
              '| observable | sable mean ± sd | LIGGGHTS mean ± sd | n | diff / SE | tolerance | result |',
              '|---|---|---|---|---|---|---|']
@@ -105,7 +106,7 @@ def main():
     os.makedirs(outdir, exist_ok=True)
     open(os.path.join(outdir, 'seeds.md'), 'w').write('\n'.join(lines) + '\n')
     with open(os.path.join(outdir, 'seeds.json'), 'w') as f:
-        json.dump({'deck': name, 'seeds': seeds, 'values': values, 'rows': rows, 'errors': errors}, f, indent=1,
+        json.dump({'deck': name, 'vars': dict(args.var), 'seeds': seeds, 'values': values, 'rows': rows, 'errors': errors}, f, indent=1,
                   allow_nan=True)
     print('\n'.join(lines))
     print(f'written: {compare.show(os.path.join(outdir, "seeds.md"))}')
