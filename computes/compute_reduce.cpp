@@ -98,7 +98,9 @@ class ComputeReduce : public Compute {
   }
 
   void evaluate() {
-    if (cache_step_ == sim.step) return;  // thermo asks c_ID[1], c_ID[2], ... in one step
+    // Thermo asks c_ID[1], c_ID[2], ... in one step; delete_atoms or an insertion
+    // between runs changes the atoms without changing the step.
+    if (cache_step_ == sim.step && cache_atoms_ == sim.atoms.n && cache_max_id_ == sim.atoms.max_id) return;
     const Atoms& at = sim.atoms;
     const Region* reg = region_.empty() ? nullptr : sim.find_region(region_);
     if (!region_.empty() && !reg) fail("compute " + id + ": region '" + region_ + "' no longer exists");
@@ -146,6 +148,8 @@ class ComputeReduce : public Compute {
       values_[q] = vec[q][best[src]];
     }
     cache_step_ = sim.step;
+    cache_atoms_ = sim.atoms.n;
+    cache_max_id_ = sim.atoms.max_id;
   }
 
   Mode mode_ = SUM;
@@ -154,6 +158,8 @@ class ComputeReduce : public Compute {
   std::vector<int> replace_;  // per input: index of the input whose min/max row it reports, or -1
   std::vector<double> values_;
   long cache_step_ = -1;
+  std::size_t cache_atoms_ = 0;
+  decltype(sim.atoms.max_id) cache_max_id_ = 0;
 };
 
 SABLE_COMPUTE("reduce", ComputeReduce);

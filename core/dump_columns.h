@@ -116,6 +116,8 @@ inline void gather_atom_column(Simulation& sim, const AtomColumn& c, const std::
       if (!cp || !cp->peratom_flag) fail("'" + c.name + "': compute '" + c.ref + "' no longer exists or is not per-atom");
       cp->peratom_now();
       const std::size_t nc = std::max(1, cp->peratom_cols);
+      // Cached this step for other atoms (delete_atoms since): compute again.
+      if (cp->peratom.size() != a.n * nc) cp->compute_peratom();
       const std::size_t col = std::max(0, k - 1);
       each([&](std::size_t i) { return cp->peratom[i * nc + col]; });
       break;

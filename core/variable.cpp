@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/expression.h"
+#include "core/region.h"
 #include "core/simulation.h"
 #include "core/thermo.h"
 
@@ -44,14 +45,17 @@ class SimContext : public ExprContext {
       if (atom != Atoms::npos && c->peratom_flag) {
         c->peratom_now();
         const int nc = std::max(1, c->peratom_cols);
+        if (c->peratom.size() != sim.atoms.n * nc) c->compute_peratom();  // cached for other atoms (delete_atoms)
         out = c->peratom[atom * nc + std::max(0, index - 1)];
         return true;
       }
+      // No global scalar, or no such element: the caller names the reference in its error.
+      if (index == 0 ? !c->scalar_flag : index > c->vector_size) return false;
       out = index == 0 ? c->scalar() : c->vector(index);
       return true;
     }
     Fix* f = sim.find_fix(id);
-    if (!f) return false;
+    if (!f || (index == 0 ? !f->scalar_flag : index > f->vector_size)) return false;
     out = index == 0 ? f->compute_scalar() : f->compute_vector(index);
     return true;
   }
@@ -102,10 +106,18 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
       where.fail_line(func + "(" + args[0] + ", ...) needs x, y or z as argument " + std::to_string(k + 1));
     return args[k][0] - 'x';
   };
+  // LAMMPS' optional last argument: a region that further restricts the group.
+  const std::size_t nfix = func == "count" || func == "mass" ? 1 : 2;
+  const Region* reg = nullptr;
+  if (args.size() > nfix + 1)
+    where.fail_line(func + "(" + args[0] + ", ...): too many arguments (expected at most " + std::to_string(nfix + 1) + ")");
+  if (args.size() == nfix + 1 && !(reg = sim.find_region(args[nfix])))
+    where.fail_line("region '" + args[nfix] + "' in " + func + "() does not exist");
+  auto in = [&](std::size_t i) { return (a.mask[i] & bit) && (!reg || reg->match(&a.x[3 * i])); };
   double count = 0, mass = 0, s[3] = {0, 0, 0};
   if (func == "count" || func == "mass") {
     for (std::size_t i = 0; i < a.n; ++i)
-      if (a.mask[i] & bit) {
+      if (in(i)) {
         count += 1;
         mass += a.rmass[i];
       }
@@ -115,7 +127,7 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
   if (func == "xcm" || func == "vcm" || func == "fcm") {
     const int k = axis(1);
     for (std::size_t i = 0; i < a.n; ++i) {
-      if (!(a.mask[i] & bit)) continue;
+      if (!in(i)) continue;
       if (func == "fcm") {
         s[k] += a.f[3 * i + k];
         continue;
@@ -143,7 +155,7 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
     constexpr double kBig = 1.0e20;
     double b = mx ? -kBig : kBig;
     for (std::size_t i = 0; i < a.n; ++i)
-      if (a.mask[i] & bit) b = mx ? std::max(b, a.x[3 * i + k]) : std::min(b, a.x[3 * i + k]);
+      if (in(i)) b = mx ? std::max(b, a.x[3 * i + k]) : std::min(b, a.x[3 * i + k]);
     out = b;
     return true;
   }

@@ -5,451 +5,55 @@
 //     region R  particles_in_region N | volumefraction_region F | mass_in_region M  [ntry_mc N]
 //     [check_dist_from_subdomain_border yes|no]
 // LIGGGHTS 3.8 semantics: at step (definition + 1) and then every N steps, count
-// all grains whose centre is in the region and insert the missing ones at random
-// places (whole grain inside with all_in yes), without overlap (with each other
-// and with every existing grain, periodic images included) when overlapcheck is
-// yes, within a budget of M tries per missing grain. Like LIGGGHTS on one
-// process, overlap-checked grains keep one radius away from the box faces
-// (check_dist_from_subdomain_border yes). New atoms get the next free IDs and
-// join "all", this fix's group and the groups of the distribution and template
-// fixes. sable extension: in 2D it inserts discs at z = 0 (mass pi r^2 rho) and
-// fractions are area fractions.
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <limits>
-#include <numbers>
-
-#include "core/restart.h"
+// all grains whose centre is in the region and insert the missing ones (the
+// placement rules are those of every region insertion: fixes/fix_insert.cpp).
+// sable extension: in 2D fractions are area fractions.
+#include "core/region.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
-#include "fixes/fix_particledistribution_discrete.h"
+#include "fixes/fix_insert.h"
 
 namespace sable {
 namespace {
 
-// Cell grid over the insertion zone for the overlap check: cells at least one
-// contact distance wide, so a candidate is tested against 27 (9 in 2D) cells.
-// Periodic axes span the whole box and wrap, with minimum-image distances.
-class OverlapGrid {
+class FixInsertPack : public FixInsert {
  public:
-  OverlapGrid(const Domain& d, const double* lo, const double* hi, double cut) : dim_(d.dimension) {
-    double span[3];
-    for (int k = 0; k < 3; ++k) {
-      wrap_[k] = d.wraps(k);
-      lo_[k] = wrap_[k] ? d.lo[k] : lo[k] - cut;
-      span[k] = wrap_[k] ? d.length(k) : hi[k] - lo[k] + 2 * cut;
-      L_[k] = d.length(k);
-    }
-    // Bound the cell count (a big box and a small region): wider cells stay correct.
-    for (double c = cut;; c *= 1.26) {
-      double cells = 1;
-      for (int k = 0; k < 3; ++k) {
-        n_[k] = k < dim_ ? std::max(1, static_cast<int>(std::min(span[k] / c, 1e6))) : 1;
-        inv_[k] = n_[k] / span[k];
-        cells *= n_[k];
-      }
-      if (cells <= 4e6) break;
-    }
-    head_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2], -1);
-  }
-  bool covers(const double* x) const {
-    for (int k = 0; k < dim_; ++k)
-      if (!wrap_[k] && (x[k] < lo_[k] || x[k] > lo_[k] + n_[k] / inv_[k])) return false;
-    return true;
-  }
-  void add(const double* x, double r) {
-    const std::size_t c = index(x);
-    for (int k = 0; k < 3; ++k) xs_.push_back(x[k]);
-    rs_.push_back(r);
-    next_.push_back(head_[c]);
-    head_[c] = static_cast<int>(rs_.size()) - 1;
-  }
-  // True when a sphere (x, r) would overlap a stored one (distance < sum of radii).
-  bool overlaps(const double* x, double r) const {
-    int c[3], lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-      c[k] = cell(x, k);
-      if (k >= dim_)
-        lo[k] = hi[k] = 0;
-      else if (wrap_[k])
-        lo[k] = n_[k] >= 3 ? -1 : 0, hi[k] = n_[k] >= 3 ? 1 : n_[k] - 1;
-      else
-        lo[k] = -std::min(1, c[k]), hi[k] = std::min(1, n_[k] - 1 - c[k]);
-    }
-    for (int dz = lo[2]; dz <= hi[2]; ++dz)
-      for (int dy = lo[1]; dy <= hi[1]; ++dy)
-        for (int dx = lo[0]; dx <= hi[0]; ++dx) {
-          const int q[3] = {dx, dy, dz};
-          std::size_t cc = 0;
-          for (int k = 2; k >= 0; --k) cc = cc * n_[k] + (c[k] + q[k] + n_[k]) % n_[k];
-          for (int j = head_[cc]; j >= 0; j = next_[j]) {
-            double d2 = 0;
-            for (int k = 0; k < dim_; ++k) {
-              double dk = x[k] - xs_[3 * j + k];
-              if (wrap_[k]) dk -= L_[k] * std::round(dk / L_[k]);
-              d2 += dk * dk;
-            }
-            const double s = r + rs_[j];
-            if (d2 < s * s) return true;
-          }
-        }
-    return false;
-  }
+  FixInsertPack(Simulation& s, const Args& a) : FixInsert(s, a) { parse(a); }
 
  private:
-  int dim_;
-  bool wrap_[3];
-  double lo_[3], inv_[3], L_[3];
-  int n_[3];
-  std::vector<int> head_, next_;
-  std::vector<double> xs_, rs_;
-  int cell(const double* x, int k) const {
-    if (k >= dim_) return 0;
-    int c = static_cast<int>(std::floor((x[k] - lo_[k]) * inv_[k]));
-    if (wrap_[k]) return ((c % n_[k]) + n_[k]) % n_[k];
-    return std::clamp(c, 0, n_[k] - 1);
-  }
-  std::size_t index(const double* x) const {
-    return (static_cast<std::size_t>(cell(x, 2)) * n_[1] + cell(x, 1)) * n_[0] + cell(x, 0);
-  }
-};
+  long n_target_ = 0;
+  double vol_frac_ = 0, mass_target_ = 0;
+  int targets_ = 0;
 
-class FixInsertPack : public Fix {
- public:
-  FixInsertPack(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = POST_INTEGRATE;  // LIGGGHTS inserts in pre_exchange: after the drift, before the list build
-    vector_size = 2;         // f_ID[1] grains inserted so far, f_ID[2] their mass
-    if (a.word(4, "'seed'") != "seed") a.fail(4, "'seed' (fix ID group insert/pack seed S ...)");
-    seed_ = parse_prime_seed(a, 5);
-    bool every_given = false;
-    int targets = 0;
-    for (std::size_t i = 6; i < a.size();) {
-      const std::string& k = a[i];
-      auto yes_no = [&](bool& flag) {
-        flag = a.yes_no(i + 1, "yes or no");
-        i += 2;
-      };
-      if (k == "distributiontemplate") {
-        dist_id_ = a.word(i + 1, "a distribution fix ID");
-        dist_ = dynamic_cast<FixParticledistributionDiscrete*>(s.find_fix(dist_id_));
-        if (!dist_) a.fail(i + 1, "the ID of a fix particledistribution/discrete defined earlier");
-        i += 2;
-      } else if (k == "insert_every" || k == "every") {
-        insert_every_ = a.word(i + 1, "a period in steps or 'once'") == "once"
-                            ? 0
-                            : a.integer(i + 1, "a period in steps or 'once'");
-        if (insert_every_ < 0) a.fail(i + 1, "a period >= 0 steps or 'once'");
-        every_given = true;
-        i += 2;
-      } else if (k == "maxattempt") {
-        maxattempt_ = a.integer(i + 1, "the number of attempts per grain");
-        if (maxattempt_ < 1) a.fail(i + 1, "maxattempt >= 1");
-        i += 2;
-      } else if (k == "start") {
-        next_step_ = a.integer(i + 1, "the first insertion step");
-        if (next_step_ < s.step + 1) a.fail(i + 1, "a start step after the current step " + std::to_string(s.step));
-        i += 2;
-      } else if (k == "overlapcheck") {
-        yes_no(overlap_);
-      } else if (k == "all_in") {
-        yes_no(all_in_);
-      } else if (k == "verbose") {
-        yes_no(verbose_);
-      } else if (k == "check_dist_from_subdomain_border") {
-        yes_no(border_gap_);
-      } else if (k == "compress_tags") {
-        bool c;
-        yes_no(c);
-        if (c) a.fail(i - 1, "'no' (compress_tags yes is not supported)");
-      } else if (k == "random_distribute") {
-        const std::string& v = a.word(i + 1, "exact or uncorrelated");
-        if (v != "exact" && v != "uncorrelated") a.fail(i + 1, "exact or uncorrelated");
-        exact_ = v == "exact";
-        i += 2;
-      } else if (k == "vel") {
-        const std::string& st = a.word(i + 1, "constant, uniform or gaussian");
-        vstyle_ = st == "constant" ? 0 : st == "uniform" ? 1 : st == "gaussian" ? 2 : -1;
-        if (vstyle_ < 0) a.fail(i + 1, "constant, uniform or gaussian");
-        for (int d = 0; d < 3; ++d) v_[d] = a.num(i + 2 + d, "a velocity component");
-        for (int d = 0; d < 3 && vstyle_; ++d) dv_[d] = a.num(i + 5 + d, "a velocity fluctuation component");
-        i += vstyle_ ? 8 : 5;
-      } else if (k == "omega") {
-        if (a.word(i + 1, "'constant'") != "constant") a.fail(i + 1, "'constant'");
-        for (int d = 0; d < 3; ++d) w_[d] = a.num(i + 2 + d, "an angular velocity component");
-        i += 5;
-      } else if (k == "orientation") {  // spheres: orientation is irrelevant
-        const std::string& o = a.word(i + 1, "random, template or constant q1 q2 q3 q4");
-        if (o == "constant")
-          for (int d = 0; d < 4; ++d) a.num(i + 2 + d, "a quaternion component");
-        else if (o != "random" && o != "template")
-          a.fail(i + 1, "random, template or constant q1 q2 q3 q4");
-        i += o == "constant" ? 6 : 2;
-      } else if (k == "region") {
-        region_id_ = a.word(i + 1, "a region ID");
-        region_ = s.find_region(region_id_);
-        if (!region_) a.fail(i + 1, "an existing region ID (define it with 'region' first)");
-        i += 2;
-      } else if (k == "volumefraction_region") {
-        vol_frac_ = a.num(i + 1, "a volume fraction");
-        if (!(vol_frac_ > 0 && vol_frac_ < 1)) a.fail(i + 1, "a volume fraction between 0 and 1");
-        ++targets, i += 2;
-      } else if (k == "particles_in_region") {
-        n_target_ = a.integer(i + 1, "a number of particles");
-        if (n_target_ <= 0) a.fail(i + 1, "a number of particles > 0");
-        ++targets, i += 2;
-      } else if (k == "mass_in_region") {
-        mass_target_ = a.num(i + 1, "a mass");
-        if (!(mass_target_ > 0)) a.fail(i + 1, "a mass > 0");
-        ++targets, i += 2;
-      } else if (k == "ntry_mc") {
-        ntry_mc_ = a.integer(i + 1, "a number of Monte-Carlo points");
-        if (ntry_mc_ < 1000) a.fail(i + 1, "ntry_mc >= 1000");
-        i += 2;
-      } else {
-        a.fail(i,
-               "an insert/pack keyword: distributiontemplate, insert_every, maxattempt, start, overlapcheck, "
-               "all_in, random_distribute, verbose, vel, omega, orientation, region, volumefraction_region, "
-               "particles_in_region, mass_in_region, ntry_mc");
-      }
+  bool own_keyword(const Args& a, std::size_t& i) override {
+    const std::string& k = a[i];
+    if (k == "volumefraction_region") {
+      vol_frac_ = a.num(i + 1, "a volume fraction");
+      if (!(vol_frac_ > 0 && vol_frac_ < 1)) a.fail(i + 1, "a volume fraction between 0 and 1");
+    } else if (k == "particles_in_region") {
+      n_target_ = a.integer(i + 1, "a number of particles");
+      if (n_target_ <= 0) a.fail(i + 1, "a number of particles > 0");
+    } else if (k == "mass_in_region") {
+      mass_target_ = a.num(i + 1, "a mass");
+      if (!(mass_target_ > 0)) a.fail(i + 1, "a mass > 0");
+    } else {
+      return false;
     }
-    if (!dist_) a.fail(a.size(), "'distributiontemplate ID' (which grains to insert)");
-    if (!region_) a.fail(a.size(), "'region ID' (where to insert)");
-    if (!every_given) a.fail(a.size(), "'insert_every N' or 'insert_every once'");
-    if (targets != 1) a.fail(a.size(), "exactly one of volumefraction_region, particles_in_region, mass_in_region");
-    if (!s.domain.box_exists) a.fail(0, "a box first (create_box before fix insert/pack)");
-    if (dist_->max_type > s.atoms.ntypes)
-      a.fail_line("template atom_type " + std::to_string(dist_->max_type) + " exceeds the " +
-                  std::to_string(s.atoms.ntypes) + " atom types of create_box");
-    // LIGGGHTS insists that all seeds of one insertion chain differ (correlated streams otherwise).
-    std::vector<long> seeds{seed_, dist_->seed};
-    for (auto* t : dist_->templates) seeds.push_back(t->seed);
-    for (std::size_t p = 0; p < seeds.size(); ++p)
-      for (std::size_t q = 0; q < p; ++q)
-        if (seeds[p] == seeds[q])
-          a.fail(5, "a seed different from those of distribution '" + dist_->id +
-                        "' and of its templates (LIGGGHTS requires all of them to differ)");
-    if (next_step_ < 0) next_step_ = s.step + 1;
-    rng_.reseed(seed_);
-    pos_rng_.reseed(seed_ + 12);  // positions: their own stream (LIGGGHTS: region generator, seed + 12)
-    setup_geometry();
-  }
-
-  // The region and fixes this fix points to must still be the ones it was given.
-  void init() override {
-    if (sim.find_region(region_id_) != region_) args.fail_line("region '" + region_id_ + "' was deleted or redefined");
-    if (sim.find_fix(dist_id_) != dist_) args.fail_line("fix '" + dist_id_ + "' was removed or redefined");
-    for (std::size_t t = 0; t < dist_->templates.size(); ++t)
-      if (sim.find_fix(dist_->template_ids[t]) != dist_->templates[t])
-        args.fail_line("template fix '" + dist_->template_ids[t] + "' was removed or redefined");
-    if (!announced_) {
-      sim.print("INFO: Particle insertion " + id + ": inserting every " + std::to_string(insert_every_) + " steps");
-      if (dim() == 2)
-        sim.print("INFO: 2D insertion of discs at z = 0 is a sable extension (LIGGGHTS 3.8 inserts in 3D only)");
-      announced_ = true;
-    }
-  }
-
-  void post_integrate() override {
-    if (sim.step != next_step_) return;
-    insert();
-    next_step_ = insert_every_ > 0 ? next_step_ + insert_every_ : -1;
-  }
-
-  double compute_vector(int i) override {
-    return i == 1 ? static_cast<double>(ninserted_) : i == 2 ? mass_inserted_ : 0.0;
-  }
-
-  // Restart state (LIGGGHTS fix insert stores the same): next insertion step,
-  // counters and this fix's random streams, so a restarted deck neither inserts
-  // again (insert_every once) nor repeats positions. The templates' and the
-  // distribution's own streams are theirs to store.
-  bool write_state(std::string& out) const override {
-    static_assert(std::is_trivially_copyable_v<Rng>);
-    restart::Packer p;
-    p.put<std::int64_t>(next_step_);
-    p.put<std::int64_t>(ninserted_);
-    p.put(mass_inserted_);
-    p.put(rng_);
-    p.put(pos_rng_);
-    out = p.bytes;
+    ++targets_, i += 2;
     return true;
   }
-  void read_state(const std::string& in) override {
-    restart::Unpacker u(in, "the restart state of fix " + id);
-    next_step_ = u.get<std::int64_t>();
-    ninserted_ = u.get<std::int64_t>();
-    mass_inserted_ = u.get<double>();
-    rng_ = u.get<Rng>();
-    pos_rng_ = u.get<Rng>();
+  void check_own(const Args& a) override {
+    if (targets_ != 1) a.fail(a.size(), "exactly one of volumefraction_region, particles_in_region, mass_in_region");
+  }
+  std::string keyword_list() const override {
+    return "distributiontemplate, insert_every, maxattempt, start, overlapcheck, all_in, random_distribute, verbose, "
+           "vel, omega, orientation, region, volumefraction_region, particles_in_region, mass_in_region, ntry_mc";
   }
 
- private:
-  long seed_ = 0, insert_every_ = -1, next_step_ = -1, maxattempt_ = 50, n_target_ = 0, ntry_mc_ = 100000;
-  bool overlap_ = true, all_in_ = false, exact_ = true, verbose_ = true, announced_ = false, border_gap_ = true;
-  int vstyle_ = 0;
-  double v_[3] = {0, 0, 0}, dv_[3] = {0, 0, 0}, w_[3] = {0, 0, 0};
-  double vol_frac_ = 0, mass_target_ = 0, region_volume_ = 0;
-  std::string dist_id_, region_id_;
-  FixParticledistributionDiscrete* dist_ = nullptr;
-  Region* region_ = nullptr;
-  Rng rng_, pos_rng_;
-  long ninserted_ = 0;
-  double mass_inserted_ = 0;
-  double slo_[3], shi_[3];  // where positions are drawn: region bounds within the box
-  enum Shape { Unknown, Block, Sphere, Cylinder } shape_ = Unknown;
-  int axis_ = 2;
-  bool warned_all_in_ = false;
-
-  int dim() const { return sim.domain.dimension; }
-  double grain_volume(double r) const {
-    return dim() == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  }
-
-  // Sampling box, region shape (for all_in) and region volume (area in 2D).
-  void setup_geometry() {
-    const Domain& d = sim.domain;
-    const Region& R = *region_;
-    bool clipped = false;
-    for (int k = 0; k < 3; ++k) {
-      slo_[k] = R.interior ? std::max(R.lo[k], d.lo[k]) : d.lo[k];
-      shi_[k] = R.interior ? std::min(R.hi[k], d.hi[k]) : d.hi[k];
-      if (k < dim() && R.interior && (R.lo[k] < d.lo[k] || R.hi[k] > d.hi[k])) {
-        clipped = true;
-        if (std::fabs(R.lo[k]) < 1e100 && std::fabs(R.hi[k]) < 1e100)
-          sim.warn("fix insert/pack " + id + ": region '" + R.id + "' extends outside the box along " +
-                   std::string(1, char('x' + k)) + "; only its part inside the box is filled");
-      }
-      if (k < dim() && !(shi_[k] > slo_[k]))
-        args.fail_line("the insertion region '" + R.id + "' does not overlap the box");
-    }
-    if (dim() == 2 && (R.lo[2] > 0 || R.hi[2] < 0) && R.interior)
-      args.fail_line("in 2D grains are inserted at z = 0, but region '" + R.id + "' does not contain z = 0");
-    if (R.style == "block")
-      shape_ = Block;
-    else if (R.style == "sphere")
-      shape_ = Sphere;
-    else if (R.style == "cylinder") {
-      shape_ = Cylinder;
-      axis_ = -1;
-      for (int k = 0; k < 3 && axis_ < 0; ++k) {
-        const int p = (k + 1) % 3, q = (k + 2) % 3;
-        double x[3];
-        x[k] = 0.5 * (R.lo[k] + R.hi[k]);
-        x[p] = 0.5 * (R.lo[p] + R.hi[p]) + 0.4 * (R.hi[p] - R.lo[p]);
-        x[q] = 0.5 * (R.lo[q] + R.hi[q]) + 0.4 * (R.hi[q] - R.lo[q]);
-        if (!R.inside(x)) axis_ = k;  // off-axis diagonal point leaves the disc only across the axis
-      }
-      if (axis_ < 0) shape_ = Unknown;
-    }
-    // Exact volume when the region lies in the box and knows it; else Monte-Carlo like LIGGGHTS.
-    if (!clipped && R.interior && dim() == 3 && R.volume() > 0)
-      region_volume_ = R.volume();
-    else if (!clipped && R.interior && dim() == 2 && shape_ == Block)
-      region_volume_ = (R.hi[0] - R.lo[0]) * (R.hi[1] - R.lo[1]);
-    else {
-      Rng mc(seed_ + 12);
-      long in = 0;
-      for (long t = 0; t < ntry_mc_; ++t) {
-        double x[3] = {0, 0, 0};
-        for (int k = 0; k < dim(); ++k) x[k] = slo_[k] + mc.uniform() * (shi_[k] - slo_[k]);
-        in += R.match(x);
-      }
-      double box = 1;
-      for (int k = 0; k < dim(); ++k) box *= shi_[k] - slo_[k];
-      region_volume_ = box * in / ntry_mc_;
-    }
-    if (!(region_volume_ > 0)) args.fail_line("the insertion region '" + R.id + "' has no volume inside the box");
-  }
-
-  // Signed distance from x to the surface of the region's inside (> 0 inside); NaN when unknown.
-  double depth(const double* x) const {
-    const Region& R = *region_;
-    switch (shape_) {
-      case Block: {
-        double in = std::numeric_limits<double>::max(), out2 = 0;
-        for (int k = 0; k < dim(); ++k) {  // in 2D the z faces do not bound a disc at z = 0
-          in = std::min({in, x[k] - R.lo[k], R.hi[k] - x[k]});
-          const double e = std::max({R.lo[k] - x[k], x[k] - R.hi[k], 0.0});
-          out2 += e * e;
-        }
-        return in >= 0 ? in : -std::sqrt(out2);
-      }
-      case Sphere: {
-        double d2 = 0;
-        for (int k = 0; k < 3; ++k) d2 += std::pow(x[k] - 0.5 * (R.lo[k] + R.hi[k]), 2);
-        return 0.5 * (R.hi[0] - R.lo[0]) - std::sqrt(d2);
-      }
-      case Cylinder: {
-        double rho2 = 0;
-        for (int k = 0; k < 3; ++k)
-          if (k != axis_) rho2 += std::pow(x[k] - 0.5 * (R.lo[k] + R.hi[k]), 2);
-        const int p = (axis_ + 1) % 3;
-        const double dr = 0.5 * (R.hi[p] - R.lo[p]) - std::sqrt(rho2);
-        const bool axial = !(dim() == 2 && axis_ == 2);
-        const double da = axial ? std::min(x[axis_] - R.lo[axis_], R.hi[axis_] - x[axis_]) : dr;
-        if (dr >= 0 && da >= 0) return std::min(dr, da);
-        return -std::hypot(std::max(-dr, 0.0), std::max(-da, 0.0));
-      }
-      case Unknown:
-        break;
-    }
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-
-  // Is a grain (x, r) in the region: its centre, or with all_in yes all of it?
-  bool in_region(const double* x, double r) {
-    if (!all_in_) return region_->match(x);
-    const double dd = depth(x);
-    if (!std::isnan(dd)) return region_->interior ? dd >= r : dd <= -r;
-    // Region style without a distance: test the centre and 26 points of the surface.
-    if (!warned_all_in_) {
-      sim.warn("fix insert/pack " + id + ": all_in for region style '" + region_->style +
-               "' is checked on 26 surface points only (approximate)");
-      warned_all_in_ = true;
-    }
-    if (!region_->match(x)) return false;
-    for (int i = -1; i <= 1; ++i)
-      for (int j = -1; j <= 1; ++j)
-        for (int k = -1; k <= 1; ++k) {
-          if (!i && !j && !k) continue;
-          const double n = std::sqrt(double(i * i + j * j + k * k));
-          const double p[3] = {x[0] + r * i / n, x[1] + r * j / n, dim() == 2 ? 0.0 : x[2] + r * k / n};
-          if (!region_->match(p)) return false;
-        }
-    return true;
-  }
-
-  // LIGGGHTS (one process) rejects overlap-checked positions closer than r to a
-  // box face, periodic or not: its sub-domain border test.
-  bool near_box_face(const double* x, double r) const {
-    for (int k = 0; k < dim(); ++k)
-      if (x[k] - sim.domain.lo[k] < r || sim.domain.hi[k] - x[k] < r) return true;
-    return false;
-  }
-
-  // A uniformly random position of a grain of radius r in the region.
-  void random_position(double r, double* x) {
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-      const double shrink = all_in_ && region_->interior && k < dim() ? r : 0.0;
-      lo[k] = slo_[k] + shrink;
-      hi[k] = shi_[k] - shrink;
-      if (k < dim() && !(hi[k] >= lo[k]))
-        args.fail_line("region '" + region_->id + "' is too small for grains of radius " + std::to_string(r) +
-                       " with all_in yes");
-    }
-    for (long t = 0; t < 1000000; ++t) {
-      for (int k = 0; k < 3; ++k) x[k] = k < dim() ? lo[k] + pos_rng_.uniform() * (hi[k] - lo[k]) : 0.0;
-      if (in_region(x, r)) return;
-    }
-    args.fail_line("found no position inside region '" + region_->id + "' in 10^6 random draws for a grain of radius " +
-                   std::to_string(r));
-  }
-
-  void insert() {
-    Atoms& at = sim.atoms;
-    // What the region already holds: every atom whose centre is inside, whatever its group.
+  // The grains missing from the target, counting every atom whose centre is in
+  // the region, whatever its group.
+  long wanted(double& filled) override {
+    const Atoms& at = sim.atoms;
     long np = 0;
     double vol = 0, mass = 0;
     for (std::size_t i = 0; i < at.n; ++i)
@@ -458,85 +62,16 @@ class FixInsertPack : public Fix {
         vol += grain_volume(at.radius[i]);
         mass += at.rmass[i];
       }
-    long want = 0;
-    double filled = 0;  // fraction of the target already there
     if (vol_frac_ > 0) {
-      want = static_cast<long>((vol_frac_ * region_volume_ - vol) / dist_->volume_expect + rng_.uniform());
       filled = vol / (vol_frac_ * region_volume_);
-    } else if (n_target_ > 0) {
-      want = n_target_ - np;
+      return static_cast<long>((vol_frac_ * region_volume_ - vol) / dist_->volume_expect + rng_.uniform());
+    }
+    if (n_target_ > 0) {
       filled = static_cast<double>(np) / n_target_;
-    } else {
-      want = static_cast<long>((mass_target_ - mass) / dist_->mass_expect + rng_.uniform());
-      filled = mass / mass_target_;
+      return n_target_ - np;
     }
-    if (want <= 0) return;
-
-    const auto grains = dist_->draw(want, exact_);
-    std::vector<double> pos(3 * grains.size());
-    std::size_t placed = 0;
-    if (!overlap_) {
-      for (; placed < grains.size(); ++placed) random_position(grains[placed].g.radius, &pos[3 * placed]);
-    } else {
-      double rmax = 0;
-      for (std::size_t i = 0; i < at.n; ++i) rmax = std::max(rmax, at.radius[i]);
-      OverlapGrid grid(sim.domain, slo_, shi_, dist_->max_radius + std::max(rmax, dist_->max_radius));
-      for (std::size_t i = 0; i < at.n; ++i)
-        if (grid.covers(&at.x[3 * i])) grid.add(&at.x[3 * i], at.radius[i]);
-      // LIGGGHTS budget: M tries per grain, more when the region is already partly filled.
-      const double budget = static_cast<double>(grains.size()) * maxattempt_;
-      const long maxtry = static_cast<long>(filled < 1 ? budget / (1 - std::max(0.0, filled)) : budget);
-      long ntry = 0;
-      while (placed < grains.size() && ntry < maxtry) {
-        const double r = grains[placed].g.radius;
-        double* x = &pos[3 * placed];
-        bool ok = false;
-        while (!ok && ntry < maxtry) {
-          do {
-            random_position(r, x);
-            ++ntry;
-          } while (ntry < maxtry && border_gap_ && near_box_face(x, r));
-          if (ntry == maxtry) break;  // as LIGGGHTS: the last draw is not tried
-          ok = !grid.overlaps(x, r);
-        }
-        if (ok) {
-          grid.add(x, r);
-          ++placed;
-        }
-      }
-    }
-    double mass_now = 0;
-    for (std::size_t p = 0; p < placed; ++p) {
-      const auto& G = grains[p];
-      const std::size_t i = at.add(at.max_id + 1, G.g.type, &pos[3 * p], G.g.radius, G.g.density);
-      at.rmass[i] = G.g.mass;  // disc mass in 2D
-      at.mask[i] |= groupbit | G.groupbits;
-      for (int k = 0; k < 3; ++k) {
-        double v = v_[k];
-        if (vstyle_ == 1) v += dv_[k] * (2 * rng_.uniform() - 1);
-        if (vstyle_ == 2) v += dv_[k] * rng_.gaussian();
-        at.v[3 * i + k] = v;
-        at.omega[3 * i + k] = w_[k];
-      }
-      mass_now += G.g.mass;
-    }
-    ninserted_ += static_cast<long>(placed);
-    mass_inserted_ += mass_now;
-    char buf[320];
-    if (verbose_) {
-      std::snprintf(buf, sizeof buf,
-                    "INFO: Particle insertion %s: inserted %zu particle templates (mass %e) at step %ld\n"
-                    " - a total of %ld particle templates (mass %e) inserted so far.",
-                    id.c_str(), placed, mass_now, sim.step, ninserted_, mass_inserted_);
-      sim.print(buf);
-    }
-    if (placed < grains.size()) {
-      std::snprintf(buf, sizeof buf,
-                    "Particle insertion: Less insertions than requested: fix insert/pack %s placed %zu of %zu grains "
-                    "at step %ld (%ld tries per grain); lower the target, enlarge the region or raise maxattempt",
-                    id.c_str(), placed, grains.size(), sim.step, maxattempt_);
-      sim.warn(buf);
-    }
+    filled = mass / mass_target_;
+    return static_cast<long>((mass_target_ - mass) / dist_->mass_expect + rng_.uniform());
   }
 };
 

@@ -1,0 +1,81 @@
+#pragma once
+// Shared part of LIGGGHTS' region insertion fixes (insert/pack,
+// insert/rate/region): the general keywords (seed, distributiontemplate,
+// insert_every, start, maxattempt, overlapcheck, all_in, vel, omega, ...) and
+// the region ones (region, ntry_mc, check_dist_from_subdomain_border); the
+// region's sampling box, all_in distance and volume; overlap-free random
+// placement; adding the grains; the INFO lines; f_ID[1] (grains inserted) and
+// f_ID[2] (their mass); and the restart state. A style says how many grains
+// each insertion step wants and when it is done.
+#include <string>
+#include <vector>
+
+#include "core/fix.h"
+#include "fixes/fix_particledistribution_discrete.h"
+
+namespace sable {
+
+class Region;
+
+class FixInsert : public Fix {
+ public:
+  FixInsert(Simulation& s, const Args& a);
+  void init() override;
+  void post_integrate() override;
+  double compute_vector(int i) override;
+  bool write_state(std::string& out) const override;
+  void read_state(const std::string& in) override;
+
+ protected:
+  // Parses words 6..: the shared keywords here, a style's own through
+  // own_keyword(); then the checks common to all styles (call from the
+  // style's constructor, where its overrides are in place).
+  void parse(const Args& a);
+  // Consumes a style keyword at a[i] (advancing i); false if a[i] is none.
+  virtual bool own_keyword(const Args& a, std::size_t& i) = 0;
+  // After parsing: the style's own required keywords and their consistency.
+  virtual void check_own(const Args& a) = 0;
+  // The keywords of this style, for the error on an unknown one.
+  virtual std::string keyword_list() const = 0;
+  // How many grains this insertion step wants; `filled` (0..1) is the part of
+  // the target already there, which widens the try budget as LIGGGHTS does.
+  virtual long wanted(double& filled) = 0;
+  // The step after an insertion at next_step_, or -1 when the fix is done.
+  virtual long following_step() const { return insert_every_ > 0 ? next_step_ + insert_every_ : -1; }
+  // INFO line(s) at the first run.
+  virtual void announce();
+
+  int dim() const;
+  double grain_volume(double r) const;
+
+  long seed_ = 0, insert_every_ = -1, next_step_ = -1, maxattempt_ = 50, ntry_mc_ = 100000;
+  bool every_given_ = false, once_allowed_ = true;  // insert/rate/region forbids insert_every once
+  FixParticledistributionDiscrete* dist_ = nullptr;
+  Region* region_ = nullptr;
+  double region_volume_ = 0;
+  Rng rng_, pos_rng_;
+  long ninserted_ = 0;
+  double mass_inserted_ = 0;
+
+ private:
+  bool overlap_ = true, all_in_ = false, exact_ = true, verbose_ = true, announced_ = false, border_gap_ = true;
+  int vstyle_ = 0;
+  double v_[3] = {0, 0, 0}, dv_[3] = {0, 0, 0}, w_[3] = {0, 0, 0};
+  std::string dist_id_, region_id_;
+  double slo_[3], shi_[3];  // where positions are drawn: region bounds within the box
+  enum Shape { Unknown, Block, Sphere, Cylinder } shape_ = Unknown;
+  int axis_ = 2;
+  bool warned_all_in_ = false;
+
+  bool shared_keyword(const Args& a, std::size_t& i);
+  void setup_geometry();
+  double depth(const double* x) const;
+  bool in_region(const double* x, double r);
+  bool near_box_face(const double* x, double r) const;
+  void random_position(double r, double* x);
+  std::size_t place(const std::vector<FixParticledistributionDiscrete::Grain>& grains, double filled,
+                    std::vector<double>& pos);
+  void insert();
+};
+
+}  // namespace sable

@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Compare a random deck's statistics between sable and LIGGGHTS over seeds.
+
+    /usr/bin/python3 reference_runs/compare_seeds.py DECK [--out DIR] [--sable PATH]
+        [--var NAME VALUE ...] [--seeds N] [--seed-values V ...] [--timeout S]
+
+Insertion places grains differently in each code for the same seed, so a single
+run of one code cannot be judged against one run of the other. This runs the
+deck in BOTH codes once per value of its `#@ seeds VAR V1 V2 ...` line (the
+first N with --seeds), reads the OBSERVABLE lines (as compare.py does) and, per
+observable, compares the two means with their combined standard error
+SE = sqrt(sd_s^2 / n + sd_l^2 / n). It passes when |mean_s - mean_l| <= K SE,
+K from the deck's `#@ tolerance NAME sigma K` (an `abs X` tolerance is an
+absolute bound on the difference of the means; `none` is not judged).
+Writes DIR/DECKNAME/seeds.md and seeds.json; exit status 0 when all pass.
+"""
+import argparse, datetime, json, math, os, shutil, sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import compare  # noqa: E402  (the deck conventions and the runner)
+
+
+def stats(values):
+    v = np.array([x for x in values if not math.isnan(x)], float)
+    if len(v) == 0:
+        return math.nan, math.nan, 0
+    sd = float(np.std(v, ddof=1)) if len(v) > 1 else math.nan
+    return float(v.mean()), sd, len(v)
+
+
+def judge(spec, ms, mlig, se):
+    """(pass?, text) for the difference of the means under a tolerance spec."""
+    if spec is None:
+        return None, 'not judged'
+    d = abs(ms - mlig)
+    allowed, parts = 0.0, []
+    if 'abs' in spec:
+        allowed += spec['abs']
+        parts.append(f'abs {spec["abs"]:g}')
+    if 'rel' in spec:
+        allowed += spec['rel'] * abs(mlig)
+        parts.append(f'rel {spec["rel"]:g}')
+    if 'sigma' in spec:
+        if math.isnan(se):
+            return False, 'no spread (one seed)'
+        allowed += spec['sigma'] * se
+        parts.append(f'{spec["sigma"]:g} SE')
+    return d <= allowed, ' + '.join(parts) + f' = {allowed:.3g}'
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('deck')
+    p.add_argument('--out', default=os.path.join(compare.REPO, 'build-compare'))
+    p.add_argument('--sable', default=os.path.join(compare.REPO, 'build', 'sable'))
+    p.add_argument('--var', nargs=2, action='append', default=[], metavar=('NAME', 'VALUE'))
+    p.add_argument('--seeds', type=int, default=0, help='use only the first N seeds')
+    p.add_argument('--seed-values', nargs='+', default=None, metavar='V',
+                   help="these seed values instead of the deck's (primes > 10000 for LIGGGHTS)")
+    p.add_argument('--timeout', type=float, default=1800)
+    args = p.parse_args()
+    args.sable = os.path.abspath(args.sable)
+    if not shutil.which('liggghts'):
+        sys.exit('liggghts is not on PATH (apt-get install liggghts): this comparison runs both codes')
+    h = compare.parse_header(args.deck)
+    if not h['seeds']:
+        sys.exit(f'{args.deck}: no "#@ seeds VAR V1 V2 ..." line')
+    var, seeds = h['seeds'][0], (args.seed_values or h['seeds'][1])[:args.seeds or None]
+    name = os.path.splitext(os.path.basename(args.deck))[0]
+    outdir = os.path.join(args.out, name)
+    values = {'sable': {}, 'liggghts': {}}
+    errors = []
+    for code in values:
+        for s in seeds:
+            obs, _, err, _ = compare.run_once(code, args.deck, os.path.join(outdir, code, f'{var}_{s}'),
+                                              {**dict(args.var), var: s}, h, args)
+            if err:
+                errors.append(f'{code} {var}={s}: {err}')
+            for k, v in obs.items():
+                values[code].setdefault(k, []).append(v)
+    names = list(dict.fromkeys(list(values['sable']) + list(values['liggghts'])))
+    rows, ok = [], not errors
+    for n in names:
+        ms, ss, ns = stats(values['sable'].get(n, []))
+        ml, sl, nl = stats(values['liggghts'].get(n, []))
+        se = math.sqrt(ss ** 2 / ns + sl ** 2 / nl) if ns > 1 and nl > 1 else math.nan
+        passed, text = judge(compare.tolerance(h, n), ms, ml, se)
+        ok = ok and passed is not False
+        z = abs(ms - ml) / se if se > 0 else (0.0 if ms == ml else math.inf)
+        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, 'liggghts_mean': ml, 'liggghts_sd': sl,
+                     'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
+                     'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
+    lines = [f'# {name}: sable vs LIGGGHTS over {len(seeds)} seeds ({datetime.date.today().isoformat()})', '',
+             f'Deck `{compare.show(args.deck)}`' + ''.join(f' -var {k} {v}' for k, v in args.var) +
+             f', {var} = {" ".join(seeds)}; each code ran once per seed. '
+             'SE = sqrt(sd_s^2/n + sd_l^2/n), the standard error of the difference of the means.', '',
+             '| observable | sable mean ± sd | LIGGGHTS mean ± sd | n | diff / SE | tolerance | result |',
+             '|---|---|---|---|---|---|---|']
+    for r in rows:
+        lines.append(f'| {r["observable"]} | {r["sable_mean"]:.6g} ± {r["sable_sd"]:.3g} | '
+                     f'{r["liggghts_mean"]:.6g} ± {r["liggghts_sd"]:.3g} | {r["n"]} | {r["diff_over_se"]:.2f} | '
+                     f'{r["tolerance"]} | {r["result"]} |')
+    lines += [''] + [f'- error: {e}' for e in errors]
+    os.makedirs(outdir, exist_ok=True)
+    open(os.path.join(outdir, 'seeds.md'), 'w').write('\n'.join(lines) + '\n')
+    with open(os.path.join(outdir, 'seeds.json'), 'w') as f:
+        json.dump({'deck': name, 'vars': dict(args.var), 'seeds': seeds, 'values': values, 'rows': rows, 'errors': errors}, f, indent=1,
+                  allow_nan=True)
+    print('\n'.join(lines))
+    print(f'written: {compare.show(os.path.join(outdir, "seeds.md"))}')
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == '__main__':
+    main()
