@@ -55,6 +55,7 @@ void cmd_delete_atoms(Simulation& sim, const Args& a) {
 
   const std::size_t before = at.n;
   at.remove_if(doomed);
+  for (auto& c : sim.computes) c->reset_cache();  // values cached at this step counted the deleted grains
   if (compress) {
     std::vector<std::size_t> by_id(at.n);
     std::iota(by_id.begin(), by_id.end(), 0);
