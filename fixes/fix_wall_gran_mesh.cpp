@@ -1,0 +1,443 @@
+#include "fixes/fix_wall_gran_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "contact_models/materials.h"
+#include "contact_models/pair_gran.h"
+#include "contact_models/registry.h"
+#include "core/simulation.h"
+#include "fixes/fix_mesh_surface.h"
+
+namespace sable {
+
+static Vec3d sub3(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+FixWallGranMesh::FixWallGranMesh(Simulation& s, const Args& a) : Fix(s, a) {
+  hooks = POST_FORCE;
+  vector_size = 3;
+  const ModelSelection sel = parse_model_selection(a, 4);
+  kernel_ = make_kernel(sel, a);
+  ModelSettings settings;
+  kernel_->settings(settings);
+  std::size_t i = sel.next;
+  if (i >= a.size() || a[i] != "mesh") a.fail(i, "'mesh n_meshes K meshes ID1 ... IDK'");
+  if (a.word(i + 1, "'n_meshes'") != "n_meshes") a.fail(i + 1, "'n_meshes'");
+  const long k = a.integer(i + 2, "the number of meshes");
+  if (k < 1) a.fail(i + 2, "at least one mesh");
+  if (a.word(i + 3, "'meshes'") != "meshes") a.fail(i + 3, "'meshes'");
+  for (long m = 0; m < k; ++m) {
+    const std::string& id = a.word(i + 4 + m, "the ID of a fix mesh/surface");
+    if (!dynamic_cast<FixMeshSurface*>(s.find_fix(id))) a.fail(i + 4 + m, "the ID of a fix mesh/surface defined before");
+    mesh_ids_.push_back(id);
+  }
+  i += 4 + k;
+  while (i < a.size()) {
+    if (a[i] == "store_force" || a[i] == "store_force_contact") {
+      if (a.yes_no(i + 1, "yes or no")) a.fail(i + 1, "'no' (use f_" + id + "[1..3] or the mesh's f_ID)");
+      i += 2;
+    } else if (!settings.try_parse(a, i)) {
+      a.fail(i, "a model keyword: " + settings.names());
+    }
+  }
+  hist_size_ = static_cast<int>(kernel_->history_slots().size());
+  find_meshes();
+}
+
+void FixWallGranMesh::find_meshes() {
+  meshes_.clear();
+  for (const std::string& m : mesh_ids_) {
+    auto* f = dynamic_cast<FixMeshSurface*>(sim.find_fix(m));
+    if (!f) args.fail_line("fix mesh/surface " + m + " no longer exists");
+    meshes_.push_back(f);
+  }
+  prev_.resize(meshes_.size());
+  // The first wall/gran mesh fix of a mesh clears its load each step; the others add to it.
+  owner_.assign(meshes_.size(), false);
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    owner_[m] = true;
+    for (auto& f : sim.fixes) {
+      if (f.get() == this) break;
+      if (auto* w = dynamic_cast<FixWallGranMesh*>(f.get()))
+        for (const std::string& id : w->mesh_ids_) owner_[m] = owner_[m] && id != mesh_ids_[m];
+    }
+  }
+}
+
+void FixWallGranMesh::init() {
+  find_meshes();
+  // Image shifts, code 9 a + 3 b + c with a, b, c in {0: none, 1: -L, 2: +L} per axis.
+  for (int q = 0; q < 27; ++q) {
+    const int c[3] = {q / 9, q / 3 % 3, q % 3};
+    for (int d = 0; d < 3; ++d) shifts_[q][d] = c[d] == 0 ? 0.0 : (c[d] == 1 ? -1.0 : 1.0) * sim.domain.length(d);
+  }
+  glue_.assign(meshes_.size(), Glue{});
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    meshes_[m]->update_pose();
+    find_glue(static_cast<int>(m));
+  }
+  kernel_->connect(Materials::of(sim), args);
+  freeze_bit_ = frozen_groupbits(sim);
+  setup_pass_ = true;
+}
+
+namespace {
+
+// A triangle within reach of one image of a grain: its closest point (body
+// frame of the mesh, as seen from that image) and that point in the grain's own frame.
+struct Touch {
+  int tri, img;
+  TriMesh::Closest c;
+  Vec3d preal;
+  bool alive = true;
+};
+
+double dist2(const Vec3d& a, const Vec3d& b) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
+bool has_vertex(const TriMesh& m, int t, int v) {
+  return m.tri[3 * t] == v || m.tri[3 * t + 1] == v || m.tri[3 * t + 2] == v;
+}
+
+}  // namespace
+
+// Edge (t, k) of the touch `a` is shared with the touch `b`: the same edge in
+// the same image, or its periodic twin seen from the image one glue shift on.
+bool FixWallGranMesh::shares_edge(int m, const Touchish& a, const Touchish& b) const {
+  const TriMesh& mesh = meshes_[m]->mesh();
+  const int e = 3 * a.tri + a.k;
+  if (a.img == b.img && mesh.nbr[e] == b.tri) return true;
+  const Glue& g = glue_[m];
+  if (g.tri.empty() || g.tri[e] != b.tri) return false;
+  return dist2(Vec3d{shifts_[b.img][0] - shifts_[a.img][0], shifts_[b.img][1] - shifts_[a.img][1],
+                     shifts_[b.img][2] - shifts_[a.img][2]},
+               g.shift[e]) <= 1e-20 * (1 + dist2(g.shift[e], {0, 0, 0}));
+}
+
+// One surface: triangles sharing an inactive edge (also through a periodic
+// boundary) or an inactive corner (same image).
+bool FixWallGranMesh::same_surface(int m, const Touchish& a, const Touchish& b) const {
+  const TriMesh& mesh = meshes_[m]->mesh();
+  if (a.img == b.img) return mesh.same_surface(a.tri, b.tri);
+  const Glue& g = glue_[m];
+  for (int k = 0; k < 3; ++k)
+    if (!g.tri.empty() && g.tri[3 * a.tri + k] == b.tri && !g.active[3 * a.tri + k] &&
+        shares_edge(m, Touchish{a.tri, k, a.img}, Touchish{b.tri, 0, b.img}))
+      return true;
+  return false;
+}
+
+// The touched triangles of one grain (all its images) reduced to its
+// contacts: an edge or corner contact goes when a triangle sharing that edge
+// or corner is nearer (the point is also that triangle's, which counts it);
+// triangles of one surface, and contacts at one point (a convex edge seen
+// from both sides, or from two images), join, and the nearest of each group
+// is the contact (ties: lower index). Per contact: its representative in
+// `ts` and the group's triangles.
+template <class T>
+static void reduce_touches(const FixWallGranMesh& f, int m, const TriMesh& mesh, std::vector<T>& ts, double r,
+                           std::vector<std::pair<int, std::vector<int>>>& out) {
+  out.clear();
+  const std::size_t n = ts.size();
+  const double eps = 1e-12 * r * r, same2 = 1e-16 * r * r;  // far above round-off, far below any overlap
+  std::vector<int> killer(n, -1);  // the nearer touch that made a touch go (its history may pass on)
+  for (std::size_t a = 0; a < n; ++a) {
+    const TriMesh::Closest& c = ts[a].c;
+    if (c.region == TriMesh::Region::Face) continue;
+    const int t = ts[a].tri;
+    for (std::size_t b = 0; b < n && ts[a].alive; ++b) {
+      if (b == a || !(ts[b].c.dist2 < c.dist2 - eps)) continue;
+      const bool shares = c.region == TriMesh::Region::Edge
+                              ? f.shares_edge(m, {t, c.k, ts[a].img}, {ts[b].tri, 0, ts[b].img})
+                              : ts[a].img == ts[b].img && has_vertex(mesh, ts[b].tri, mesh.tri[3 * t + c.k]);
+      if (shares) ts[a].alive = false, killer[a] = static_cast<int>(b);
+    }
+  }
+  std::vector<int> root(n);
+  std::iota(root.begin(), root.end(), 0);
+  auto find = [&](int x) {
+    while (root[x] != x) x = root[x] = root[root[x]];
+    return x;
+  };
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (ts[a].alive && ts[b].alive &&
+          (f.same_surface(m, {ts[a].tri, 0, ts[a].img}, {ts[b].tri, 0, ts[b].img}) ||
+           dist2(ts[a].preal, ts[b].preal) <= same2))
+        root[find(static_cast<int>(b))] = find(static_cast<int>(a));
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!ts[a].alive || find(static_cast<int>(a)) != static_cast<int>(a)) continue;
+    int best = static_cast<int>(a);
+    std::vector<int> group;
+    for (std::size_t b = 0; b < n; ++b) {
+      int live = static_cast<int>(b);  // a dropped touch belongs where its (nearer) killer does
+      while (!ts[live].alive) live = killer[live];
+      if (find(live) != static_cast<int>(a)) continue;
+      group.push_back(ts[b].tri);
+      if (!ts[b].alive) continue;
+      const auto& cb = ts[b].c;
+      const auto& cr = ts[best].c;
+      if (cb.dist2 < cr.dist2 || (cb.dist2 == cr.dist2 && ts[b].tri < ts[best].tri)) best = static_cast<int>(b);
+    }
+    out.emplace_back(best, std::move(group));
+  }
+}
+
+// Boundary edges of a mesh that meet again through a periodic boundary (the
+// same two vertices one or more box lengths apart) are glued: one edge, active
+// or not by the angle of its triangles, as any inner edge. Found with the
+// mesh's pose now (meshes that turn away from the axes lose the glue's meaning).
+void FixWallGranMesh::find_glue(int m) {
+  const TriMesh& mesh = meshes_[m]->mesh();
+  const Domain& dom = sim.domain;
+  Glue& g = glue_[m];
+  g = Glue{};
+  if (!dom.wraps(0) && !dom.wraps(1) && !dom.wraps(2)) return;
+  std::vector<int> open;
+  for (std::size_t e = 0; e < mesh.nbr.size(); ++e)
+    if (mesh.nbr[e] < 0) open.push_back(static_cast<int>(e));
+  if (open.empty() || open.size() > 20000) return;  // (quadratic search: large open meshes go without)
+  g.tri.assign(mesh.nbr.size(), -1);
+  g.active.assign(mesh.nbr.size(), 1);
+  g.shift.assign(mesh.nbr.size(), {0, 0, 0});
+  auto ends = [&](int e, Vec3d& a, Vec3d& b) {
+    a = mesh.to_world(mesh.corner(e / 3, e % 3));
+    b = mesh.to_world(mesh.corner(e / 3, (e % 3 + 1) % 3));
+  };
+  const double tol = 1e-9 * std::max({dom.length(0), dom.length(1), dom.length(2)});
+  for (int e : open)
+    for (int q : open) {
+      if (q / 3 == e / 3) continue;
+      Vec3d a, b, c, d;
+      ends(e, a, b);
+      ends(q, c, d);
+      if (dist2(sub3(c, a), sub3(d, b)) > tol * tol) std::swap(c, d);  // the twin may run either way
+      const Vec3d s = sub3(c, a);
+      if (dist2(s, sub3(d, b)) > tol * tol || dist2(s, {0, 0, 0}) < tol * tol) continue;
+      bool whole = true;  // each component: 0 or a whole number of periodic box lengths
+      for (int k = 0; k < 3 && whole; ++k) {
+        if (std::fabs(s[k]) < tol) continue;
+        const double n = std::round(s[k] / dom.length(k));
+        whole = dom.wraps(k) && n != 0 && std::fabs(s[k] - n * dom.length(k)) < tol;
+      }
+      if (!whole) continue;
+      const int t = e / 3, u = q / 3;
+      const double cosang = mesh.normal[3 * t] * mesh.normal[3 * u] + mesh.normal[3 * t + 1] * mesh.normal[3 * u + 1] +
+                            mesh.normal[3 * t + 2] * mesh.normal[3 * u + 2];
+      g.tri[e] = u;
+      g.shift[e] = s;  // world frame (the glue is found with the pose now)
+      g.active[e] = std::fabs(cosang) < mesh.cos_curvature;
+    }
+}
+
+void FixWallGranMesh::collect(int mi, std::uint32_t also, std::vector<Hit>& out) const {
+  out.clear();
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Atoms& at = sim.atoms;
+  const Domain& dom = sim.domain;
+  // The mesh's bounding box in the world now (its body box's corners moved).
+  Vec3d wlo{1e300, 1e300, 1e300}, whi{-1e300, -1e300, -1e300};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3d p = mesh.to_world({c & 1 ? mesh.bbox_hi[0] : mesh.bbox_lo[0], c & 2 ? mesh.bbox_hi[1] : mesh.bbox_lo[1],
+                                   c & 4 ? mesh.bbox_hi[2] : mesh.bbox_lo[2]});
+    for (int d = 0; d < 3; ++d) wlo[d] = std::min(wlo[d], p[d]), whi[d] = std::max(whi[d], p[d]);
+  }
+  std::vector<int> cand;
+  std::vector<Touch> touched;
+  std::vector<std::pair<int, std::vector<int>>> contacts;
+  for (std::size_t i = 0; i < at.n; ++i) {
+    if (!(at.mask[i] & groupbit) || !(at.mask[i] & also)) continue;
+    const double r = at.radius[i], *x = &at.x[3 * i];
+    // Images of the grain that can reach the mesh's box: itself and, on periodic axes, one box length either way.
+    int code[3][3], ns[3];
+    bool any = true;
+    for (int d = 0; d < 3; ++d) {
+      ns[d] = 0;
+      const double L = dom.wraps(d) ? dom.length(d) : 0.0;
+      for (int q = 0; q < (L > 0 ? 3 : 1); ++q) {
+        const double s = (q == 0 ? 0.0 : q == 1 ? -L : L);
+        if (x[d] + s + r > wlo[d] && x[d] + s - r < whi[d]) code[d][ns[d]++] = q;
+      }
+      any = any && ns[d] > 0;
+    }
+    if (!any) continue;
+    touched.clear();
+    for (int a = 0; a < ns[0]; ++a)
+      for (int b = 0; b < ns[1]; ++b)
+        for (int c = 0; c < ns[2]; ++c) {
+          const int img = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
+          const Vec3d& sh = shifts_[img];
+          const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
+          mesh.near(xb, r, cand);
+          for (int t : cand) {
+            const TriMesh::Closest cl = mesh.closest(t, xb);
+            if (cl.dist2 == 0.0) continue;  // a centre on the surface has no normal
+            touched.push_back({t, img, cl, sub3(mesh.to_world(cl.p), sh)});
+          }
+        }
+    if (touched.empty()) continue;
+    reduce_touches(*this, mi, mesh, touched, r, contacts);
+    for (auto& [rep, group] : contacts) {
+      const Touch& tc = touched[rep];
+      const Vec3d& sh = shifts_[tc.img];
+      const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
+      const double dist = std::sqrt(tc.c.dist2);
+      const Vec3d nb{(xb[0] - tc.c.p[0]) / dist, (xb[1] - tc.c.p[1]) / dist, (xb[2] - tc.c.p[2]) / dist};
+      Hit h;
+      h.tag = at.id[i];
+      h.atom = static_cast<int>(i);
+      h.tri = tc.tri;
+      h.deltan = r - dist;
+      const Vec3d en = mesh.dir_to_world(nb);
+      h.pmesh = mesh.to_world(tc.c.p);
+      const Vec3d vw = mesh.velocity(h.pmesh);
+      for (int d = 0; d < 3; ++d) {
+        h.en[d] = en[d];
+        h.vwall[d] = vw[d];
+        h.point[d] = x[d] - en[d] * dist;
+      }
+      h.surface = std::move(group);
+      out.push_back(std::move(h));
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Hit& p, const Hit& q) { return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri; });
+}
+
+// Last step's history of each hit: the same (grain, triangle), else a contact
+// of that grain on a triangle of the same surface that has ended (the grain
+// passed onto this triangle), else zeros.
+std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits) const {
+  const std::size_t hs = static_cast<std::size_t>(hist_size_);
+  std::vector<double> out(hs * hits.size(), 0.0);
+  if (hs == 0) return out;
+  const Kept& p = prev_[m];
+  const TriMesh& mesh = meshes_[m]->mesh();
+  auto hit_now = [&](long tag, int tri) {
+    return std::binary_search(hits.begin(), hits.end(), Hit{tag, 0, tri, 0, {}, {}, {}, {}, {}},
+                              [](const Hit& a, const Hit& b) { return a.tag != b.tag ? a.tag < b.tag : a.tri < b.tri; });
+  };
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const Hit& h = hits[k];
+    const auto lo = std::lower_bound(p.tag.begin(), p.tag.end(), h.tag) - p.tag.begin();
+    const auto hi = std::upper_bound(p.tag.begin(), p.tag.end(), h.tag) - p.tag.begin();
+    long from = -1;
+    for (auto j = lo; j < hi && from < 0; ++j)
+      if (p.tri[j] == h.tri) from = j;
+    for (auto j = lo; j < hi && from < 0; ++j) {
+      const int t = p.tri[j];
+      if (hit_now(h.tag, t)) continue;  // that contact goes on
+      if (mesh.same_surface(t, h.tri) || std::find(h.surface.begin(), h.surface.end(), t) != h.surface.end()) from = j;
+    }
+    if (from >= 0) std::copy_n(p.hist.begin() + from * hs, hs, out.begin() + k * hs);
+  }
+  return out;
+}
+
+WallBatch FixWallGranMesh::batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols,
+                                 std::vector<int>& atoms, std::vector<int>& rows, double* hist) {
+  const std::size_t n = hits.size();
+  cols.assign(7 * n, 0.0);  // deltan, en, vwall
+  atoms.resize(n);
+  rows.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    atoms[k] = hits[k].atom;
+    rows[k] = static_cast<int>(k);
+    cols[k] = hits[k].deltan;
+    for (int d = 0; d < 3; ++d) {
+      cols[n + 3 * k + d] = hits[k].en[d];
+      cols[4 * n + 3 * k + d] = hits[k].vwall[d];
+    }
+  }
+  Atoms& at = sim.atoms;
+  WallBatch b;
+  b.a = atom_view(at, at.n, freeze_bit_);
+  b.n = n;
+  b.atom = atoms.data();
+  b.deltan = cols.data();
+  b.en = cols.data() + n;
+  b.vwall = cols.data() + 4 * n;
+  if (hist_size_ > 0) {
+    b.hist = hist;
+    b.hist_index = rows.data();
+    b.hist_stride = hist_size_;
+  }
+  b.wall_type = meshes_[m]->wall_type();
+  b.ctx.dt = sim.dt;
+  return b;
+}
+
+void FixWallGranMesh::post_force() {
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    meshes_[m]->update_pose();
+    if (owner_[m]) meshes_[m]->mesh().clear_load();
+  }
+  double total[3] = {0, 0, 0};
+  std::vector<Hit> hits;
+  std::vector<double> cols, force;
+  std::vector<int> atoms, rows;
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const int mi = static_cast<int>(m);
+    collect(mi, ~0u, hits);
+    std::vector<double> hist = history_for(mi, hits);
+    WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
+    force.assign(3 * hits.size(), 0.0);
+    b.force = force.data();
+    b.ctx.update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
+    if (!hits.empty()) kernel_->wall_forces(b);
+    TriMesh& mesh = meshes_[m]->mesh();
+    const std::uint32_t mesh_bits = meshes_[m]->groupbit;  // LIGGGHTS' stress module: grains of the mesh fix's group
+    for (std::size_t k = 0; k < hits.size(); ++k) {
+      const Vec3d on_mesh{0.0 - force[3 * k], 0.0 - force[3 * k + 1], 0.0 - force[3 * k + 2]};
+      for (int d = 0; d < 3; ++d) total[d] += on_mesh[d];
+      if (sim.atoms.mask[hits[k].atom] & mesh_bits) mesh.add_load(hits[k].pmesh, on_mesh);
+    }
+    Kept& p = prev_[m];
+    p.tag.resize(hits.size());
+    p.tri.resize(hits.size());
+    for (std::size_t k = 0; k < hits.size(); ++k) p.tag[k] = hits[k].tag, p.tri[k] = hits[k].tri;
+    p.hist.swap(hist);
+  }
+  setup_pass_ = false;
+  std::copy(total, total + 3, force_);
+}
+
+void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
+  out.clear();
+  out.hist_size = hist_size_;
+  rec_ = Rec{};
+  std::vector<Hit> hits;
+  std::vector<double> cols;
+  std::vector<int> atoms, rows;
+  ContactRecords part;
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const int mi = static_cast<int>(m);
+    meshes_[m]->update_pose();
+    collect(mi, bits, hits);
+    std::vector<double> hist = history_for(mi, hits);
+    WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
+    b.ctx.update = false;
+    const int offset = static_cast<int>(rec_.tri.size());
+    for (const Hit& h : hits) {
+      rec_.vwall.insert(rec_.vwall.end(), h.vwall, h.vwall + 3);
+      rec_.point.insert(rec_.point.end(), h.point.begin(), h.point.end());
+      rec_.tri.push_back(h.tri);
+      rec_.mesh.push_back(mi);
+    }
+    if (hits.empty()) continue;
+    kernel_->wall_records(b, part);
+    for (ContactRecord r : part.rows) {
+      r.shift += offset;
+      out.rows.push_back(r);
+    }
+    out.hist.insert(out.hist.end(), part.hist.begin(), part.hist.end());
+  }
+}
+
+double FixWallGranMesh::compute_vector(int i) {
+  if (i < 1 || i > 3) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..3");
+  return force_[i - 1];
+}
+
+}  // namespace sable

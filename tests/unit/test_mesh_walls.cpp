@@ -1,0 +1,325 @@
+// fix wall/gran ... mesh with fix mesh/surface(/stress) and move/mesh, against
+// statics, rigid-body mechanics and the primitive plane wall (a flat mesh is
+// a plane: the same kernel gives the same bits up to round-off in the
+// closest-point arithmetic).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "core/compute.h"
+#include "core/mesh.h"
+#include "core/style_registry.h"
+#include "tests/unit/deck_runner.h"
+
+using sable::test::Deck;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const double kR = 0.001, kRho = 2500, kM = 4.0 / 3.0 * kPi * kR * kR * kR * kRho;
+
+std::function<void(sable::Simulation&)> g_probe;
+class FixProbe : public sable::Fix {
+ public:
+  FixProbe(sable::Simulation& s, const sable::Args& a) : Fix(s, a) { hooks = sable::END_OF_STEP; }
+  void end_of_step() override {
+    if (g_probe) g_probe(sim);
+  }
+};
+SABLE_FIX("test/probe_mesh", FixProbe);
+
+// An ASCII STL of the given triangles (9 numbers each) in the test's temp folder.
+std::string stl(const std::string& name, const std::vector<double>& xyz) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream f(path);
+  f.precision(17);
+  f << "solid " << name << "\n";
+  for (std::size_t t = 0; t < xyz.size() / 9; ++t) {
+    f << "facet normal 0 0 0\nouter loop\n";
+    for (int k = 0; k < 3; ++k) f << "vertex " << xyz[9 * t + 3 * k] << " " << xyz[9 * t + 3 * k + 1] << " " << xyz[9 * t + 3 * k + 2] << "\n";
+    f << "endloop\nendfacet\n";
+  }
+  f << "endsolid\n";
+  return path;
+}
+
+// Square [-h, h]^2 in the plane z = 0, split along its diagonal x = y.
+std::vector<double> floor2(double h) { return {-h, -h, 0, h, -h, 0, h, h, 0, -h, -h, 0, h, h, 0, -h, h, 0}; }
+// The same square as four triangles around the origin (the inner edges are its diagonals).
+std::vector<double> floor4(double h) {
+  return {0, 0, 0, -h, -h, 0, h, -h, 0, 0, 0, 0, h, -h, 0, h, h, 0,
+          0, 0, 0, h, h, 0, -h, h, 0, 0, 0, 0, -h, h, 0, -h, -h, 0};
+}
+
+std::string head(const std::string& boundary = "f f f", const std::string& box = "-0.01 0.01 -0.01 0.01 -0.01 0.01") {
+  return "units si\natom_style granular\nboundary " + boundary + "\nregion box block " + box +
+         R"( units box
+create_box 1 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 5e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+)";
+}
+
+void grains(Deck& d) {
+  for (std::size_t i = 0; i < d->atoms.n; ++i) d->atoms.set_radius_density(i, kR, kRho);
+}
+
+double fv(Deck& d, const char* id, int k) { return d->find_fix(id)->compute_vector(k); }
+
+}  // namespace
+
+// Statics: three grains at rest on a four-triangle floor, one on a face, one
+// on an inner (inactive) edge, one on the inner (inactive) corner: the mesh
+// carries exactly their weight, f_floor[3] = -3 m g (0.1 %: residual
+// oscillation, as WallGran.ForceOnTheWallBalancesTheWeight), each grain once.
+TEST(MeshWall, GrainsOnFloorFeelTheirWeight) {
+  Deck d;
+  d(head());
+  d("fix floor all mesh/surface/stress file " + stl("floor4.stl", floor4(0.01)) + " type 1 stress on");
+  d(R"(create_atoms 1 single 0.004 -0.001 0.001 units box
+create_atoms 1 single 0.003 0.003 0.001 units box
+create_atoms 1 single 0 0 0.001 units box
+fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor
+fix g all gravity 9.81 vector 0 0 -1
+fix i all nve/sphere)");
+  grains(d);
+  d("run 20000");
+  const double w = 3 * kM * 9.81;
+  EXPECT_NEAR(fv(d, "floor", 3), -w, 1e-3 * w);
+  EXPECT_NEAR(fv(d, "w", 3), -w, 1e-3 * w);
+  // Each grain alone: its height is that of a grain on a plane (one contact, not two or six).
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(d->atoms.x[3 * i + 2], d->atoms.x[2], 1e-12);
+  EXPECT_NEAR(fv(d, "floor", 1), 0.0, 1e-9 * w);
+}
+
+namespace {
+
+// Runs `steps` of one grain on a floor (mesh or primitive), recording the wall force and the grain state each step.
+struct Track {
+  std::vector<double> fx, fz, x, vx, wy;
+};
+Track slide(const std::string& boundary, const std::string& wall, const std::string& setv, long steps,
+            const std::string& box = "-0.01 0.01 -0.01 0.01 -0.01 0.01", const std::string& start = "0 0 0.00099") {
+  Deck d;
+  d(head(boundary, box));
+  d("create_atoms 1 single " + start + " units box");
+  d(wall);
+  d("fix g all gravity 9.81 vector 0 0 -1\nfix i all nve/sphere\nfix p all test/probe_mesh");
+  grains(d);
+  d("set atom 1 " + setv);
+  Track t;
+  g_probe = [&](sable::Simulation& s) {
+    t.fx.push_back(s.find_fix("w")->compute_vector(1));
+    t.fz.push_back(s.find_fix("w")->compute_vector(3));
+    const std::size_t i = s.atoms.index_of(1);
+    t.x.push_back(s.atoms.x[3 * i]);
+    t.vx.push_back(s.atoms.v[3 * i]);
+    t.wy.push_back(s.atoms.omega[3 * i + 1]);
+  };
+  d("run " + std::to_string(steps));
+  g_probe = nullptr;
+  return t;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::fabs(x));
+  return m;
+}
+
+}  // namespace
+
+// A grain sliding then rolling (spin opposite to its motion, mu 0.5) across
+// the shared diagonal of two coplanar triangles: with its tangential history
+// carried to the new triangle it moves exactly as on a plane (primitive
+// zplane, the same kernel): forces equal each step to 1e-9 of their size,
+// so no jump at the edge. (Losing the history at the edge would change the
+// friction force by its whole spring part, far above that.)
+TEST(MeshWall, CrossingACoplanarEdgeKeepsTheForceContinuous) {
+  const std::string mesh = "fix floor all mesh/surface file " + stl("floor2.stl", floor2(0.01)) +
+                           " type 1\nfix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor";
+  const std::string prim = "fix w all wall/gran model hertz tangential history primitive type 1 zplane 0.0";
+  // From (-0.003, 0) along +x: crosses the diagonal x = y at x = 0 after about 6 ms.
+  const std::string box = "-0.01 0.01 -0.01 0.01 -0.01 0.01", start = "-0.003 0 0.00099", v = "vx 0.5 omegay -300";
+  const Track m = slide("f f f", mesh, v, 8000, box, start);
+  const Track p = slide("f f f", prim, v, 8000, box, start);
+  ASSERT_EQ(m.fx.size(), p.fx.size());
+  ASSERT_LT(m.x.front(), 0.0);
+  ASSERT_GT(m.x.back(), 0.0);  // it crossed
+  const double fscale = max_abs(p.fx), zscale = max_abs(p.fz);
+  ASSERT_GT(fscale, 0.0);
+  for (std::size_t s = 0; s < m.fx.size(); ++s) {
+    ASSERT_NEAR(m.fx[s], p.fx[s], 1e-9 * fscale) << "step " << s + 1;
+    ASSERT_NEAR(m.fz[s], p.fz[s], 1e-9 * zscale) << "step " << s + 1;
+  }
+  EXPECT_NEAR(m.x.back(), p.x.back(), 1e-12);
+  EXPECT_NEAR(m.wy.back(), p.wy.back(), 1e-9 * std::fabs(p.wy.back()));
+}
+
+// Rigid-body mechanics: the torque of the grains on a spinning plate about its
+// (turning) reference point equals the sum of (contact point - reference) x (minus the
+// force on the grain) over the contacts that compute wall/gran/local lists,
+// to round-off (1e-12 of the largest term), and the force their sum. `run 0`
+// evaluates both at the same state (no history update, as the compute).
+TEST(MeshWall, TorqueOnASpinningMeshIsTheSumOfRCrossF) {
+  Deck d;
+  d(head("f f f", "-0.03 0.03 -0.03 0.03 -0.01 0.01"));
+  d("fix plate all mesh/surface/stress file " + stl("plate.stl", floor2(0.02)) +
+    " type 1 reference_point 0.001 -0.002 0.0005");
+  d(R"(fix spin all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 1 period 0.5
+fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate
+create_atoms 1 single 0.01 0 0.001 units box
+create_atoms 1 single -0.005 0.008 0.001 units box
+create_atoms 1 single 0 -0.012 0.001 units box
+create_atoms 1 single 0.012 0.012 0.001 units box
+fix g all gravity 9.81 vector 0 0 -1
+fix i all nve/sphere
+compute c all wall/gran/local pos force)");
+  grains(d);
+  d("run 3000");
+  d("run 0");
+  sable::Compute* c = d->find_compute("c");
+  c->local_now();
+  ASSERT_EQ(c->local_rows(), 4u);
+  ASSERT_EQ(c->local_cols, 9);  // pos: wall point, grain centre; force
+  const auto& names = c->local_names;
+  auto col = [&](const std::string& n) { return static_cast<int>(std::find(names.begin(), names.end(), n) - names.begin()); };
+  const int px = col("x1"), fx = col("fx");
+  ASSERT_LT(px, c->local_cols);
+  ASSERT_LT(fx, c->local_cols);
+  // The reference point turns with the mesh (as LIGGGHTS 3.8: checked, f_ID[7..9]).
+  const double ref[3] = {fv(d, "plate", 7), fv(d, "plate", 8), fv(d, "plate", 9)};
+  double f[3] = {0, 0, 0}, t[3] = {0, 0, 0}, scale = 0;
+  for (std::size_t r = 0; r < c->local_rows(); ++r) {
+    const double* row = &c->local[r * c->local_cols];
+    const double p[3] = {row[px] - ref[0], row[px + 1] - ref[1], row[px + 2] - ref[2]};
+    const double F[3] = {-row[fx], -row[fx + 1], -row[fx + 2]};
+    const double tc[3] = {p[1] * F[2] - p[2] * F[1], p[2] * F[0] - p[0] * F[2], p[0] * F[1] - p[1] * F[0]};
+    for (int k = 0; k < 3; ++k) f[k] += F[k], t[k] += tc[k], scale = std::max(scale, std::fabs(tc[k]));
+  }
+  ASSERT_GT(scale, 0.0);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(fv(d, "plate", 4 + k), t[k], 1e-12 * scale) << "torque " << k;
+    EXPECT_NEAR(fv(d, "plate", 1 + k), f[k], 1e-12 * 4 * kM * 9.81) << "force " << k;
+  }
+  // The plate has turned by 2 pi t / T: its reference point with it.
+  const double ang = 2 * kPi * 3000 * 1e-6 / 0.5;
+  EXPECT_NEAR(fv(d, "plate", 7), 0.001 * std::cos(ang) + 0.002 * std::sin(ang), 1e-12);
+  // The grains are dragged along the rotation (counter-clockwise about +z).
+  const std::size_t i = d->atoms.index_of(1);
+  EXPECT_GT(d->atoms.v[3 * i + 1], 0.0);
+}
+
+// A grain sliding along a mesh floor that spans a periodic box crosses the
+// boundary as on a plane: equal to the primitive zplane each step (1e-9 of
+// the force's size), no jump when its images see the floor's far end.
+TEST(MeshWall, PeriodicBoundaryCrossingWithoutAJump) {
+  const std::string box = "-0.005 0.005 -0.01 0.01 -0.01 0.01", start = "0.003 0 0.00099", v = "vx 0.5 omegay -300";
+  const std::string mesh = "fix floor all mesh/surface file " +
+                           stl("pfloor.stl", {-0.005, -0.01, 0, 0.005, -0.01, 0, 0.005, 0.01, 0, -0.005, -0.01, 0,
+                                              0.005, 0.01, 0, -0.005, 0.01, 0}) +
+                           " type 1\nfix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor";
+  const std::string prim = "fix w all wall/gran model hertz tangential history primitive type 1 zplane 0.0";
+  const Track m = slide("p f f", mesh, v, 8000, box, start);
+  const Track p = slide("p f f", prim, v, 8000, box, start);
+  ASSERT_LT(m.x.back(), m.x.front());  // wrapped through x = 0.005
+  const double fscale = max_abs(p.fx), zscale = max_abs(p.fz);
+  for (std::size_t s = 0; s < m.fx.size(); ++s) {
+    ASSERT_NEAR(m.fx[s], p.fx[s], 1e-9 * fscale) << "step " << s + 1;
+    ASSERT_NEAR(m.fz[s], p.fz[s], 1e-9 * zscale) << "step " << s + 1;
+  }
+  EXPECT_NEAR(m.vx.back(), p.vx.back(), 1e-9 * std::fabs(p.vx.back()));
+}
+
+// 2D (dimension 2, grains in z = 0): a grain set down on a mesh floor y = 0
+// (two triangles spanning z) comes to rest carrying its weight, as on the
+// primitive yplane (equal to 1e-9), f_floor[2] = -m g to 0.1 %.
+TEST(MeshWall, MeshFloorIn2D) {
+  auto run = [](const std::string& wall) {
+    Deck d;
+    d(R"(units si
+atom_style granular
+dimension 2
+boundary f f p
+region box block -0.01 0.01 -0.01 0.01 -0.002 0.002 units box
+create_box 1 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 5e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+create_atoms 1 single 0.001 0.001 0 units box)");
+    d(wall);
+    d("fix g all gravity 9.81 vector 0 -1 0\nfix i all nve/sphere\nfix e all enforce2d");
+    grains(d);
+    d("set atom 1 vx 0.05");
+    d("run 30000");
+    return std::vector<double>{d->find_fix("w")->compute_vector(2), d->atoms.x[0], d->atoms.x[1], d->atoms.v[0]};
+  };
+  const std::string y0 = stl("floor2d.stl", {-0.01, 0, -0.002, -0.01, 0, 0.002, 0.01, 0, 0.002, -0.01, 0, -0.002, 0.01, 0,
+                                             0.002, 0.01, 0, -0.002});
+  const auto m = run("fix floor all mesh/surface file " + y0 +
+                     " type 1\nfix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor");
+  const auto p = run("fix w all wall/gran model hertz tangential history primitive type 1 yplane 0.0");
+  const double w = kM * 9.81;
+  EXPECT_NEAR(m[0], -w, 1e-3 * w);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(m[k], p[k], 1e-9 * std::max(std::fabs(p[k]), 1e-6)) << k;
+}
+
+// Bad input names the word.
+TEST(MeshWall, ErrorsNameTheWord) {
+  Deck d;
+  d(head());
+  const std::string f = stl("err.stl", floor2(0.01));
+  auto error = [&](const std::string& line) {
+    try {
+      d(line);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(error("fix a all mesh/surface file " + f + " type 1 temperature 300").find("temperature"), std::string::npos);
+  EXPECT_NE(error("fix a all mesh/surface file nowhere.stl type 1").find("nowhere.stl"), std::string::npos);
+  EXPECT_NE(error("fix a all mesh/surface file " + f).find("type"), std::string::npos);
+  d("fix a all mesh/surface file " + f + " type 1");
+  EXPECT_NE(error("fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes b").find("'b'"),
+            std::string::npos);
+  EXPECT_NE(error("fix mv all move/mesh mesh a wiggle amplitude 1 0 0 period 1").find("wiggle"), std::string::npos);
+}
+
+// dump mesh/stl writes the moved triangles: read back, the plate turned a
+// quarter turn about z (period 0.004 s, 1000 steps of 1e-6 s) has its corner
+// (h, -h) at (h, h) (1e-12: the STL's 15 digits), and two move/mesh on one
+// mesh superpose (the linear one shifts it by v t).
+TEST(MeshWall, DumpMeshStlWritesTheMovedMesh) {
+  Deck d;
+  d(head());
+  const std::string out = ::testing::TempDir() + "mesh_dump_*.stl";
+  d("fix plate all mesh/surface file " + stl("dplate.stl", {0.005, -0.005, 0, 0.006, -0.005, 0, 0.005, -0.004, 0}) +
+    " type 1");
+  d(R"(fix spin all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 1 period 0.004
+fix lift all move/mesh mesh plate linear 0 0 0.5
+dump d all mesh/stl 1000 )" + out + " plate\nrun 1000");
+  sable::TriMesh m = sable::TriMesh::read_stl(::testing::TempDir() + "mesh_dump_1000.stl");
+  m.build(0.256235);
+  ASSERT_EQ(m.ntri(), 1u);
+  EXPECT_NEAR(m.vert[0], 0.005, 1e-12);
+  EXPECT_NEAR(m.vert[1], 0.005, 1e-12);
+  EXPECT_NEAR(m.vert[2], 0.5 * 1e-3, 1e-12);
+}
