@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/restart.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 
@@ -90,6 +91,23 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
 }
 
 void FixMeshSurface::update_pose() { mesh_.advance_to(sim.step, sim.dt); }
+
+bool FixMeshSurface::write_state(std::string& out) const {
+  restart::Packer p;
+  p.put(mesh_.R);
+  p.put(mesh_.T);
+  p.put<std::int64_t>(mesh_.pose_step);
+  out = p.bytes;
+  return true;
+}
+
+void FixMeshSurface::read_state(const std::string& in) {
+  restart::Unpacker u(in, "the restart state of fix " + id);
+  const auto R = u.get<std::array<double, 9>>();
+  std::copy(R.begin(), R.end(), mesh_.R);
+  mesh_.T = u.get<Vec3d>();
+  mesh_.pose_step = u.get<std::int64_t>();
+}
 
 double FixMeshSurface::compute_vector(int i) {
   if (i < 1 || i > 9) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..9");

@@ -25,6 +25,9 @@ class FixMeshSurface : public Fix {
   int wall_type() const { return type_; }
   // Brings the pose to the current step (move/mesh motions).
   void update_pose();
+  // Restart: the pose (a restarted deck's move/mesh fixes continue from it).
+  bool write_state(std::string& out) const override;
+  void read_state(const std::string& in) override;
 
  private:
   TriMesh mesh_;

@@ -7,6 +7,7 @@
 #include "contact_models/materials.h"
 #include "contact_models/pair_gran.h"
 #include "contact_models/registry.h"
+#include "core/restart.h"
 #include "core/simulation.h"
 #include "fixes/fix_mesh_surface.h"
 
@@ -432,6 +433,32 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
       out.rows.push_back(r);
     }
     out.hist.insert(out.hist.end(), part.hist.begin(), part.hist.end());
+  }
+}
+
+bool FixWallGranMesh::write_state(std::string& out) const {
+  restart::Packer p;
+  p.put<std::uint64_t>(prev_.size());
+  for (const Kept& k : prev_) {
+    std::vector<std::int64_t> tags(k.tag.begin(), k.tag.end());
+    p.put_vector(tags);
+    p.put_vector(k.tri);
+    p.put_vector(k.hist);
+  }
+  out = p.bytes;
+  return true;
+}
+
+void FixWallGranMesh::read_state(const std::string& in) {
+  restart::Unpacker u(in, "the restart state of fix " + id);
+  const auto n = u.get<std::uint64_t>();
+  if (n != prev_.size()) args.fail_line("the restart file's fix " + id + " had " + std::to_string(n) + " meshes");
+  for (Kept& k : prev_) {
+    const auto tags = u.get_vector<std::int64_t>();
+    k.tag.assign(tags.begin(), tags.end());
+    k.tri = u.get_vector<int>();
+    k.hist = u.get_vector<double>();
+    if (k.hist.size() != k.tri.size() * hist_size_) args.fail_line("the restart file's fix " + id + " has another model");
   }
 }
 

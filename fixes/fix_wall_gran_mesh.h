@@ -37,6 +37,9 @@ class FixWallGranMesh : public Fix {
   void init() override;
   void post_force() override;
   double compute_vector(int i) override;
+  // Restart: the contacts' history (per mesh: grain ids, triangles, rows).
+  bool write_state(std::string& out) const override;
+  void read_state(const std::string& in) override;
 
   ContactKernel& kernel() { return *kernel_; }
   // A triangle seen from image `img` of a grain (k: an edge index where it matters).

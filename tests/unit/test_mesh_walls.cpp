@@ -323,3 +323,43 @@ dump d all mesh/stl 1000 )" + out + " plate\nrun 1000");
   EXPECT_NEAR(m.vert[1], 0.005, 1e-12);
   EXPECT_NEAR(m.vert[2], 0.5 * 1e-3, 1e-12);
 }
+
+// A run split by write_restart / read_restart continues bit for bit: the
+// mesh's pose (turned by move/mesh) and the contacts' tangential history come
+// back with fix mesh/surface and fix wall/gran defined again.
+TEST(MeshWall, RestartContinuesBitIdentically) {
+  const std::string file = ::testing::TempDir() + "mesh.restart";
+  const std::string plate = stl("rplate.stl", floor2(0.02));
+  const std::string atoms = head("f f f", "-0.03 0.03 -0.03 0.03 -0.01 0.01") + R"(create_atoms 1 single 0.01 0 0.001 units box
+create_atoms 1 single -0.005 0.008 0.001 units box
+create_atoms 1 single 0 -0.012 0.001 units box)";
+  const std::string body = "timestep 1e-6\nfix plate all mesh/surface/stress file " + plate + " type 1" + R"(
+fix spin all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 1 period 0.5
+fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate
+fix g all gravity 9.81 vector 0 0 -1
+fix i all nve/sphere)";
+  Deck a;
+  a(atoms);
+  grains(a);
+  a(body)("run 2000")("run 2000");
+  Deck b;
+  b(atoms);
+  grains(b);
+  b(body)("run 2000")("write_restart " + file);
+  Deck c;
+  c("units si\natom_style granular\nread_restart " + file);
+  c(R"(fix m1 all property/global youngsModulus peratomtype 5e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+neighbor 0.0005 bin)");
+  c(body)("run 2000");
+  ASSERT_EQ(c->step, 4000);
+  for (std::size_t k = 0; k < 9; ++k) {
+    EXPECT_EQ(a->atoms.x[k], c->atoms.x[k]) << k;
+    EXPECT_EQ(a->atoms.v[k], c->atoms.v[k]) << k;
+  }
+  for (int k = 1; k <= 9; ++k) EXPECT_EQ(fv(a, "plate", k), fv(c, "plate", k)) << k;
+}
