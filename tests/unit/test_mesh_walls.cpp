@@ -116,7 +116,9 @@ Track slide(const std::string& boundary, const std::string& wall, const std::str
   d(head(boundary, box));
   d("create_atoms 1 single " + start + " units box");
   d(wall);
-  d("fix g all gravity 9.81 vector 0 0 -1\nfix i all nve/sphere\nfix p all test/probe_mesh");
+  // Gravity tilted 20 deg towards +x: a rolling grain needs a static friction
+  // force (2/7 m g sin 20), carried by the tangential spring (history).
+  d("fix g all gravity 9.81 vector 0.34202014332566873 0 -0.93969262078590832\nfix i all nve/sphere\nfix p all test/probe_mesh");
   grains(d);
   d("set atom 1 " + setv);
   Track t;
@@ -141,20 +143,21 @@ double max_abs(const std::vector<double>& v) {
 
 }  // namespace
 
-// A grain sliding then rolling (spin opposite to its motion, mu 0.5) across
-// the shared diagonal of two coplanar triangles: with its tangential history
-// carried to the new triangle it moves exactly as on a plane (primitive
-// zplane, the same kernel): forces equal each step to 1e-9 of their size,
-// so no jump at the edge. (Losing the history at the edge would change the
-// friction force by its whole spring part, far above that.)
+// A grain rolling down a flat two-triangle floor under gravity tilted 20 deg
+// across the triangles' shared diagonal (a coplanar, inactive edge): the
+// static friction that keeps it rolling sits in the tangential spring; carried
+// to the new triangle, the grain moves exactly as on a plane (primitive
+// zplane, the same kernel): the wall force equals it each step to 1e-9 of
+// its size, so no jump at the edge. (Losing the spring at the edge changes the
+// friction force by its whole size.)
 TEST(MeshWall, CrossingACoplanarEdgeKeepsTheForceContinuous) {
   const std::string mesh = "fix floor all mesh/surface file " + stl("floor2.stl", floor2(0.01)) +
                            " type 1\nfix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor";
   const std::string prim = "fix w all wall/gran model hertz tangential history primitive type 1 zplane 0.0";
-  // From (-0.003, 0) along +x: crosses the diagonal x = y at x = 0 after about 6 ms.
-  const std::string box = "-0.01 0.01 -0.01 0.01 -0.01 0.01", start = "-0.003 0 0.00099", v = "vx 0.5 omegay -300";
-  const Track m = slide("f f f", mesh, v, 8000, box, start);
-  const Track p = slide("f f f", prim, v, 8000, box, start);
+  // From (-0.002, 0) along +x: crosses the diagonal x = y at x = 0 after about 9 ms.
+  const std::string box = "-0.01 0.01 -0.01 0.01 -0.01 0.01", start = "-0.002 0 0.0009998", v = "vx 0.2 omegay 200";
+  const Track m = slide("f f f", mesh, v, 12000, box, start);
+  const Track p = slide("f f f", prim, v, 12000, box, start);
   ASSERT_EQ(m.fx.size(), p.fx.size());
   ASSERT_LT(m.x.front(), 0.0);
   ASSERT_GT(m.x.back(), 0.0);  // it crossed
@@ -222,18 +225,19 @@ compute c all wall/gran/local pos force)");
   EXPECT_GT(d->atoms.v[3 * i + 1], 0.0);
 }
 
-// A grain sliding along a mesh floor that spans a periodic box crosses the
-// boundary as on a plane: equal to the primitive zplane each step (1e-9 of
-// the force's size), no jump when its images see the floor's far end.
+// A grain rolling along a mesh floor that spans a periodic box (tilted
+// gravity, as above) crosses the boundary as on a plane: equal to the
+// primitive zplane each step (1e-9 of the force's size): no jump where its
+// image sees the floor's far edge (glued to the near one), history kept.
 TEST(MeshWall, PeriodicBoundaryCrossingWithoutAJump) {
-  const std::string box = "-0.005 0.005 -0.01 0.01 -0.01 0.01", start = "0.003 0 0.00099", v = "vx 0.5 omegay -300";
+  const std::string box = "-0.005 0.005 -0.01 0.01 -0.01 0.01", start = "0.003 0 0.0009998", v = "vx 0.2 omegay 200";
   const std::string mesh = "fix floor all mesh/surface file " +
                            stl("pfloor.stl", {-0.005, -0.01, 0, 0.005, -0.01, 0, 0.005, 0.01, 0, -0.005, -0.01, 0,
                                               0.005, 0.01, 0, -0.005, 0.01, 0}) +
                            " type 1\nfix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor";
   const std::string prim = "fix w all wall/gran model hertz tangential history primitive type 1 zplane 0.0";
-  const Track m = slide("p f f", mesh, v, 8000, box, start);
-  const Track p = slide("p f f", prim, v, 8000, box, start);
+  const Track m = slide("p f f", mesh, v, 12000, box, start);
+  const Track p = slide("p f f", prim, v, 12000, box, start);
   ASSERT_LT(m.x.back(), m.x.front());  // wrapped through x = 0.005
   const double fscale = max_abs(p.fx), zscale = max_abs(p.fz);
   for (std::size_t s = 0; s < m.fx.size(); ++s) {
