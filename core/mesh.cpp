@@ -139,11 +139,6 @@ void TriMesh::rotate(const Vec3d& axis, double degrees) {
   }
 }
 
-Vec3d TriMesh::corner(int t, int k) const {
-  const double* v = &vert[3 * tri[3 * t + k]];
-  return {v[0], v[1], v[2]};
-}
-
 void TriMesh::build(double curvature_deg, double precision) {
   // Weld: vertices within `precision` of an earlier one become it (hash grid of that cell size).
   const double cell = precision > 0 ? precision : 1e-300;
@@ -187,6 +182,8 @@ void TriMesh::build(double curvature_deg, double precision) {
     if (!(len > 0)) throw std::runtime_error("triangle " + std::to_string(t) + " has zero area");
     for (int d = 0; d < 3; ++d) normal[3 * t + d] = nn[d] / len;
   }
+  plane_.resize(n);
+  for (std::size_t t = 0; t < n; ++t) plane_[t] = dot({normal[3 * t], normal[3 * t + 1], normal[3 * t + 2]}, corner(t, 0));
   find_adjacency(curvature_deg);
   bin();
 }
@@ -278,9 +275,11 @@ void TriMesh::bin() {
       edge_sum += std::sqrt(dot(d, d));
       for (int q = 0; q < 3; ++q) bbox_lo[q] = std::min(bbox_lo[q], p[q]), bbox_hi[q] = std::max(bbox_hi[q], p[q]);
     }
-  cell_ = std::max(edge_sum / (3.0 * n), 1e-300);
-  for (int q = 0; q < 3; ++q)
-    nb_[q] = std::clamp(static_cast<int>((bbox_hi[q] - bbox_lo[q]) / cell_) + 1, 1, 64);
+  cell_ = std::max(edge_sum / (6.0 * n), 1e-300);  // half the mean edge
+  double span = 0;
+  for (int q = 0; q < 3; ++q) span = std::max(span, bbox_hi[q] - bbox_lo[q]);
+  cell_ = std::max(cell_, span / 128);  // at most 128 a side
+  for (int q = 0; q < 3; ++q) nb_[q] = std::clamp(static_cast<int>((bbox_hi[q] - bbox_lo[q]) / cell_) + 1, 1, 128);
   auto cell_of = [&](double v, int q) {
     return std::clamp(static_cast<int>((v - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
   };
@@ -292,9 +291,16 @@ void TriMesh::bin() {
       for (int k = 0; k < 3; ++k) a = std::min(a, corner(t, k)[q]), b = std::max(b, corner(t, k)[q]);
       lo[q] = cell_of(a, q), hi[q] = cell_of(b, q);
     }
+    // Only the cells the triangle comes near (centre within the half diagonal):
+    // a long thin triangle's box would cover many cells it never enters.
+    const double half2 = 0.75 * cell_ * cell_ * (1 + 1e-9);
     for (int i = lo[0]; i <= hi[0]; ++i)
       for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int k = lo[2]; k <= hi[2]; ++k) cells[(static_cast<std::size_t>(i) * nb_[1] + j) * nb_[2] + k].push_back(t);
+        for (int k = lo[2]; k <= hi[2]; ++k) {
+          const Vec3d centre{bbox_lo[0] + (i + 0.5) * cell_, bbox_lo[1] + (j + 0.5) * cell_, bbox_lo[2] + (k + 0.5) * cell_};
+          if (closest(static_cast<int>(t), centre).dist2 <= half2)
+            cells[(static_cast<std::size_t>(i) * nb_[1] + j) * nb_[2] + k].push_back(static_cast<int>(t));
+        }
   }
   cell_first_.assign(1, 0);
   cell_tri_.clear();
@@ -304,7 +310,7 @@ void TriMesh::bin() {
   }
 }
 
-void TriMesh::near(const Vec3d& x, double r, std::vector<int>& out) const {
+void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out) const {
   out.clear();
   int lo[3], hi[3];
   for (int q = 0; q < 3; ++q) {
@@ -312,15 +318,30 @@ void TriMesh::near(const Vec3d& x, double r, std::vector<int>& out) const {
     lo[q] = std::clamp(static_cast<int>((x[q] - r - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
     hi[q] = std::clamp(static_cast<int>((x[q] + r - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
   }
+  if (seen_.size() != ntri()) seen_.assign(ntri(), 0);
+  if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), stamp_++);  // wrapped: start over
   for (int i = lo[0]; i <= hi[0]; ++i)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int k = lo[2]; k <= hi[2]; ++k) {
         const std::size_t c = (static_cast<std::size_t>(i) * nb_[1] + j) * nb_[2] + k;
-        out.insert(out.end(), cell_tri_.begin() + cell_first_[c], cell_tri_.begin() + cell_first_[c + 1]);
+        for (int q = cell_first_[c]; q < cell_first_[c + 1]; ++q) {
+          const int t = cell_tri_[q];
+          if (seen_[t] == stamp_) continue;
+          seen_[t] = stamp_;
+          const double* n = &normal[3 * t];
+          if (std::fabs(n[0] * x[0] + n[1] * x[1] + n[2] * x[2] - plane_[t]) >= r) continue;  // its plane is out of reach
+          const Closest cl = closest(t, x);
+          if (cl.dist2 < r * r) out.push_back({t, cl});
+        }
       }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  std::erase_if(out, [&](int t) { return !(closest(t, x).dist2 < r * r); });
+  std::sort(out.begin(), out.end(), [](const Near& a, const Near& b) { return a.tri < b.tri; });
+}
+
+void TriMesh::near(const Vec3d& x, double r, std::vector<int>& out) const {
+  std::vector<Near> found;
+  near_closest(x, r, found);
+  out.clear();
+  for (const Near& f : found) out.push_back(f.tri);
 }
 
 void TriMesh::near_brute(const Vec3d& x, double r, std::vector<int>& out) const {

@@ -39,7 +39,10 @@ class TriMesh {
   std::vector<std::uint8_t> edge_active, corner_active;  // 3 per triangle
   std::vector<double> normal;        // unit normal per triangle (from the winding)
   double cos_curvature = 1;          // cos of the curvature angle (build)
-  Vec3d corner(int t, int k) const;
+  Vec3d corner(int t, int k) const {
+    const double* v = &vert[3 * tri[3 * t + k]];
+    return {v[0], v[1], v[2]};
+  }
   // Triangles t and u are one surface: they share an inactive edge, or an inactive corner.
   bool same_surface(int t, int u) const;
 
@@ -53,6 +56,12 @@ class TriMesh {
   Closest closest(int t, const Vec3d& x) const;
   // Triangles within distance r of x (strictly), sorted: the bin grid, or every triangle.
   void near(const Vec3d& x, double r, std::vector<int>& out) const;
+  // The same with their closest points (not thread-safe: one search at a time per mesh).
+  struct Near {
+    int tri;
+    Closest c;
+  };
+  void near_closest(const Vec3d& x, double r, std::vector<Near>& out) const;
   void near_brute(const Vec3d& x, double r, std::vector<int>& out) const;
   Vec3d bbox_lo{}, bbox_hi{};        // body frame
 
@@ -85,6 +94,9 @@ class TriMesh {
   double cell_ = 1;
   int nb_[3] = {1, 1, 1};
   std::vector<int> cell_first_, cell_tri_;
+  std::vector<double> plane_;               // n . (a corner) per triangle: a one-product distance filter
+  mutable std::vector<std::uint32_t> seen_; // near_closest: stamp per triangle (no sort to deduplicate)
+  mutable std::uint32_t stamp_ = 0;
   void bin();
   void find_adjacency(double curvature_deg);
 };

@@ -54,6 +54,7 @@ void FixWallGranMesh::find_meshes() {
     meshes_.push_back(f);
   }
   prev_.resize(meshes_.size());
+  near_.resize(meshes_.size());
   // The first wall/gran mesh fix of a mesh clears its load each step; the others add to it.
   owner_.assign(meshes_.size(), false);
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
@@ -73,6 +74,7 @@ void FixWallGranMesh::init() {
     const int c[3] = {q / 9, q / 3 % 3, q % 3};
     for (int d = 0; d < 3; ++d) shifts_[q][d] = c[d] == 0 ? 0.0 : (c[d] == 1 ? -1.0 : 1.0) * sim.domain.length(d);
   }
+  near_.assign(meshes_.size(), NearList{});  // the deck may have moved grains since the last run
   glue_.assign(meshes_.size(), Glue{});
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     meshes_[m]->update_pose();
@@ -84,15 +86,6 @@ void FixWallGranMesh::init() {
 }
 
 namespace {
-
-// A triangle within reach of one image of a grain: its closest point (body
-// frame of the mesh, as seen from that image) and that point in the grain's own frame.
-struct Touch {
-  int tri, img;
-  TriMesh::Closest c;
-  Vec3d preal;
-  bool alive = true;
-};
 
 double dist2(const Vec3d& a, const Vec3d& b) {
   return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
@@ -233,51 +226,97 @@ void FixWallGranMesh::find_glue(int m) {
     }
 }
 
-void FixWallGranMesh::collect(int mi, std::uint32_t also, std::vector<Hit>& out) const {
-  out.clear();
-  const TriMesh& mesh = meshes_[mi]->mesh();
-  const Atoms& at = sim.atoms;
-  const Domain& dom = sim.domain;
-  // The mesh's bounding box in the world now (its body box's corners moved).
-  Vec3d wlo{1e300, 1e300, 1e300}, whi{-1e300, -1e300, -1e300};
+// The mesh's bounding box in the world now (its body box's corners moved).
+static void world_box(const TriMesh& mesh, Vec3d& wlo, Vec3d& whi) {
+  wlo = {1e300, 1e300, 1e300};
+  whi = {-1e300, -1e300, -1e300};
   for (int c = 0; c < 8; ++c) {
     const Vec3d p = mesh.to_world({c & 1 ? mesh.bbox_hi[0] : mesh.bbox_lo[0], c & 2 ? mesh.bbox_hi[1] : mesh.bbox_lo[1],
                                    c & 4 ? mesh.bbox_hi[2] : mesh.bbox_lo[2]});
     for (int d = 0; d < 3; ++d) wlo[d] = std::min(wlo[d], p[d]), whi[d] = std::max(whi[d], p[d]);
   }
-  std::vector<int> cand;
-  std::vector<Touch> touched;
-  std::vector<std::pair<int, std::vector<int>>> contacts;
-  for (std::size_t i = 0; i < at.n; ++i) {
-    if (!(at.mask[i] & groupbit) || !(at.mask[i] & also)) continue;
-    const double r = at.radius[i], *x = &at.x[3 * i];
-    // Images of the grain that can reach the mesh's box: itself and, on periodic axes, one box length either way.
-    int code[3][3], ns[3];
-    bool any = true;
-    for (int d = 0; d < 3; ++d) {
-      ns[d] = 0;
-      const double L = dom.wraps(d) ? dom.length(d) : 0.0;
-      for (int q = 0; q < (L > 0 ? 3 : 1); ++q) {
-        const double s = (q == 0 ? 0.0 : q == 1 ? -L : L);
-        if (x[d] + s + r > wlo[d] && x[d] + s - r < whi[d]) code[d][ns[d]++] = q;
-      }
-      any = any && ns[d] > 0;
+}
+
+// The triangles within `reach` of grain i's images (itself and, on periodic
+// axes, one box length either way) that can reach the mesh's box.
+void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi,
+                              std::vector<Touch>& touched) {
+  touched.clear();
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Domain& dom = sim.domain;
+  const double* x = &sim.atoms.x[3 * i];
+  int code[3][3], ns[3];
+  for (int d = 0; d < 3; ++d) {
+    ns[d] = 0;
+    const double L = dom.wraps(d) ? dom.length(d) : 0.0;
+    for (int q = 0; q < (L > 0 ? 3 : 1); ++q) {
+      const double s = (q == 0 ? 0.0 : q == 1 ? -L : L);
+      if (x[d] + s + reach > wlo[d] && x[d] + s - reach < whi[d]) code[d][ns[d]++] = q;
     }
-    if (!any) continue;
-    touched.clear();
-    for (int a = 0; a < ns[0]; ++a)
-      for (int b = 0; b < ns[1]; ++b)
-        for (int c = 0; c < ns[2]; ++c) {
-          const int img = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
-          const Vec3d& sh = shifts_[img];
-          const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
-          mesh.near(xb, r, cand);
-          for (int t : cand) {
-            const TriMesh::Closest cl = mesh.closest(t, xb);
-            if (cl.dist2 == 0.0) continue;  // a centre on the surface has no normal
-            touched.push_back({t, img, cl, sub3(mesh.to_world(cl.p), sh)});
-          }
+    if (ns[d] == 0) return;
+  }
+  for (int a = 0; a < ns[0]; ++a)
+    for (int b = 0; b < ns[1]; ++b)
+      for (int c = 0; c < ns[2]; ++c) {
+        const int img = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
+        const Vec3d& sh = shifts_[img];
+        const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
+        mesh.near_closest(xb, reach, cand_);
+        for (const TriMesh::Near& nc : cand_) {
+          if (nc.c.dist2 == 0.0) continue;  // a centre on the surface has no normal
+          touched.push_back({nc.tri, img, nc.c, sub3(mesh.to_world(nc.c.p), sh)});
         }
+      }
+}
+
+// Grains of the group that can touch mesh m before the list is refreshed: at
+// the last refresh within r + skin of it. Refreshed at each neighbour rebuild
+// (grains move at most skin/2 between) and when a point of the mesh has moved
+// more than skin/2 since (rigid motion: a corner of its box moves most).
+void FixWallGranMesh::refresh_near(int mi) {
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Atoms& at = sim.atoms;
+  NearList& nl = near_[mi];
+  const double half_skin = 0.5 * sim.neighbor.skin;
+  double moved2 = 0;
+  for (int c = 0; c < 8 && nl.builds >= 0; ++c) {
+    const Vec3d p{c & 1 ? mesh.bbox_hi[0] : mesh.bbox_lo[0], c & 2 ? mesh.bbox_hi[1] : mesh.bbox_lo[1],
+                  c & 4 ? mesh.bbox_hi[2] : mesh.bbox_lo[2]};
+    const Vec3d now = mesh.to_world(p);
+    Vec3d then = nl.T;
+    for (int d = 0; d < 3; ++d) then[d] += nl.R[3 * d] * p[0] + nl.R[3 * d + 1] * p[1] + nl.R[3 * d + 2] * p[2];
+    const Vec3d dd = sub3(now, then);
+    moved2 = std::max(moved2, dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]);
+  }
+  if (nl.builds == sim.neighbor.builds && nl.n == at.n && moved2 <= half_skin * half_skin) return;
+  nl.builds = sim.neighbor.builds;
+  nl.n = at.n;
+  std::copy(mesh.R, mesh.R + 9, nl.R);
+  nl.T = mesh.T;
+  nl.atoms.clear();
+  Vec3d wlo, whi;
+  world_box(mesh, wlo, whi);
+  for (std::size_t i = 0; i < at.n; ++i) {
+    if (!(at.mask[i] & groupbit)) continue;
+    touches(mi, i, at.radius[i] + 2 * half_skin, wlo, whi, touched_);
+    if (!touched_.empty()) nl.atoms.push_back(static_cast<int>(i));
+  }
+}
+
+void FixWallGranMesh::collect(int mi, std::uint32_t also, std::vector<Hit>& out) {
+  out.clear();
+  refresh_near(mi);
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Atoms& at = sim.atoms;
+  Vec3d wlo, whi;
+  world_box(mesh, wlo, whi);
+  std::vector<Touch>& touched = touched_;
+  std::vector<std::pair<int, std::vector<int>>> contacts;
+  for (const int ii : near_[mi].atoms) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    if (!(at.mask[i] & also)) continue;
+    const double r = at.radius[i], *x = &at.x[3 * i];
+    touches(mi, i, r, wlo, whi, touched);
     if (touched.empty()) continue;
     reduce_touches(*this, mi, mesh, touched, r, contacts);
     for (auto& [rep, group] : contacts) {

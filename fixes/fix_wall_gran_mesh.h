@@ -99,8 +99,29 @@ class FixWallGranMesh : public Fix {
   std::vector<Glue> glue_;
   Vec3d shifts_[27] = {};  // grain image shifts by code (init)
   void find_glue(int m);
+  // A triangle within reach of one image of a grain: its closest point (body
+  // frame of the mesh, as seen from that image) and that point in the grain's own frame.
+  struct Touch {
+    int tri, img;
+    TriMesh::Closest c;
+    Vec3d preal;
+    bool alive = true;
+  };
+  std::vector<Touch> touched_;
+  std::vector<TriMesh::Near> cand_;
+  void touches(int m, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, std::vector<Touch>& out);
+  // Grains that can reach mesh m until the next refresh (see refresh_near).
+  struct NearList {
+    std::vector<int> atoms;
+    long builds = -1;
+    std::size_t n = 0;
+    double R[9];
+    Vec3d T;
+  };
+  std::vector<NearList> near_;
+  void refresh_near(int m);
   // Contacts of the grains in groupbit & also with mesh m, sorted by (tag, triangle).
-  void collect(int m, std::uint32_t also, std::vector<Hit>& out) const;
+  void collect(int m, std::uint32_t also, std::vector<Hit>& out);
   // History rows for the hits from prev_[m] (same triangle, else the same surface).
   std::vector<double> history_for(int m, const std::vector<Hit>& hits) const;
   WallBatch batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols, std::vector<int>& atoms,

@@ -147,7 +147,9 @@ TEST(MeshGeometry, CoplanarEdgeInactiveRightAngleActive) {
   EXPECT_TRUE(sq.same_surface(0, 1));
   // The outer edges bound the mesh: active, as are all four corners.
   for (int q = 0; q < 3; ++q)
-    if (q != k) EXPECT_TRUE(sq.edge_active[q]);
+    if (q != k) {
+      EXPECT_TRUE(sq.edge_active[q]);
+    }
 
   TriMesh box = TriMesh::from_triangles(cube());
   box.build(0.256235);
