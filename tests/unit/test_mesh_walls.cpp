@@ -367,3 +367,19 @@ neighbor 0.0005 bin)");
   }
   for (int k = 1; k <= 9; ++k) EXPECT_EQ(fv(a, "plate", k), fv(c, "plate", k)) << k;
 }
+
+// dump mesh/vtk: legacy VTK POLYDATA with the moved triangles (3 points each),
+// their polygons and per-triangle cell data (mesh index, material type).
+TEST(MeshWall, DumpMeshVtkWritesPolydata) {
+  Deck d;
+  d(head());
+  const std::string out = ::testing::TempDir() + "mesh_vtk_*.vtk";
+  d("fix plate all mesh/surface file " + stl("vplate.stl", floor2(0.005)) + " type 1 move 0 0 0.001");
+  d("dump v all mesh/vtk 5 " + out + "\nrun 5");
+  std::ifstream f(::testing::TempDir() + "mesh_vtk_5.vtk");
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("DATASET POLYDATA\nPOINTS 6 double\n-0.005 -0.005 0.001\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("POLYGONS 2 8\n3 0 1 2\n3 3 4 5\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("CELL_DATA 2\nSCALARS mesh int 1\nLOOKUP_TABLE default\n0\n0\nSCALARS type int 1"), std::string::npos)
+      << text;
+}
