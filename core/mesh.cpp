@@ -360,6 +360,7 @@ Vec3d TriMesh::to_body(const Vec3d& xw) const {
 
 void TriMesh::advance_to(long step, double dt) {
   if (pose_step < 0) pose_step = step;
+  std::erase_if(motions, [](const Motion& m) { return m.ended(); });
   for (; pose_step < step; ++pose_step)
     for (const Motion& m : motions) {
       if (!m.rotate) {
@@ -378,7 +379,7 @@ void TriMesh::advance_to(long step, double dt) {
 Vec3d TriMesh::velocity(const Vec3d& pw) const {
   Vec3d v{0, 0, 0};
   for (const Motion& m : motions)
-    v = add(v, m.rotate ? mul(cross(m.axis, sub(pw, m.origin)), m.omega) : m.v);
+    if (!m.ended()) v = add(v, m.rotate ? mul(cross(m.axis, sub(pw, m.origin)), m.omega) : m.v);
   return v;
 }
 

@@ -9,6 +9,7 @@
 // the query point into the body frame, so a moving mesh never re-bins.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,10 @@ class TriMesh {
     Vec3d v{0, 0, 0};                          // linear
     Vec3d origin{0, 0, 0}, axis{0, 0, 1};      // rotate: unit axis
     double omega = 0;
+    // A motion owned by a fix (move/mesh) ends with it (unfix): the pose stays where it got to.
+    bool owned = false;
+    std::weak_ptr<const void> owner;
+    bool ended() const { return owned && owner.expired(); }
   };
   std::vector<Motion> motions;  // applied in order each step (several move/mesh fixes superpose)
   long pose_step = -1;          // step the pose is at (-1: not yet started)

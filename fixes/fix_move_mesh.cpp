@@ -6,8 +6,10 @@
 // it should be at each step's force evaluation and its surface velocity is
 // the wall velocity of the contacts. Several move/mesh on one mesh superpose:
 // each advances the pose by its own step increment, in definition order, and
-// the velocities add. The group is ignored.
+// the velocities add. unfix stops the motion (the mesh stays where it got
+// to). The group is ignored.
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "core/simulation.h"
@@ -50,14 +52,21 @@ class FixMoveMesh : public Fix {
     }
     TriMesh& mesh = m->mesh();
     mesh.advance_to(s.step, s.dt);  // earlier motions up to now; this one starts here
+    mo.owned = true;
+    mo.owner = token_;
     mesh.motions.push_back(mo);
     speed_ = mo.rotate ? std::fabs(mo.omega) * reach(mesh, mo) : std::sqrt(mo.v[0] * mo.v[0] + mo.v[1] * mo.v[1] + mo.v[2] * mo.v[2]);
   }
   double max_speed() const override { return speed_; }
+  // The pose catches up at each run's end, so an unfix between runs keeps all the motion made.
+  void post_run() override {
+    if (auto* m = dynamic_cast<FixMeshSurface*>(sim.find_fix(mesh_id_))) m->update_pose();
+  }
 
  private:
   std::string mesh_id_;
   double speed_ = 0;
+  std::shared_ptr<const void> token_ = std::make_shared<int>(0);  // the mesh's motion lives as long as this fix
   // Largest distance of a mesh vertex from the rotation axis (now).
   static double reach(const TriMesh& m, const TriMesh::Motion& mo) {
     double r2 = 0;

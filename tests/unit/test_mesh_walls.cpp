@@ -383,3 +383,15 @@ TEST(MeshWall, DumpMeshVtkWritesPolydata) {
   EXPECT_NE(text.find("CELL_DATA 2\nSCALARS mesh int 1\nLOOKUP_TABLE default\n0\n0\nSCALARS type int 1"), std::string::npos)
       << text;
 }
+
+// unfix of a move/mesh stops that motion; the mesh stays where it got to:
+// the reference point turned by 2 pi (1000 dt) / T, then not further.
+TEST(MeshWall, UnfixMoveMeshStopsTheMotion) {
+  Deck d;
+  d(head());
+  d("fix plate all mesh/surface file " + stl("uplate.stl", floor2(0.005)) + " type 1 reference_point 0.004 0 0");
+  d("fix spin all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 1 period 0.01\nrun 1000\nunfix spin\nrun 1000");
+  const double a = 2 * kPi * 1000 * 1e-6 / 0.01;
+  EXPECT_NEAR(fv(d, "plate", 7), 0.004 * std::cos(a), 1e-15);
+  EXPECT_NEAR(fv(d, "plate", 8), 0.004 * std::sin(a), 1e-15);
+}
