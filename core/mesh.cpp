@@ -310,7 +310,7 @@ void TriMesh::bin() {
   }
 }
 
-void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out) const {
+void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out, Scratch& sc) const {
   out.clear();
   int lo[3], hi[3];
   for (int q = 0; q < 3; ++q) {
@@ -318,16 +318,17 @@ void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out) con
     lo[q] = std::clamp(static_cast<int>((x[q] - r - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
     hi[q] = std::clamp(static_cast<int>((x[q] + r - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
   }
-  if (seen_.size() != ntri()) seen_.assign(ntri(), 0);
-  if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), stamp_++);  // wrapped: start over
+  std::vector<std::uint32_t>& seen = sc.seen;
+  if (seen.size() != ntri()) seen.assign(ntri(), 0), sc.stamp = 0;
+  if (++sc.stamp == 0) std::fill(seen.begin(), seen.end(), sc.stamp++);  // wrapped: start over
   for (int i = lo[0]; i <= hi[0]; ++i)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int k = lo[2]; k <= hi[2]; ++k) {
         const std::size_t c = (static_cast<std::size_t>(i) * nb_[1] + j) * nb_[2] + k;
         for (int q = cell_first_[c]; q < cell_first_[c + 1]; ++q) {
           const int t = cell_tri_[q];
-          if (seen_[t] == stamp_) continue;
-          seen_[t] = stamp_;
+          if (seen[t] == sc.stamp) continue;
+          seen[t] = sc.stamp;
           const double* n = &normal[3 * t];
           if (std::fabs(n[0] * x[0] + n[1] * x[1] + n[2] * x[2] - plane_[t]) >= r) continue;  // its plane is out of reach
           const Closest cl = closest(t, x);
@@ -339,7 +340,8 @@ void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out) con
 
 void TriMesh::near(const Vec3d& x, double r, std::vector<int>& out) const {
   std::vector<Near> found;
-  near_closest(x, r, found);
+  Scratch sc;
+  near_closest(x, r, found, sc);
   out.clear();
   for (const Near& f : found) out.push_back(f.tri);
 }

@@ -57,12 +57,17 @@ class TriMesh {
   Closest closest(int t, const Vec3d& x) const;
   // Triangles within distance r of x (strictly), sorted: the bin grid, or every triangle.
   void near(const Vec3d& x, double r, std::vector<int>& out) const;
-  // The same with their closest points (not thread-safe: one search at a time per mesh).
+  // The same with their closest points. `seen` is the caller's scratch (one
+  // per thread: searches may run concurrently).
   struct Near {
     int tri;
     Closest c;
   };
-  void near_closest(const Vec3d& x, double r, std::vector<Near>& out) const;
+  struct Scratch {
+    std::vector<std::uint32_t> seen;  // stamp per triangle: no sort to deduplicate
+    std::uint32_t stamp = 0;
+  };
+  void near_closest(const Vec3d& x, double r, std::vector<Near>& out, Scratch& seen) const;
   void near_brute(const Vec3d& x, double r, std::vector<int>& out) const;
   Vec3d bbox_lo{}, bbox_hi{};        // body frame
 
@@ -100,8 +105,6 @@ class TriMesh {
   int nb_[3] = {1, 1, 1};
   std::vector<int> cell_first_, cell_tri_;
   std::vector<double> plane_;               // n . (a corner) per triangle: a one-product distance filter
-  mutable std::vector<std::uint32_t> seen_; // near_closest: stamp per triangle (no sort to deduplicate)
-  mutable std::uint32_t stamp_ = 0;
   void bin();
   void find_adjacency(double curvature_deg);
 };

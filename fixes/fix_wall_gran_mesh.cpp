@@ -9,6 +9,7 @@
 #include "contact_models/registry.h"
 #include "core/restart.h"
 #include "core/simulation.h"
+#include "core/threads.h"
 #include "fixes/fix_mesh_surface.h"
 
 namespace sable {
@@ -239,8 +240,8 @@ static void world_box(const TriMesh& mesh, Vec3d& wlo, Vec3d& whi) {
 
 // The triangles within `reach` of grain i's images (itself and, on periodic
 // axes, one box length either way) that can reach the mesh's box.
-void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi,
-                              std::vector<Touch>& touched) {
+void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p) {
+  std::vector<Touch>& touched = p.touched;
   touched.clear();
   const TriMesh& mesh = meshes_[mi]->mesh();
   const Domain& dom = sim.domain;
@@ -261,8 +262,8 @@ void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& 
         const int img = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
         const Vec3d& sh = shifts_[img];
         const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
-        mesh.near_closest(xb, reach, cand_);
-        for (const TriMesh::Near& nc : cand_) {
+        mesh.near_closest(xb, reach, p.cand, p.seen);
+        for (const TriMesh::Near& nc : p.cand) {
           if (nc.c.dist2 == 0.0) continue;  // a centre on the surface has no normal
           touched.push_back({nc.tri, img, nc.c, sub3(mesh.to_world(nc.c.p), sh)});
         }
@@ -298,25 +299,25 @@ void FixWallGranMesh::refresh_near(int mi) {
   world_box(mesh, wlo, whi);
   for (std::size_t i = 0; i < at.n; ++i) {
     if (!(at.mask[i] & groupbit)) continue;
-    touches(mi, i, at.radius[i] + 2 * half_skin, wlo, whi, touched_);
-    if (!touched_.empty()) nl.atoms.push_back(static_cast<int>(i));
+    touches(mi, i, at.radius[i] + 2 * half_skin, wlo, whi, serial_);
+    if (!serial_.touched.empty()) nl.atoms.push_back(static_cast<int>(i));
   }
 }
 
-void FixWallGranMesh::collect(int mi, std::uint32_t also, std::vector<Hit>& out) {
+void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p,
+                              std::vector<Hit>& out) {
   out.clear();
-  refresh_near(mi);
   const TriMesh& mesh = meshes_[mi]->mesh();
   const Atoms& at = sim.atoms;
   Vec3d wlo, whi;
   world_box(mesh, wlo, whi);
-  std::vector<Touch>& touched = touched_;
+  std::vector<Touch>& touched = p.touched;
   std::vector<std::pair<int, std::vector<int>>> contacts;
-  for (const int ii : near_[mi].atoms) {
-    const std::size_t i = static_cast<std::size_t>(ii);
+  for (std::size_t c = c0; c < c1; ++c) {
+    const std::size_t i = static_cast<std::size_t>(near_[mi].atoms[c]);
     if (!(at.mask[i] & also)) continue;
     const double r = at.radius[i], *x = &at.x[3 * i];
-    touches(mi, i, r, wlo, whi, touched);
+    touches(mi, i, r, wlo, whi, p);
     if (touched.empty()) continue;
     reduce_touches(*this, mi, mesh, touched, r, contacts);
     for (auto& [rep, group] : contacts) {
@@ -408,38 +409,74 @@ WallBatch FixWallGranMesh::batch(int m, const std::vector<Hit>& hits, std::vecto
   return b;
 }
 
-void FixWallGranMesh::post_force() {
+void FixWallGranMesh::post_force_prepare() {
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     meshes_[m]->update_pose();
     if (owner_[m]) meshes_[m]->mesh().clear_load();
+    refresh_near(static_cast<int>(m));
   }
-  double total[3] = {0, 0, 0};
-  std::vector<Hit> hits;
-  std::vector<double> cols, force;
-  std::vector<int> atoms, rows;
+  pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
+  setup_pass_ = false;
+  parts_.resize(static_cast<std::size_t>(atom_pass_threads()));
+  for (Part& p : parts_) {
+    p.mesh.resize(meshes_.size());
+    for (auto& pm : p.mesh) pm.hits.clear();  // a serial pass fills only the first
+  }
+}
+
+// The contacts of the near grains among atoms [lo, hi): found, given their
+// history and evaluated on this thread (the grains are this thread's alone).
+void FixWallGranMesh::post_force_range(int t, std::size_t lo, std::size_t hi) {
+  Part& p = parts_[t];
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const std::vector<int>& near = near_[m].atoms;
+    const auto c0 = std::lower_bound(near.begin(), near.end(), static_cast<int>(lo)) - near.begin();
+    const auto c1 = std::lower_bound(near.begin(), near.end(), static_cast<int>(hi)) - near.begin();
+    Part::PerMesh& pm = p.mesh[m];
     const int mi = static_cast<int>(m);
-    collect(mi, ~0u, hits);
-    std::vector<double> hist = history_for(mi, hits);
-    WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
-    force.assign(3 * hits.size(), 0.0);
-    b.force = force.data();
-    b.ctx.update = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
-    if (!hits.empty()) kernel_->wall_forces(b);
+    collect(mi, ~0u, static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), p, pm.hits);
+    pm.hist = history_for(mi, pm.hits);
+    WallBatch b = batch(mi, pm.hits, pm.cols, pm.atoms, pm.rows, pm.hist.data());
+    pm.force.assign(3 * pm.hits.size(), 0.0);
+    b.force = pm.force.data();
+    b.ctx.update = pass_update_;
+    if (!pm.hits.empty()) kernel_->wall_forces(b);
+  }
+}
+
+// The threads' contacts of each mesh in (grain id, triangle) order: the
+// reaction on the mesh summed, and the history kept for the next pass.
+void FixWallGranMesh::post_force_finish() {
+  double total[3] = {0, 0, 0};
+  const std::size_t hs = static_cast<std::size_t>(hist_size_);
+  std::vector<std::pair<int, int>> order;  // (part, contact)
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    order.clear();
+    for (std::size_t t = 0; t < parts_.size(); ++t)
+      for (std::size_t k = 0; k < parts_[t].mesh[m].hits.size(); ++k) order.emplace_back(static_cast<int>(t), static_cast<int>(k));
+    std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+      const Hit& p = parts_[a.first].mesh[m].hits[a.second];
+      const Hit& q = parts_[b.first].mesh[m].hits[b.second];
+      return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri;
+    });
     TriMesh& mesh = meshes_[m]->mesh();
     const std::uint32_t mesh_bits = meshes_[m]->groupbit;  // LIGGGHTS' stress module: grains of the mesh fix's group
-    for (std::size_t k = 0; k < hits.size(); ++k) {
-      const Vec3d on_mesh{0.0 - force[3 * k], 0.0 - force[3 * k + 1], 0.0 - force[3 * k + 2]};
+    Kept& kept = prev_[m];
+    kept.tag.resize(order.size());
+    kept.tri.resize(order.size());
+    kept.hist.resize(order.size() * hs);
+    for (std::size_t r = 0; r < order.size(); ++r) {
+      const Part::PerMesh& pm = parts_[order[r].first].mesh[m];
+      const std::size_t k = static_cast<std::size_t>(order[r].second);
+      const Hit& h = pm.hits[k];
+      const Vec3d on_mesh{0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]};
       for (int d = 0; d < 3; ++d) total[d] += on_mesh[d];
-      if (sim.atoms.mask[hits[k].atom] & mesh_bits) mesh.add_load(hits[k].pmesh, on_mesh);
+      if (sim.atoms.mask[h.atom] & mesh_bits) mesh.add_load(h.pmesh, on_mesh);
+      kept.tag[r] = h.tag;
+      kept.tri[r] = h.tri;
+      std::copy_n(pm.hist.begin() + k * hs, hs, kept.hist.begin() + r * hs);
     }
-    Kept& p = prev_[m];
-    p.tag.resize(hits.size());
-    p.tri.resize(hits.size());
-    for (std::size_t k = 0; k < hits.size(); ++k) p.tag[k] = hits[k].tag, p.tri[k] = hits[k].tri;
-    p.hist.swap(hist);
   }
-  setup_pass_ = false;
   std::copy(total, total + 3, force_);
 }
 
@@ -454,7 +491,8 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     const int mi = static_cast<int>(m);
     meshes_[m]->update_pose();
-    collect(mi, bits, hits);
+    refresh_near(mi);
+    collect(mi, bits, 0, near_[m].atoms.size(), serial_, hits);
     std::vector<double> hist = history_for(mi, hits);
     WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
     b.ctx.update = false;

@@ -17,8 +17,10 @@
 //   - The reaction (minus the force on the grain) acts on the mesh at the
 //     contact point: f_MESH[1..3], torque f_MESH[4..6] about its reference point.
 //   - Periodic boxes: a grain sees the mesh through the boundary (nearest images).
-//   - Sums in a fixed order (grain id, triangle): bits independent of threads
-//     and of the atoms' order in memory. Serial post_force.
+//   - Each thread finds and evaluates the contacts of its own atoms (ranged
+//     post_force: the pipelined fast path); the mesh's force and torque and
+//     the kept history are then summed / merged in a fixed order (grain id,
+//     triangle): bits independent of threads and of the atoms' order in memory.
 // Output f_ID[1..3]: total force of the grains on all the fix's meshes.
 #include <memory>
 #include <vector>
@@ -35,7 +37,10 @@ class FixWallGranMesh : public Fix {
  public:
   FixWallGranMesh(Simulation& sim, const Args& args);
   void init() override;
-  void post_force() override;
+  bool post_force_ranged() const override { return true; }
+  void post_force_prepare() override;
+  void post_force_range(int t, std::size_t lo, std::size_t hi) override;
+  void post_force_finish() override;
   double compute_vector(int i) override;
   // Restart: the contacts' history (per mesh: grain ids, triangles, rows).
   bool write_state(std::string& out) const override;
@@ -107,9 +112,22 @@ class FixWallGranMesh : public Fix {
     Vec3d preal;
     bool alive = true;
   };
-  std::vector<Touch> touched_;
-  std::vector<TriMesh::Near> cand_;
-  void touches(int m, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, std::vector<Touch>& out);
+  // One thread's search scratch and, per mesh, its contacts of a pass.
+  struct alignas(64) Part {
+    std::vector<Touch> touched;
+    std::vector<TriMesh::Near> cand;
+    TriMesh::Scratch seen;
+    struct PerMesh {
+      std::vector<Hit> hits;
+      std::vector<double> hist, force, cols;
+      std::vector<int> atoms, rows;
+    };
+    std::vector<PerMesh> mesh;
+  };
+  std::vector<Part> parts_;
+  Part serial_;  // refresh_near and records
+  bool pass_update_ = true;
+  void touches(int m, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p);
   // Grains that can reach mesh m until the next refresh (see refresh_near).
   struct NearList {
     std::vector<int> atoms;
@@ -120,8 +138,8 @@ class FixWallGranMesh : public Fix {
   };
   std::vector<NearList> near_;
   void refresh_near(int m);
-  // Contacts of the grains in groupbit & also with mesh m, sorted by (tag, triangle).
-  void collect(int m, std::uint32_t also, std::vector<Hit>& out);
+  // Contacts with mesh m of the grains of near_[m].atoms[c0, c1) in groupbit & also, sorted by (tag, triangle).
+  void collect(int m, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p, std::vector<Hit>& out);
   // History rows for the hits from prev_[m] (same triangle, else the same surface).
   std::vector<double> history_for(int m, const std::vector<Hit>& hits) const;
   WallBatch batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols, std::vector<int>& atoms,
