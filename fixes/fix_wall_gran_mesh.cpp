@@ -56,6 +56,7 @@ void FixWallGranMesh::find_meshes() {
   }
   prev_.resize(meshes_.size());
   near_.resize(meshes_.size());
+  glue_.resize(meshes_.size());  // filled at init (records() before a run: no glue yet)
   // The first wall/gran mesh fix of a mesh clears its load each step; the others add to it.
   owner_.assign(meshes_.size(), false);
   for (std::size_t m = 0; m < meshes_.size(); ++m) {

@@ -165,6 +165,14 @@ TEST(MeshGeometry, CoplanarEdgeInactiveRightAngleActive) {
   EXPECT_FALSE(box.same_surface(0, 2));  // floor and top
   EXPECT_TRUE(box.same_surface(0, 1));
 
+  // A triangle stored with the other winding (normal -z) is still one surface with its neighbour.
+  std::vector<double> flipped = kSquare;
+  std::swap_ranges(flipped.begin() + 12, flipped.begin() + 15, flipped.begin() + 15);  // swap its last two corners
+  TriMesh fl = TriMesh::from_triangles(flipped);
+  fl.build(0.256235);
+  EXPECT_LT(fl.normal[5], 0.0);
+  EXPECT_TRUE(fl.same_surface(0, 1));
+
   // A fold of 0.2 deg is one surface at the default curvature, not at 0.1 deg.
   const double s = std::sin(0.2 * M_PI / 180), c = std::cos(0.2 * M_PI / 180);
   const std::vector<double> fold = {0, 0, 0, 0, 1, 0, -1, 0, 0, 0, 1, 0, 0, 0, 0, c, 0, s};  // hinge: the y axis
