@@ -130,15 +130,13 @@ bool FixWallGranMesh::same_surface(int m, const Touchish& a, const Touchish& b) 
 // or corner is nearer (the point is also that triangle's, which counts it);
 // triangles of one surface, and contacts at one point (a convex edge seen
 // from both sides, or from two images), join, and the nearest of each group
-// is the contact (ties: lower index). Per contact: its representative in
-// `ts` and the group's triangles.
+// is the contact (ties: lower index). Per contact: its index in `ts`.
 template <class T>
 static void reduce_touches(const FixWallGranMesh& f, int m, const TriMesh& mesh, std::vector<T>& ts, double r,
-                           std::vector<std::pair<int, std::vector<int>>>& out) {
+                           std::vector<int>& out) {
   out.clear();
   const std::size_t n = ts.size();
   const double eps = 1e-12 * r * r, same2 = 1e-16 * r * r;  // far above round-off, far below any overlap
-  std::vector<int> killer(n, -1);  // the nearer touch that made a touch go (its history may pass on)
   for (std::size_t a = 0; a < n; ++a) {
     const TriMesh::Closest& c = ts[a].c;
     if (c.region == TriMesh::Region::Face) continue;
@@ -148,7 +146,7 @@ static void reduce_touches(const FixWallGranMesh& f, int m, const TriMesh& mesh,
       const bool shares = c.region == TriMesh::Region::Edge
                               ? f.shares_edge(m, {t, c.k, ts[a].img}, {ts[b].tri, 0, ts[b].img})
                               : ts[a].img == ts[b].img && has_vertex(mesh, ts[b].tri, mesh.tri[3 * t + c.k]);
-      if (shares) ts[a].alive = false, killer[a] = static_cast<int>(b);
+      if (shares) ts[a].alive = false;
     }
   }
   std::vector<int> root(n);
@@ -166,18 +164,13 @@ static void reduce_touches(const FixWallGranMesh& f, int m, const TriMesh& mesh,
   for (std::size_t a = 0; a < n; ++a) {
     if (!ts[a].alive || find(static_cast<int>(a)) != static_cast<int>(a)) continue;
     int best = static_cast<int>(a);
-    std::vector<int> group;
     for (std::size_t b = 0; b < n; ++b) {
-      int live = static_cast<int>(b);  // a dropped touch belongs where its (nearer) killer does
-      while (!ts[live].alive) live = killer[live];
-      if (find(live) != static_cast<int>(a)) continue;
-      group.push_back(ts[b].tri);
-      if (!ts[b].alive) continue;
+      if (!ts[b].alive || find(static_cast<int>(b)) != static_cast<int>(a)) continue;
       const auto& cb = ts[b].c;
       const auto& cr = ts[best].c;
       if (cb.dist2 < cr.dist2 || (cb.dist2 == cr.dist2 && ts[b].tri < ts[best].tri)) best = static_cast<int>(b);
     }
-    out.emplace_back(best, std::move(group));
+    out.push_back(best);
   }
 }
 
@@ -313,7 +306,7 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
   Vec3d wlo, whi;
   world_box(mesh, wlo, whi);
   std::vector<Touch>& touched = p.touched;
-  std::vector<std::pair<int, std::vector<int>>> contacts;
+  std::vector<int> contacts;
   for (std::size_t c = c0; c < c1; ++c) {
     const std::size_t i = static_cast<std::size_t>(near_[mi].atoms[c]);
     if (!(at.mask[i] & also)) continue;
@@ -321,7 +314,7 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
     touches(mi, i, r, wlo, whi, p);
     if (touched.empty()) continue;
     reduce_touches(*this, mi, mesh, touched, r, contacts);
-    for (auto& [rep, group] : contacts) {
+    for (const int rep : contacts) {
       const Touch& tc = touched[rep];
       const Vec3d& sh = shifts_[tc.img];
       const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
@@ -340,24 +333,33 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
         h.vwall[d] = vw[d];
         h.point[d] = x[d] - en[d] * dist;
       }
-      h.surface = std::move(group);
-      out.push_back(std::move(h));
+      out.push_back(h);
     }
   }
   std::sort(out.begin(), out.end(), [](const Hit& p, const Hit& q) { return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri; });
 }
 
+// Triangles t and u are one surface: a shared inactive edge or corner, or an
+// inactive edge glued through a periodic boundary.
+bool FixWallGranMesh::joined(int m, int t, int u) const {
+  if (meshes_[m]->mesh().same_surface(t, u)) return true;
+  const Glue& g = glue_[m];
+  for (int k = 0; k < 3 && !g.tri.empty(); ++k)
+    if (g.tri[3 * t + k] == u && !g.active[3 * t + k]) return true;
+  return false;
+}
+
 // Last step's history of each hit: the same (grain, triangle), else a contact
-// of that grain on a triangle of the same surface that has ended (the grain
-// passed onto this triangle), else zeros.
+// of that grain on a triangle of the same surface (curvature) that has ended
+// (the grain passed onto this triangle), else zeros: as LIGGGHTS 3.8, history
+// does not pass an active edge.
 std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits) const {
   const std::size_t hs = static_cast<std::size_t>(hist_size_);
   std::vector<double> out(hs * hits.size(), 0.0);
   if (hs == 0) return out;
   const Kept& p = prev_[m];
-  const TriMesh& mesh = meshes_[m]->mesh();
   auto hit_now = [&](long tag, int tri) {
-    return std::binary_search(hits.begin(), hits.end(), Hit{tag, 0, tri, 0, {}, {}, {}, {}, {}},
+    return std::binary_search(hits.begin(), hits.end(), Hit{tag, 0, tri, 0, {}, {}, {}, {}},
                               [](const Hit& a, const Hit& b) { return a.tag != b.tag ? a.tag < b.tag : a.tri < b.tri; });
   };
   for (std::size_t k = 0; k < hits.size(); ++k) {
@@ -370,7 +372,7 @@ std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& 
     for (auto j = lo; j < hi && from < 0; ++j) {
       const int t = p.tri[j];
       if (hit_now(h.tag, t)) continue;  // that contact goes on
-      if (mesh.same_surface(t, h.tri) || std::find(h.surface.begin(), h.surface.end(), t) != h.surface.end()) from = j;
+      if (joined(m, t, h.tri)) from = j;
     }
     if (from >= 0) std::copy_n(p.hist.begin() + from * hs, hs, out.begin() + k * hs);
   }

@@ -13,7 +13,8 @@
 //     and contacts at one point count once: the nearest triangle.
 //   - History (tangential, rolling) per (grain id, mesh, triangle), kept
 //     through sorting and rebuilds; when a grain's contact passes to another
-//     triangle of the same surface its history goes with it.
+//     triangle of the same surface its history goes with it (not across an
+//     active edge: LIGGGHTS 3.8, checked by input_scripts/compare/mesh_fold.in).
 //   - The reaction (minus the force on the grain) acts on the mesh at the
 //     contact point: f_MESH[1..3], torque f_MESH[4..6] about its reference point.
 //   - Periodic boxes: a grain sees the mesh through the boundary (nearest images).
@@ -53,6 +54,7 @@ class FixWallGranMesh : public Fix {
   };
   bool shares_edge(int m, const Touchish& a, const Touchish& b) const;
   bool same_surface(int m, const Touchish& a, const Touchish& b) const;
+  bool joined(int m, int t, int u) const;  // same surface, through any periodic image
   // Per-contact records at the current state (no force or history change), as
   // FixWallGran::records. Record r's wall point, wall velocity and triangle:
   // point(r.shift), vwall(r.shift), triangle(r.shift); mesh(r.shift) its mesh's index in this fix.
@@ -68,7 +70,6 @@ class FixWallGranMesh : public Fix {
     int atom, tri;
     double deltan, en[3], vwall[3];
     Vec3d point, pmesh;  // closest point seen from the grain (its image) / on the mesh itself
-    std::vector<int> surface;  // triangles merged into this contact (history may come from them)
   };
 
  private:
