@@ -385,6 +385,16 @@ Vec3d TriMesh::velocity(const Vec3d& pw) const {
   return v;
 }
 
+Vec3d TriMesh::velocity(const Vec3d& pw, int t) const {
+  Vec3d v = velocity(pw);
+  const double speed = std::sqrt(dot(belt, belt));
+  if (speed == 0) return v;
+  const Vec3d n = dir_to_world({normal[3 * t], normal[3 * t + 1], normal[3 * t + 2]});
+  const Vec3d along = sub(belt, mul(n, dot(belt, n)));  // in the triangle's plane
+  const double len = std::sqrt(dot(along, along));
+  return len > 1e-12 * speed ? add(v, mul(along, speed / len)) : v;  // a belt normal to the face: none
+}
+
 void TriMesh::clear_load() { force = torque = {0, 0, 0}; }
 
 void TriMesh::add_load(const Vec3d& pw, const Vec3d& f) {

@@ -91,7 +91,12 @@ class TriMesh {
   long pose_step = -1;          // step the pose is at (-1: not yet started)
   // Advances the pose to `step`, one dt increment of each motion per step.
   void advance_to(long step, double dt);
-  Vec3d velocity(const Vec3d& pw) const;  // surface velocity at world point pw
+  Vec3d velocity(const Vec3d& pw) const;  // velocity of the rigid motion at world point pw
+  // LIGGGHTS surface_vel (conveyor belt): each triangle's surface moves in its
+  // plane along the projection of `belt`, at |belt|.
+  Vec3d belt{0, 0, 0};
+  // The wall velocity at world point pw of triangle t: rigid motion plus belt.
+  Vec3d velocity(const Vec3d& pw, int t) const;
   Vec3d ref_body{0, 0, 0};                // reference point for torques, moves with the mesh
 
   // ---- force and torque of the grains on the mesh (this pass)

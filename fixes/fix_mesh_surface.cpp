@@ -64,6 +64,9 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
       precision = a.num(i + 1, "the welding precision (length)");
       if (!(precision >= 0)) a.fail(i + 1, "a precision >= 0");
       i += 2;
+    } else if (k == "surface_vel") {
+      mesh_.belt = vec(i + 1, "the conveyor velocity");
+      i += 4;
     } else if (k == "reference_point") {
       ref = vec(i + 1, "the reference point");
       i += 4;
@@ -77,8 +80,8 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
       if (a.word(i + 1, "'no'") != "no") a.fail(i + 1, "'no' (duplicate removal is not available)");
       i += 2;
     } else {
-      a.fail(i, "a mesh/surface keyword: type, scale, move, rotate, curvature, precision, reference_point, "
-                "stress, verbose, heal");
+      a.fail(i, "a mesh/surface keyword: type, scale, move, rotate, curvature, precision, surface_vel, "
+                "reference_point, stress, verbose, heal");
     }
   }
   if (!have_type) a.fail(a.size(), "'type T' (the mesh's material type)");

@@ -24,6 +24,9 @@ class FixMoveMesh : public Fix {
     if (a.word(4, "'mesh' and the ID of a fix mesh/surface") != "mesh") a.fail(4, "'mesh'");
     auto* m = dynamic_cast<FixMeshSurface*>(s.find_fix(a.word(5, "the ID of a fix mesh/surface")));
     if (!m) a.fail(5, "the ID of a fix mesh/surface defined before this fix");
+    const Vec3d& belt = m->mesh().belt;
+    if (belt[0] != 0 || belt[1] != 0 || belt[2] != 0)
+      a.fail(5, "a mesh without surface_vel (a moving conveyor mesh is not supported, as in LIGGGHTS)");
     mesh_id_ = a[5];
     TriMesh::Motion mo;
     const std::string& k = a.word(6, "'linear' or 'rotate'");

@@ -327,7 +327,7 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
       h.deltan = r - dist;
       const Vec3d en = mesh.dir_to_world(nb);
       h.pmesh = mesh.to_world(tc.c.p);
-      const Vec3d vw = mesh.velocity(h.pmesh);
+      const Vec3d vw = mesh.velocity(h.pmesh, tc.tri);
       for (int d = 0; d < 3; ++d) {
         h.en[d] = en[d];
         h.vwall[d] = vw[d];

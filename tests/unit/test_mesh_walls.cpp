@@ -311,6 +311,8 @@ TEST(MeshWall, ErrorsNameTheWord) {
   EXPECT_NE(error("fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes b").find("'b'"),
             std::string::npos);
   EXPECT_NE(error("fix mv all move/mesh mesh a wiggle amplitude 1 0 0 period 1").find("wiggle"), std::string::npos);
+  d("fix belt all mesh/surface file " + f + " type 1 surface_vel 0.1 0 0");
+  EXPECT_NE(error("fix mv all move/mesh mesh belt linear 1 0 0").find("surface_vel"), std::string::npos);
 }
 
 // dump mesh/stl writes the moved triangles: read back, the plate turned a
