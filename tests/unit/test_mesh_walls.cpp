@@ -226,6 +226,17 @@ compute c all wall/gran/local pos force)");
   // The plate has turned by 2 pi t / T: its reference point with it.
   const double ang = 2 * kPi * 3000 * 1e-6 / 0.5;
   EXPECT_NEAR(fv(d, "plate", 7), 0.001 * std::cos(ang) + 0.002 * std::sin(ang), 1e-12);
+  // id columns of a mesh contact: (wall index, triangle, grain id).
+  d("compute ids all wall/gran/local id");
+  sable::Compute* ci = d->find_compute("ids");
+  ci->local_now();
+  ASSERT_EQ(ci->local_rows(), 4u);
+  for (std::size_t r = 0; r < 4; ++r) {
+    const double* row = &ci->local[r * 3];
+    EXPECT_EQ(row[0], 0.0);
+    EXPECT_TRUE(row[1] == 0.0 || row[1] == 1.0) << row[1];  // one of the plate's two triangles
+    EXPECT_EQ(row[2], static_cast<double>(r + 1));          // in grain id order
+  }
   // The grains are dragged along the rotation (counter-clockwise about +z).
   const std::size_t i = d->atoms.index_of(1);
   EXPECT_GT(d->atoms.v[3 * i + 1], 0.0);
