@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -103,6 +104,8 @@ fix i all nve/sphere)");
   grains(d);
   d("run 20000");
   const double w = 3 * kM * 9.81;
+  std::printf("floor: f_floor[3] = %.9g N, -3 m g = %.9g N (rel. diff %.2e)\n", fv(d, "floor", 3), -w,
+              fv(d, "floor", 3) / -w - 1);
   EXPECT_NEAR(fv(d, "floor", 3), -w, 1e-3 * w);
   EXPECT_NEAR(fv(d, "w", 3), -w, 1e-3 * w);
   // Each grain alone: its height is that of a grain on a plane (one contact, not two or six).
@@ -141,6 +144,12 @@ Track slide(const std::string& boundary, const std::string& wall, const std::str
   return t;
 }
 
+double max_diff(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0;
+  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) m = std::max(m, std::fabs(a[k] - b[k]));
+  return m;
+}
+
 double max_abs(const std::vector<double>& v) {
   double m = 0;
   for (double x : v) m = std::max(m, std::fabs(x));
@@ -169,6 +178,8 @@ TEST(MeshWall, CrossingACoplanarEdgeKeepsTheForceContinuous) {
   ASSERT_GT(m.x.back(), 0.0);  // it crossed
   const double fscale = max_abs(p.fx), zscale = max_abs(p.fz);
   ASSERT_GT(fscale, 0.0);
+  std::printf("coplanar edge: max |f_mesh - f_plane| / max |f| = %.2e (x), %.2e (z) over %zu steps\n",
+              max_diff(m.fx, p.fx) / fscale, max_diff(m.fz, p.fz) / zscale, m.fx.size());
   for (std::size_t s = 0; s < m.fx.size(); ++s) {
     ASSERT_NEAR(m.fx[s], p.fx[s], 1e-9 * fscale) << "step " << s + 1;
     ASSERT_NEAR(m.fz[s], p.fz[s], 1e-9 * zscale) << "step " << s + 1;
@@ -219,6 +230,8 @@ compute c all wall/gran/local pos force)");
     for (int k = 0; k < 3; ++k) f[k] += F[k], t[k] += tc[k], scale = std::max(scale, std::fabs(tc[k]));
   }
   ASSERT_GT(scale, 0.0);
+  std::printf("spinning plate: f_plate[4..6] = (%.6g, %.6g, %.6g) N m, sum r x F = (%.6g, %.6g, %.6g) N m\n",
+              fv(d, "plate", 4), fv(d, "plate", 5), fv(d, "plate", 6), t[0], t[1], t[2]);
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(fv(d, "plate", 4 + k), t[k], 1e-12 * scale) << "torque " << k;
     EXPECT_NEAR(fv(d, "plate", 1 + k), f[k], 1e-12 * 4 * kM * 9.81) << "force " << k;
@@ -257,6 +270,8 @@ TEST(MeshWall, PeriodicBoundaryCrossingWithoutAJump) {
   const Track p = slide("p f f", prim, v, 12000, box, start);
   ASSERT_LT(m.x.back(), m.x.front());  // wrapped through x = 0.005
   const double fscale = max_abs(p.fx), zscale = max_abs(p.fz);
+  std::printf("periodic crossing: max |f_mesh - f_plane| / max |f| = %.2e (x), %.2e (z) over %zu steps\n",
+              max_diff(m.fx, p.fx) / fscale, max_diff(m.fz, p.fz) / zscale, m.fx.size());
   for (std::size_t s = 0; s < m.fx.size(); ++s) {
     ASSERT_NEAR(m.fx[s], p.fx[s], 1e-9 * fscale) << "step " << s + 1;
     ASSERT_NEAR(m.fz[s], p.fz[s], 1e-9 * zscale) << "step " << s + 1;
@@ -298,6 +313,8 @@ create_atoms 1 single 0.001 0.001 0 units box)");
                      " type 1\nfix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor");
   const auto p = run("fix w all wall/gran model hertz tangential history primitive type 1 yplane 0.0");
   const double w = kM * 9.81;
+  std::printf("2D: f_floor[2] = %.9g N, -m g = %.9g N; mesh - plane: x %.2e m, vx %.2e m/s\n", m[0], -w, m[1] - p[1],
+              m[3] - p[3]);
   EXPECT_NEAR(m[0], -w, 1e-3 * w);
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(m[k], p[k], 1e-9 * std::max(std::fabs(p[k]), 1e-6)) << k;
 }
