@@ -4,7 +4,8 @@
 // only mesh walls here; sable also reports primitive walls). Columns as
 // pair/gran/local with side 1 = the wall: pos = wall point then grain centre,
 // vel = wall velocity then grain velocity, id = (wall index among the
-// wall/gran fixes, 0, grain id). Values are re-evaluated at invocation time,
+// wall/gran fixes, 0, grain id); mesh walls (listed after the primitive ones)
+// give (wall index, triangle index, grain id). Values are re-evaluated at invocation time,
 // history read but not advanced.
 #include <cmath>
 #include <numbers>
@@ -13,6 +14,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "fixes/fix_wall_gran.h"
+#include "fixes/fix_wall_gran_mesh.h"
 
 namespace sable {
 
@@ -25,13 +27,17 @@ class ComputeWallGranLocal : public Compute {
   }
   void init() override {
     walls_.clear();
-    for (auto& f : sim.fixes)
+    meshes_.clear();
+    for (auto& f : sim.fixes) {
       if (auto* w = dynamic_cast<FixWallGran*>(f.get())) walls_.push_back(w);
-    if (walls_.empty()) args.fail_line("compute wall/gran/local needs a fix wall/gran defined before it");
+      if (auto* w = dynamic_cast<FixWallGranMesh*>(f.get())) meshes_.push_back(w);
+    }
+    if (walls_.empty() && meshes_.empty()) args.fail_line("compute wall/gran/local needs a fix wall/gran defined before it");
     // Columns follow the first wall's model; walls with a different history size fill with zeros / are cut.
-    const auto& slots = walls_[0]->kernel().history_slots();
+    ContactKernel& first = walls_.empty() ? meshes_[0]->kernel() : walls_[0]->kernel();
+    const auto& slots = first.history_slots();
     if (cols_.history_explicit && slots.empty())
-      args.fail_line("'history' asked, but " + walls_[0]->kernel().name() + " keeps no contact history");
+      args.fail_line("'history' asked, but " + first.name() + " keeps no contact history");
     if (slots.empty()) cols_.history = false;
     nh_ = static_cast<int>(slots.size());
     local_names = cols_.names(slots);
@@ -42,23 +48,27 @@ class ComputeWallGranLocal : public Compute {
     local.clear();
     const Atoms& at = sim.atoms;
     std::vector<double> h(nh_);
-    for (std::size_t w = 0; w < walls_.size(); ++w) {
-      walls_[w]->records(groupbit, rec_);
+    auto rows = [&](auto* wall, std::size_t w, auto second_id) {
+      wall->records(groupbit, rec_);
       for (std::size_t r = 0; r < rec_.rows.size(); ++r) {
         const ContactRecord& c = rec_.rows[r];
         for (int m = 0; m < nh_; ++m) h[m] = m < rec_.hist_size ? rec_.hist[r * rec_.hist_size + m] : 0.0;
-        const double ids[3] = {static_cast<double>(w), 0.0, static_cast<double>(at.id[c.i])};
+        const double ids[3] = {static_cast<double>(w), second_id(c.shift), static_cast<double>(at.id[c.i])};
         const double ri = at.radius[c.i], d = ri - c.delta;
         const double area = std::numbers::pi * (ri * ri - d * d);  // sphere-plane intersection
-        cols_.row(local, walls_[w]->point(c.shift), &at.x[3 * c.i], walls_[w]->vwall(c.shift), &at.v[3 * c.i], ids,
-                  c.f, c.t, c.en, h.data(), nh_, area, c.delta);
+        cols_.row(local, wall->point(c.shift), &at.x[3 * c.i], wall->vwall(c.shift), &at.v[3 * c.i], ids, c.f, c.t,
+                  c.en, h.data(), nh_, area, c.delta);
       }
-    }
+    };
+    for (std::size_t w = 0; w < walls_.size(); ++w) rows(walls_[w], w, [](int) { return 0.0; });
+    for (std::size_t w = 0; w < meshes_.size(); ++w)
+      rows(meshes_[w], walls_.size() + w, [&](int k) { return static_cast<double>(meshes_[w]->triangle(k)); });
   }
 
  private:
   GranLocalColumns cols_;
   std::vector<FixWallGran*> walls_;
+  std::vector<FixWallGranMesh*> meshes_;
   ContactRecords rec_;
   int nh_ = 0;
 };

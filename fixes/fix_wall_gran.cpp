@@ -1,4 +1,5 @@
 #include "fixes/fix_wall_gran.h"
+#include "fixes/fix_wall_gran_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,7 +52,7 @@ FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
       }
       have_wall = true;
     } else if (k == "mesh") {
-      a.fail(i, "'primitive' (mesh walls are not available in this fix yet)");
+      a.fail(i, "'primitive' (mesh walls: FixWallGranMesh, chosen at registration below)");
     } else if (k == "shear") {
       if (!have_wall) a.fail(i, "'primitive ...' before 'shear' (as LIGGGHTS)");
       shear_dim_ = axis_of(a.word(i + 1, "x, y or z"));
@@ -367,6 +368,10 @@ double FixWallGran::compute_vector(int i) {
   return force_[i - 1];
 }
 
-SABLE_FIX("wall/gran", FixWallGran);
+// `... mesh n_meshes K meshes ...` is the mesh wall (fixes/fix_wall_gran_mesh.cpp).
+static const bool sable_registered_wall_gran = FixRegistry::add("wall/gran", [](Simulation& s, const Args& a) {
+  const bool mesh = std::find(a.words().begin(), a.words().end(), "mesh") != a.words().end();
+  return mesh ? std::unique_ptr<Fix>(std::make_unique<FixWallGranMesh>(s, a)) : std::make_unique<FixWallGran>(s, a);
+});
 
 }  // namespace sable

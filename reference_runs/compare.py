@@ -125,7 +125,9 @@ def command(code, args):
 
 def run_once(code, deck, rundir, variables, h, args):
     os.makedirs(rundir, exist_ok=True)
-    cmd = command(code, args) + ['-in', os.path.abspath(deck), '-log', 'none', '-var', 'engine', code]
+    # deckdir: the deck's folder, for files next to it (STL meshes): both codes open names from the run folder.
+    cmd = command(code, args) + ['-in', os.path.abspath(deck), '-log', 'none', '-var', 'engine', code,
+                                 '-var', 'deckdir', os.path.dirname(os.path.abspath(deck))]
     for k, v in variables.items():
         cmd += ['-var', k, v]
     print(f'[{code}] ' + ' '.join(cmd) + f'   (in {show(rundir)})', flush=True)

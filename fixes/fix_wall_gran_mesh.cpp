@@ -1,0 +1,551 @@
+#include "fixes/fix_wall_gran_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "contact_models/materials.h"
+#include "contact_models/pair_gran.h"
+#include "contact_models/registry.h"
+#include "core/restart.h"
+#include "core/simulation.h"
+#include "core/threads.h"
+#include "fixes/fix_mesh_surface.h"
+
+namespace sable {
+
+static Vec3d sub3(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+FixWallGranMesh::FixWallGranMesh(Simulation& s, const Args& a) : Fix(s, a) {
+  hooks = atom_tasks = POST_FORCE;
+  vector_size = 3;
+  const ModelSelection sel = parse_model_selection(a, 4);
+  kernel_ = make_kernel(sel, a);
+  ModelSettings settings;
+  kernel_->settings(settings);
+  std::size_t i = sel.next;
+  if (i >= a.size() || a[i] != "mesh") a.fail(i, "'mesh n_meshes K meshes ID1 ... IDK'");
+  if (a.word(i + 1, "'n_meshes'") != "n_meshes") a.fail(i + 1, "'n_meshes'");
+  const long k = a.integer(i + 2, "the number of meshes");
+  if (k < 1) a.fail(i + 2, "at least one mesh");
+  if (a.word(i + 3, "'meshes'") != "meshes") a.fail(i + 3, "'meshes'");
+  for (long m = 0; m < k; ++m) {
+    const std::string& id = a.word(i + 4 + m, "the ID of a fix mesh/surface");
+    if (!dynamic_cast<FixMeshSurface*>(s.find_fix(id))) a.fail(i + 4 + m, "the ID of a fix mesh/surface defined before");
+    mesh_ids_.push_back(id);
+  }
+  i += 4 + k;
+  while (i < a.size()) {
+    if (a[i] == "store_force" || a[i] == "store_force_contact") {
+      if (a.yes_no(i + 1, "yes or no")) a.fail(i + 1, "'no' (use f_" + id + "[1..3] or the mesh's f_ID)");
+      i += 2;
+    } else if (!settings.try_parse(a, i)) {
+      a.fail(i, "a model keyword: " + settings.names());
+    }
+  }
+  hist_size_ = static_cast<int>(kernel_->history_slots().size());
+  find_meshes();
+}
+
+void FixWallGranMesh::find_meshes() {
+  meshes_.clear();
+  for (const std::string& m : mesh_ids_) {
+    auto* f = dynamic_cast<FixMeshSurface*>(sim.find_fix(m));
+    if (!f) args.fail_line("fix mesh/surface " + m + " no longer exists");
+    meshes_.push_back(f);
+  }
+  prev_.resize(meshes_.size());
+  near_.resize(meshes_.size());
+  glue_.resize(meshes_.size());  // filled at init (records() before a run: no glue yet)
+  // The first wall/gran mesh fix of a mesh clears its load each step; the others add to it.
+  owner_.assign(meshes_.size(), false);
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    owner_[m] = true;
+    for (auto& f : sim.fixes) {
+      if (f.get() == this) break;
+      if (auto* w = dynamic_cast<FixWallGranMesh*>(f.get()))
+        for (const std::string& id : w->mesh_ids_) owner_[m] = owner_[m] && id != mesh_ids_[m];
+    }
+  }
+}
+
+void FixWallGranMesh::init() {
+  find_meshes();
+  // Image shifts, code 9 a + 3 b + c with a, b, c in {0: none, 1: -L, 2: +L} per axis.
+  for (int q = 0; q < 27; ++q) {
+    const int c[3] = {q / 9, q / 3 % 3, q % 3};
+    for (int d = 0; d < 3; ++d) shifts_[q][d] = c[d] == 0 ? 0.0 : (c[d] == 1 ? -1.0 : 1.0) * sim.domain.length(d);
+  }
+  near_.assign(meshes_.size(), NearList{});  // the deck may have moved grains since the last run
+  glue_.assign(meshes_.size(), Glue{});
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    meshes_[m]->update_pose();
+    find_glue(static_cast<int>(m));
+  }
+  kernel_->connect(Materials::of(sim), args);
+  freeze_bit_ = frozen_groupbits(sim);
+  setup_pass_ = true;
+}
+
+namespace {
+
+double dist2(const Vec3d& a, const Vec3d& b) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
+bool has_vertex(const TriMesh& m, int t, int v) {
+  return m.tri[3 * t] == v || m.tri[3 * t + 1] == v || m.tri[3 * t + 2] == v;
+}
+
+}  // namespace
+
+// Edge (t, k) of the touch `a` is shared with the touch `b`: the same edge in
+// the same image, or its periodic twin seen from the image one glue shift on.
+bool FixWallGranMesh::shares_edge(int m, const Touchish& a, const Touchish& b) const {
+  const TriMesh& mesh = meshes_[m]->mesh();
+  const int e = 3 * a.tri + a.k;
+  if (a.img == b.img && mesh.nbr[e] == b.tri) return true;
+  const Glue& g = glue_[m];
+  if (g.tri.empty() || g.tri[e] != b.tri) return false;
+  return dist2(Vec3d{shifts_[b.img][0] - shifts_[a.img][0], shifts_[b.img][1] - shifts_[a.img][1],
+                     shifts_[b.img][2] - shifts_[a.img][2]},
+               g.shift[e]) <= 1e-20 * (1 + dist2(g.shift[e], {0, 0, 0}));
+}
+
+// One surface: triangles sharing an inactive edge (also through a periodic
+// boundary) or an inactive corner (same image).
+bool FixWallGranMesh::same_surface(int m, const Touchish& a, const Touchish& b) const {
+  const TriMesh& mesh = meshes_[m]->mesh();
+  if (a.img == b.img) return mesh.same_surface(a.tri, b.tri);
+  const Glue& g = glue_[m];
+  for (int k = 0; k < 3; ++k)
+    if (!g.tri.empty() && g.tri[3 * a.tri + k] == b.tri && !g.active[3 * a.tri + k] &&
+        shares_edge(m, Touchish{a.tri, k, a.img}, Touchish{b.tri, 0, b.img}))
+      return true;
+  return false;
+}
+
+// The touched triangles of one grain (all its images) reduced to its
+// contacts: an edge or corner contact goes when a triangle sharing that edge
+// or corner is nearer (the point is also that triangle's, which counts it);
+// triangles of one surface, and contacts at one point (a convex edge seen
+// from both sides, or from two images), join, and the nearest of each group
+// is the contact (ties: lower index). Per contact: its index in `ts`.
+template <class T>
+static void reduce_touches(const FixWallGranMesh& f, int m, const TriMesh& mesh, std::vector<T>& ts, double r,
+                           std::vector<int>& out) {
+  out.clear();
+  const std::size_t n = ts.size();
+  const double eps = 1e-12 * r * r, same2 = 1e-16 * r * r;  // far above round-off, far below any overlap
+  for (std::size_t a = 0; a < n; ++a) {
+    const TriMesh::Closest& c = ts[a].c;
+    if (c.region == TriMesh::Region::Face) continue;
+    const int t = ts[a].tri;
+    for (std::size_t b = 0; b < n && ts[a].alive; ++b) {
+      if (b == a || !(ts[b].c.dist2 < c.dist2 - eps)) continue;
+      const bool shares = c.region == TriMesh::Region::Edge
+                              ? f.shares_edge(m, {t, c.k, ts[a].img}, {ts[b].tri, 0, ts[b].img})
+                              : ts[a].img == ts[b].img && has_vertex(mesh, ts[b].tri, mesh.tri[3 * t + c.k]);
+      if (shares) ts[a].alive = false;
+    }
+  }
+  std::vector<int> root(n);
+  std::iota(root.begin(), root.end(), 0);
+  auto find = [&](int x) {
+    while (root[x] != x) x = root[x] = root[root[x]];
+    return x;
+  };
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (ts[a].alive && ts[b].alive &&
+          (f.same_surface(m, {ts[a].tri, 0, ts[a].img}, {ts[b].tri, 0, ts[b].img}) ||
+           dist2(ts[a].preal, ts[b].preal) <= same2))
+        root[find(static_cast<int>(b))] = find(static_cast<int>(a));
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!ts[a].alive || find(static_cast<int>(a)) != static_cast<int>(a)) continue;
+    int best = static_cast<int>(a);
+    for (std::size_t b = 0; b < n; ++b) {
+      if (!ts[b].alive || find(static_cast<int>(b)) != static_cast<int>(a)) continue;
+      const auto& cb = ts[b].c;
+      const auto& cr = ts[best].c;
+      if (cb.dist2 < cr.dist2 || (cb.dist2 == cr.dist2 && ts[b].tri < ts[best].tri)) best = static_cast<int>(b);
+    }
+    out.push_back(best);
+  }
+}
+
+// Boundary edges of a mesh that meet again through a periodic boundary (the
+// same two vertices one or more box lengths apart) are glued: one edge, active
+// or not by the angle of its triangles, as any inner edge. Found with the
+// mesh's pose now (meshes that turn away from the axes lose the glue's meaning).
+void FixWallGranMesh::find_glue(int m) {
+  const TriMesh& mesh = meshes_[m]->mesh();
+  const Domain& dom = sim.domain;
+  Glue& g = glue_[m];
+  g = Glue{};
+  if (!dom.wraps(0) && !dom.wraps(1) && !dom.wraps(2)) return;
+  std::vector<int> open;
+  for (std::size_t e = 0; e < mesh.nbr.size(); ++e)
+    if (mesh.nbr[e] < 0) open.push_back(static_cast<int>(e));
+  if (open.empty() || open.size() > 20000) return;  // (quadratic search: large open meshes go without)
+  g.tri.assign(mesh.nbr.size(), -1);
+  g.active.assign(mesh.nbr.size(), 1);
+  g.shift.assign(mesh.nbr.size(), {0, 0, 0});
+  auto ends = [&](int e, Vec3d& a, Vec3d& b) {
+    a = mesh.to_world(mesh.corner(e / 3, e % 3));
+    b = mesh.to_world(mesh.corner(e / 3, (e % 3 + 1) % 3));
+  };
+  const double tol = 1e-9 * std::max({dom.length(0), dom.length(1), dom.length(2)});
+  for (int e : open)
+    for (int q : open) {
+      if (q / 3 == e / 3) continue;
+      Vec3d a, b, c, d;
+      ends(e, a, b);
+      ends(q, c, d);
+      if (dist2(sub3(c, a), sub3(d, b)) > tol * tol) std::swap(c, d);  // the twin may run either way
+      const Vec3d s = sub3(c, a);
+      if (dist2(s, sub3(d, b)) > tol * tol || dist2(s, {0, 0, 0}) < tol * tol) continue;
+      bool whole = true;  // each component: 0 or a whole number of periodic box lengths
+      for (int k = 0; k < 3 && whole; ++k) {
+        if (std::fabs(s[k]) < tol) continue;
+        const double n = std::round(s[k] / dom.length(k));
+        whole = dom.wraps(k) && n != 0 && std::fabs(s[k] - n * dom.length(k)) < tol;
+      }
+      if (!whole) continue;
+      const int t = e / 3, u = q / 3;
+      const double cosang = mesh.normal[3 * t] * mesh.normal[3 * u] + mesh.normal[3 * t + 1] * mesh.normal[3 * u + 1] +
+                            mesh.normal[3 * t + 2] * mesh.normal[3 * u + 2];
+      g.tri[e] = u;
+      g.shift[e] = s;  // world frame (the glue is found with the pose now)
+      g.active[e] = std::fabs(cosang) < mesh.cos_curvature;
+    }
+}
+
+// The mesh's bounding box in the world now (its body box's corners moved).
+static void world_box(const TriMesh& mesh, Vec3d& wlo, Vec3d& whi) {
+  wlo = {1e300, 1e300, 1e300};
+  whi = {-1e300, -1e300, -1e300};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3d p = mesh.to_world({c & 1 ? mesh.bbox_hi[0] : mesh.bbox_lo[0], c & 2 ? mesh.bbox_hi[1] : mesh.bbox_lo[1],
+                                   c & 4 ? mesh.bbox_hi[2] : mesh.bbox_lo[2]});
+    for (int d = 0; d < 3; ++d) wlo[d] = std::min(wlo[d], p[d]), whi[d] = std::max(whi[d], p[d]);
+  }
+}
+
+// The triangles within `reach` of grain i's images (itself and, on periodic
+// axes, one box length either way) that can reach the mesh's box.
+void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p) {
+  std::vector<Touch>& touched = p.touched;
+  touched.clear();
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Domain& dom = sim.domain;
+  const double* x = &sim.atoms.x[3 * i];
+  int code[3][3], ns[3];
+  for (int d = 0; d < 3; ++d) {
+    ns[d] = 0;
+    const double L = dom.wraps(d) ? dom.length(d) : 0.0;
+    for (int q = 0; q < (L > 0 ? 3 : 1); ++q) {
+      const double s = (q == 0 ? 0.0 : q == 1 ? -L : L);
+      if (x[d] + s + reach > wlo[d] && x[d] + s - reach < whi[d]) code[d][ns[d]++] = q;
+    }
+    if (ns[d] == 0) return;
+  }
+  for (int a = 0; a < ns[0]; ++a)
+    for (int b = 0; b < ns[1]; ++b)
+      for (int c = 0; c < ns[2]; ++c) {
+        const int img = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
+        const Vec3d& sh = shifts_[img];
+        const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
+        mesh.near_closest(xb, reach, p.cand, p.seen);
+        for (const TriMesh::Near& nc : p.cand) {
+          if (nc.c.dist2 == 0.0) continue;  // a centre on the surface has no normal
+          touched.push_back({nc.tri, img, nc.c, sub3(mesh.to_world(nc.c.p), sh)});
+        }
+      }
+}
+
+// Grains of the group that can touch mesh m before the list is refreshed: at
+// the last refresh within r + skin of it. Refreshed at each neighbour rebuild
+// (grains move at most skin/2 between) and when a point of the mesh has moved
+// more than skin/2 since (rigid motion: a corner of its box moves most).
+void FixWallGranMesh::refresh_near(int mi) {
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Atoms& at = sim.atoms;
+  NearList& nl = near_[mi];
+  const double half_skin = 0.5 * sim.neighbor.skin;
+  double moved2 = 0;
+  for (int c = 0; c < 8 && nl.builds >= 0; ++c) {
+    const Vec3d p{c & 1 ? mesh.bbox_hi[0] : mesh.bbox_lo[0], c & 2 ? mesh.bbox_hi[1] : mesh.bbox_lo[1],
+                  c & 4 ? mesh.bbox_hi[2] : mesh.bbox_lo[2]};
+    const Vec3d now = mesh.to_world(p);
+    Vec3d then = nl.T;
+    for (int d = 0; d < 3; ++d) then[d] += nl.R[3 * d] * p[0] + nl.R[3 * d + 1] * p[1] + nl.R[3 * d + 2] * p[2];
+    const Vec3d dd = sub3(now, then);
+    moved2 = std::max(moved2, dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]);
+  }
+  if (nl.builds == sim.neighbor.builds && nl.n == at.n && moved2 <= half_skin * half_skin) return;
+  nl.builds = sim.neighbor.builds;
+  nl.n = at.n;
+  std::copy(mesh.R, mesh.R + 9, nl.R);
+  nl.T = mesh.T;
+  nl.atoms.clear();
+  Vec3d wlo, whi;
+  world_box(mesh, wlo, whi);
+  for (std::size_t i = 0; i < at.n; ++i) {
+    if (!(at.mask[i] & groupbit)) continue;
+    touches(mi, i, at.radius[i] + 2 * half_skin, wlo, whi, serial_);
+    if (!serial_.touched.empty()) nl.atoms.push_back(static_cast<int>(i));
+  }
+}
+
+void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p,
+                              std::vector<Hit>& out) {
+  out.clear();
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const Atoms& at = sim.atoms;
+  Vec3d wlo, whi;
+  world_box(mesh, wlo, whi);
+  std::vector<Touch>& touched = p.touched;
+  std::vector<int> contacts;
+  for (std::size_t c = c0; c < c1; ++c) {
+    const std::size_t i = static_cast<std::size_t>(near_[mi].atoms[c]);
+    if (!(at.mask[i] & also)) continue;
+    const double r = at.radius[i], *x = &at.x[3 * i];
+    touches(mi, i, r, wlo, whi, p);
+    if (touched.empty()) continue;
+    reduce_touches(*this, mi, mesh, touched, r, contacts);
+    for (const int rep : contacts) {
+      const Touch& tc = touched[rep];
+      const Vec3d& sh = shifts_[tc.img];
+      const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
+      const double dist = std::sqrt(tc.c.dist2);
+      const Vec3d nb{(xb[0] - tc.c.p[0]) / dist, (xb[1] - tc.c.p[1]) / dist, (xb[2] - tc.c.p[2]) / dist};
+      Hit h;
+      h.tag = at.id[i];
+      h.atom = static_cast<int>(i);
+      h.tri = tc.tri;
+      h.deltan = r - dist;
+      const Vec3d en = mesh.dir_to_world(nb);
+      h.pmesh = mesh.to_world(tc.c.p);
+      const Vec3d vw = mesh.velocity(h.pmesh, tc.tri);
+      for (int d = 0; d < 3; ++d) {
+        h.en[d] = en[d];
+        h.vwall[d] = vw[d];
+        h.point[d] = x[d] - en[d] * dist;
+      }
+      out.push_back(h);
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Hit& p, const Hit& q) { return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri; });
+}
+
+// Triangles t and u are one surface: a shared inactive edge or corner, or an
+// inactive edge glued through a periodic boundary.
+bool FixWallGranMesh::joined(int m, int t, int u) const {
+  if (meshes_[m]->mesh().same_surface(t, u)) return true;
+  const Glue& g = glue_[m];
+  for (int k = 0; k < 3 && !g.tri.empty(); ++k)
+    if (g.tri[3 * t + k] == u && !g.active[3 * t + k]) return true;
+  return false;
+}
+
+// Last step's history of each hit: the same (grain, triangle), else a contact
+// of that grain on a triangle of the same surface (curvature) that has ended
+// (the grain passed onto this triangle), else zeros: as LIGGGHTS 3.8, history
+// does not pass an active edge.
+std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits) const {
+  const std::size_t hs = static_cast<std::size_t>(hist_size_);
+  std::vector<double> out(hs * hits.size(), 0.0);
+  if (hs == 0) return out;
+  const Kept& p = prev_[m];
+  auto hit_now = [&](long tag, int tri) {
+    return std::binary_search(hits.begin(), hits.end(), Hit{tag, 0, tri, 0, {}, {}, {}, {}},
+                              [](const Hit& a, const Hit& b) { return a.tag != b.tag ? a.tag < b.tag : a.tri < b.tri; });
+  };
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const Hit& h = hits[k];
+    const auto lo = std::lower_bound(p.tag.begin(), p.tag.end(), h.tag) - p.tag.begin();
+    const auto hi = std::upper_bound(p.tag.begin(), p.tag.end(), h.tag) - p.tag.begin();
+    long from = -1;
+    for (auto j = lo; j < hi && from < 0; ++j)
+      if (p.tri[j] == h.tri) from = j;
+    for (auto j = lo; j < hi && from < 0; ++j) {
+      const int t = p.tri[j];
+      if (hit_now(h.tag, t)) continue;  // that contact goes on
+      if (joined(m, t, h.tri)) from = j;
+    }
+    if (from >= 0) std::copy_n(p.hist.begin() + from * hs, hs, out.begin() + k * hs);
+  }
+  return out;
+}
+
+WallBatch FixWallGranMesh::batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols,
+                                 std::vector<int>& atoms, std::vector<int>& rows, double* hist) {
+  const std::size_t n = hits.size();
+  cols.assign(7 * n, 0.0);  // deltan, en, vwall
+  atoms.resize(n);
+  rows.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    atoms[k] = hits[k].atom;
+    rows[k] = static_cast<int>(k);
+    cols[k] = hits[k].deltan;
+    for (int d = 0; d < 3; ++d) {
+      cols[n + 3 * k + d] = hits[k].en[d];
+      cols[4 * n + 3 * k + d] = hits[k].vwall[d];
+    }
+  }
+  Atoms& at = sim.atoms;
+  WallBatch b;
+  b.a = atom_view(at, at.n, freeze_bit_);
+  b.n = n;
+  b.atom = atoms.data();
+  b.deltan = cols.data();
+  b.en = cols.data() + n;
+  b.vwall = cols.data() + 4 * n;
+  if (hist_size_ > 0) {
+    b.hist = hist;
+    b.hist_index = rows.data();
+    b.hist_stride = hist_size_;
+  }
+  b.wall_type = meshes_[m]->wall_type();
+  b.ctx.dt = sim.dt;
+  return b;
+}
+
+void FixWallGranMesh::begin(FixHook) {
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    meshes_[m]->update_pose();
+    if (owner_[m]) meshes_[m]->mesh().clear_load();
+    refresh_near(static_cast<int>(m));
+  }
+  pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
+  setup_pass_ = false;
+  parts_.resize(static_cast<std::size_t>(atom_pass_threads()));
+  for (Part& p : parts_) {
+    p.mesh.resize(meshes_.size());
+    for (auto& pm : p.mesh) pm.hits.clear();  // a serial pass fills only the first
+  }
+}
+
+// The contacts of the near grains among atoms [lo, hi): found, given their
+// history and evaluated on this thread (the grains are this thread's alone).
+void FixWallGranMesh::range(FixHook, const AtomRange& r) {
+  const std::size_t lo = r.lo, hi = r.hi;
+  Part& p = parts_[r.thread];
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const std::vector<int>& near = near_[m].atoms;
+    const auto c0 = std::lower_bound(near.begin(), near.end(), static_cast<int>(lo)) - near.begin();
+    const auto c1 = std::lower_bound(near.begin(), near.end(), static_cast<int>(hi)) - near.begin();
+    Part::PerMesh& pm = p.mesh[m];
+    const int mi = static_cast<int>(m);
+    collect(mi, ~0u, static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), p, pm.hits);
+    pm.hist = history_for(mi, pm.hits);
+    WallBatch b = batch(mi, pm.hits, pm.cols, pm.atoms, pm.rows, pm.hist.data());
+    pm.force.assign(3 * pm.hits.size(), 0.0);
+    b.force = pm.force.data();
+    b.ctx.update = pass_update_;
+    if (!pm.hits.empty()) kernel_->wall_forces(b);
+  }
+}
+
+// The threads' contacts of each mesh in (grain id, triangle) order: the
+// reaction on the mesh summed, and the history kept for the next pass.
+void FixWallGranMesh::end(FixHook) {
+  double total[3] = {0, 0, 0};
+  const std::size_t hs = static_cast<std::size_t>(hist_size_);
+  std::vector<std::pair<int, int>> order;  // (part, contact)
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    order.clear();
+    for (std::size_t t = 0; t < parts_.size(); ++t)
+      for (std::size_t k = 0; k < parts_[t].mesh[m].hits.size(); ++k) order.emplace_back(static_cast<int>(t), static_cast<int>(k));
+    std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+      const Hit& p = parts_[a.first].mesh[m].hits[a.second];
+      const Hit& q = parts_[b.first].mesh[m].hits[b.second];
+      return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri;
+    });
+    TriMesh& mesh = meshes_[m]->mesh();
+    const std::uint32_t mesh_bits = meshes_[m]->groupbit;  // LIGGGHTS' stress module: grains of the mesh fix's group
+    Kept& kept = prev_[m];
+    kept.tag.resize(order.size());
+    kept.tri.resize(order.size());
+    kept.hist.resize(order.size() * hs);
+    for (std::size_t r = 0; r < order.size(); ++r) {
+      const Part::PerMesh& pm = parts_[order[r].first].mesh[m];
+      const std::size_t k = static_cast<std::size_t>(order[r].second);
+      const Hit& h = pm.hits[k];
+      const Vec3d on_mesh{0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]};
+      for (int d = 0; d < 3; ++d) total[d] += on_mesh[d];
+      if (sim.atoms.mask[h.atom] & mesh_bits) mesh.add_load(h.pmesh, on_mesh);
+      kept.tag[r] = h.tag;
+      kept.tri[r] = h.tri;
+      std::copy_n(pm.hist.begin() + k * hs, hs, kept.hist.begin() + r * hs);
+    }
+  }
+  std::copy(total, total + 3, force_);
+}
+
+void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
+  out.clear();
+  out.hist_size = hist_size_;
+  rec_ = Rec{};
+  std::vector<Hit> hits;
+  std::vector<double> cols;
+  std::vector<int> atoms, rows;
+  ContactRecords part;
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const int mi = static_cast<int>(m);
+    meshes_[m]->update_pose();
+    refresh_near(mi);
+    collect(mi, bits, 0, near_[m].atoms.size(), serial_, hits);
+    std::vector<double> hist = history_for(mi, hits);
+    WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
+    b.ctx.update = false;
+    const int offset = static_cast<int>(rec_.tri.size());
+    for (const Hit& h : hits) {
+      rec_.vwall.insert(rec_.vwall.end(), h.vwall, h.vwall + 3);
+      rec_.point.insert(rec_.point.end(), h.point.begin(), h.point.end());
+      rec_.tri.push_back(h.tri);
+      rec_.mesh.push_back(mi);
+    }
+    if (hits.empty()) continue;
+    kernel_->wall_records(b, part);
+    for (ContactRecord r : part.rows) {
+      r.shift += offset;
+      out.rows.push_back(r);
+    }
+    out.hist.insert(out.hist.end(), part.hist.begin(), part.hist.end());
+  }
+}
+
+bool FixWallGranMesh::write_state(std::string& out) const {
+  restart::Packer p;
+  p.put<std::uint64_t>(prev_.size());
+  for (const Kept& k : prev_) {
+    std::vector<std::int64_t> tags(k.tag.begin(), k.tag.end());
+    p.put_vector(tags);
+    p.put_vector(k.tri);
+    p.put_vector(k.hist);
+  }
+  out = p.bytes;
+  return true;
+}
+
+void FixWallGranMesh::read_state(const std::string& in) {
+  restart::Unpacker u(in, "the restart state of fix " + id);
+  const auto n = u.get<std::uint64_t>();
+  if (n != prev_.size()) args.fail_line("the restart file's fix " + id + " had " + std::to_string(n) + " meshes");
+  for (Kept& k : prev_) {
+    const auto tags = u.get_vector<std::int64_t>();
+    k.tag.assign(tags.begin(), tags.end());
+    k.tri = u.get_vector<int>();
+    k.hist = u.get_vector<double>();
+    if (k.hist.size() != k.tri.size() * hist_size_) args.fail_line("the restart file's fix " + id + " has another model");
+  }
+}
+
+double FixWallGranMesh::compute_vector(int i) {
+  if (i < 1 || i > 3) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..3");
+  return force_[i - 1];
+}
+
+}  // namespace sable

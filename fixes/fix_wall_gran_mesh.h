@@ -1,0 +1,149 @@
+#pragma once
+// fix ID group wall/gran model M [tangential T] [rolling_friction R]
+//     mesh n_meshes K meshes ID1 ... IDK [keyword on|off ...]
+// LIGGGHTS 3.8 mesh walls: every grain of the group touching a triangle of a
+// fix mesh/surface (its face, an active edge or an active corner) gets one
+// wall contact per touched surface, through the same compiled kernel as
+// `pair_style gran` and the primitive walls, with the mesh's material type
+// and the mesh's surface velocity (fix move/mesh) at the contact point.
+//   - Per contact, the closest point of the triangle to the grain centre.
+//     A contact on an edge or corner is dropped when a triangle sharing that
+//     edge or corner is nearer (the point belongs to it too); triangles of one
+//     surface (shared inactive edge or corner, see fix mesh/surface curvature)
+//     and contacts at one point count once: the nearest triangle.
+//   - History (tangential, rolling) per (grain id, mesh, triangle), kept
+//     through sorting and rebuilds; when a grain's contact passes to another
+//     triangle of the same surface its history goes with it (not across an
+//     active edge: LIGGGHTS 3.8, checked by input_scripts/compare/mesh_fold.in).
+//   - The reaction (minus the force on the grain) acts on the mesh at the
+//     contact point: f_MESH[1..3], torque f_MESH[4..6] about its reference point.
+//   - Periodic boxes: a grain sees the mesh through the boundary (nearest images).
+//   - Each thread finds and evaluates the contacts of its own atoms (a
+//     POST_FORCE atom task: the pipelined fast path); the mesh's force and torque and
+//     the kept history are then summed / merged in a fixed order (grain id,
+//     triangle): bits independent of threads and of the atoms' order in memory.
+// Output f_ID[1..3]: total force of the grains on all the fix's meshes.
+#include <memory>
+#include <vector>
+
+#include "contact_models/kernel.h"
+#include "core/fix.h"
+#include "core/mesh.h"
+
+namespace sable {
+
+class FixMeshSurface;
+
+class FixWallGranMesh : public Fix {
+ public:
+  FixWallGranMesh(Simulation& sim, const Args& args);
+  void init() override;
+  void begin(FixHook) override;
+  void range(FixHook, const AtomRange& r) override;
+  void end(FixHook) override;
+  double compute_vector(int i) override;
+  // Restart: the contacts' history (per mesh: grain ids, triangles, rows).
+  bool write_state(std::string& out) const override;
+  void read_state(const std::string& in) override;
+
+  ContactKernel& kernel() { return *kernel_; }
+  // A triangle seen from image `img` of a grain (k: an edge index where it matters).
+  struct Touchish {
+    int tri, k, img;
+  };
+  bool shares_edge(int m, const Touchish& a, const Touchish& b) const;
+  bool same_surface(int m, const Touchish& a, const Touchish& b) const;
+  bool joined(int m, int t, int u) const;  // same surface, through any periodic image
+  // Per-contact records at the current state (no force or history change), as
+  // FixWallGran::records. Record r's wall point, wall velocity and triangle:
+  // point(r.shift), vwall(r.shift), triangle(r.shift); mesh(r.shift) its mesh's index in this fix.
+  void records(std::uint32_t groupbit, ContactRecords& out);
+  const double* vwall(int k) const { return &rec_.vwall[3 * k]; }
+  const double* point(int k) const { return &rec_.point[3 * k]; }
+  int triangle(int k) const { return rec_.tri[k]; }
+  int mesh(int k) const { return rec_.mesh[k]; }
+
+  // One grain-triangle contact of a step.
+  struct Hit {
+    long tag;
+    int atom, tri;
+    double deltan, en[3], vwall[3];
+    Vec3d point, pmesh;  // closest point seen from the grain (its image) / on the mesh itself
+  };
+
+ private:
+  std::unique_ptr<ContactKernel> kernel_;
+  std::vector<std::string> mesh_ids_;
+  std::vector<FixMeshSurface*> meshes_;
+  std::vector<bool> owner_;  // this fix clears the mesh's force (first wall fix using it)
+  int hist_size_ = 0;
+  bool setup_pass_ = true;
+  std::uint32_t freeze_bit_ = 0;
+  double force_[3] = {0, 0, 0};
+  // Last step's contacts per mesh, sorted by (tag, triangle), and their history.
+  struct Kept {
+    std::vector<long> tag;
+    std::vector<int> tri;
+    std::vector<double> hist;
+  };
+  std::vector<Kept> prev_;
+  // Records of the last records() call (all meshes, in order).
+  struct Rec {
+    std::vector<double> vwall, point;
+    std::vector<int> tri, mesh;
+  } rec_;
+
+  void find_meshes();
+  // Periodic glue per mesh: boundary edge e = 3 t + k meets triangle tri[e]'s
+  // edge `shift[e]` (body frame) away through a periodic boundary.
+  struct Glue {
+    std::vector<int> tri;
+    std::vector<Vec3d> shift;
+    std::vector<std::uint8_t> active;
+  };
+  std::vector<Glue> glue_;
+  Vec3d shifts_[27] = {};  // grain image shifts by code (init)
+  void find_glue(int m);
+  // A triangle within reach of one image of a grain: its closest point (body
+  // frame of the mesh, as seen from that image) and that point in the grain's own frame.
+  struct Touch {
+    int tri, img;
+    TriMesh::Closest c;
+    Vec3d preal;
+    bool alive = true;
+  };
+  // One thread's search scratch and, per mesh, its contacts of a pass.
+  struct alignas(64) Part {
+    std::vector<Touch> touched;
+    std::vector<TriMesh::Near> cand;
+    TriMesh::Scratch seen;
+    struct PerMesh {
+      std::vector<Hit> hits;
+      std::vector<double> hist, force, cols;
+      std::vector<int> atoms, rows;
+    };
+    std::vector<PerMesh> mesh;
+  };
+  std::vector<Part> parts_;
+  Part serial_;  // refresh_near and records
+  bool pass_update_ = true;
+  void touches(int m, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p);
+  // Grains that can reach mesh m until the next refresh (see refresh_near).
+  struct NearList {
+    std::vector<int> atoms;
+    long builds = -1;
+    std::size_t n = 0;
+    double R[9];
+    Vec3d T;
+  };
+  std::vector<NearList> near_;
+  void refresh_near(int m);
+  // Contacts with mesh m of the grains of near_[m].atoms[c0, c1) in groupbit & also, sorted by (tag, triangle).
+  void collect(int m, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p, std::vector<Hit>& out);
+  // History rows for the hits from prev_[m] (same triangle, else the same surface).
+  std::vector<double> history_for(int m, const std::vector<Hit>& hits) const;
+  WallBatch batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols, std::vector<int>& atoms,
+                  std::vector<int>& rows, double* hist);
+};
+
+}  // namespace sable
