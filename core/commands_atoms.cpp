@@ -8,7 +8,7 @@
 namespace sable {
 namespace {
 
-// lattice sc|bcc|fcc|sq|sq2|hex|none scale: scale is the lattice constant (SI units).
+// lattice sc|bcc|fcc|sq|sq2|hex|none scale [origin x y z]: scale is the lattice constant (SI units).
 void cmd_lattice(Simulation& sim, const Args& a) {
   const std::string& style = a.word(1, "a lattice style: none, sc, bcc, fcc, sq, sq2, hex");
   Lattice& L = sim.lattice;
@@ -35,7 +35,16 @@ void cmd_lattice(Simulation& sim, const Args& a) {
   }
   if (two_d) L.a[2] = s;
   L.style = style;
-  for (std::size_t i = 3; i < a.size(); ++i) a.fail(i, "nothing (orient/origin/spacing are not supported)");
+  // origin x y z (LAMMPS): shifts every basis site by these fractions of the lattice spacings
+  for (std::size_t i = 3; i < a.size(); i += 4) {
+    if (a[i] != "origin") a.fail(i, "'origin' or nothing (orient and spacing are not supported)");
+    for (int k = 0; k < 3; ++k) {
+      const double o = a.num(i + 1 + k, "an origin fraction in [0, 1)");
+      if (!(o >= 0.0 && o < 1.0)) a.fail(i + 1 + k, "an origin fraction in [0, 1)");
+      if (two_d && k == 2 && o != 0.0) a.fail(i + 3, "origin z = 0 in 2D");
+      for (auto& b : L.basis) b[k] += o;
+    }
+  }
 }
 
 void create_on_lattice(Simulation& sim, const Args& a, int type, const Region* region) {

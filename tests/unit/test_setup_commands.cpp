@@ -362,3 +362,29 @@ TEST(DeleteAtoms, Errors) {
   EXPECT_NE(error_of(d, "delete_atoms all").find("group, region or porosity"), std::string::npos);
   EXPECT_NE(error_of(d, "delete_atoms group all compress maybe").find("yes/no"), std::string::npos);
 }
+
+// lattice ... origin x y z (LAMMPS, LIGGGHTS): every basis site shifted by these
+// fractions of the spacing. sc 0.1 in the unit box with origin 0.5: sites at
+// (k + 0.5) 0.1, k = 0..9 on each axis, 1000 in all (none on the upper faces).
+TEST(LatticeCommand, OriginShiftsTheSites) {
+  Deck d;
+  d(R"(units si
+atom_style granular
+region box block 0 1 0 1 0 1 units box
+create_box 1 box
+lattice sc 0.1 origin 0.5 0.5 0.5
+create_atoms 1 box)");
+  ASSERT_EQ(d->atoms.n, 1000u);
+  for (std::size_t i = 0; i < d->atoms.n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double cell = d->atoms.x[3 * i + k] / 0.1 - 0.5;
+      EXPECT_NEAR(cell, std::round(cell), 1e-9) << "atom " << i << " axis " << k;
+    }
+  Deck e;
+  e(R"(units si
+atom_style granular
+region box block 0 1 0 1 0 1 units box
+create_box 1 box)");
+  EXPECT_NE(error_of(e, "lattice sc 0.1 origin 0.5 1 0").find("expected an origin fraction in [0, 1)"), std::string::npos);
+  EXPECT_NE(error_of(e, "lattice sc 0.1 orient x 1 0 0").find("expected 'origin' or nothing"), std::string::npos);
+}
