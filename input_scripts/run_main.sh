@@ -21,7 +21,7 @@ cd "$root"
 live=liggghts-stored
 command -v liggghts >/dev/null && live=liggghts
 status=0
-for deck in collisions_hertz collisions_hooke incline poured_bed; do
+for deck in collisions_hertz collisions_hooke incline poured_bed mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor; do
   ref=$live
   [ "$deck" = poured_bed ] && ref=liggghts-stored  # 10 LIGGGHTS seeds take minutes: use the stored ones
   echo "== compare $deck (sable vs $ref)"
