@@ -451,76 +451,91 @@ class ContactLoopT final : public ContactLoop {
   [[gnu::target("avx512f"), gnu::always_inline]] static inline void put8(double* p, __mmask8 m, __m512d v) {
     _mm512_storeu_pd(p, _mm512_maskz_compress_pd(m, v));
   }
+  // Eight consecutive list entries at a time, whatever atoms they belong to
+  // (an atom has only a few: one atom per vector would leave most lanes
+  // empty): each lane's i from first[] by a few vector compares; with `trim`
+  // (phase B), lanes with j >= hi are dropped (an atom's last entries: the
+  // list is sorted by j). The same tests in list order: the same contacts.
   [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw")]] void pair_entries_avx512(const PairBatch& b, int lo, int hi,
                                                                                 bool trim, Chunk& ch) const {
     const ListView L = list_view(b);
     const int* first = b.first;
     int n = 0;
     const int lead = prefetch_lead(b);
+    const int kend = first[hi];
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), one = _mm256_set1_epi32(1);
+    const __m256i hiv = _mm256_set1_epi32(trim ? hi : INT32_MAX);
     const __m128i noshift = _mm_set1_epi8(static_cast<char>(NeighborList::kNoShift));
     const __m512d zero = _mm512_setzero_pd();
-    for (int i = lo; i < hi; ++i) {
-      if (i + lead < hi) prefetch_atom(b.a, i + lead);
-      const int kend = entries_end(L, first, i, hi, trim);
-      if (first[i] == kend) continue;
-      const __m512d xi = _mm512_set1_pd(L.x[3 * i]), yi = _mm512_set1_pd(L.x[3 * i + 1]);
-      const __m512d zi = _mm512_set1_pd(L.x[3 * i + 2]), radi = _mm512_set1_pd(L.radius[i]);
-      for (int k = first[i]; k < kend; k += 8) {
-        if (n > Chunk::kCap - 8) {
-          ch.n = n;
-          flush(b, ch);
-          n = 0;
-        }
-        const int cnt = std::min(8, kend - k);
-        const __mmask8 m = static_cast<__mmask8>((1u << cnt) - 1);
-        const __m256i j = _mm256_maskz_loadu_epi32(m, L.jlist + k);
-        alignas(32) int jj[8];  // lanes past cnt read atom 0 (masked off below)
-        _mm256_store_si256(reinterpret_cast<__m256i*>(jj), j);
-        __m512d xj, yj, zj;
-        rows3(L.x, jj, xj, yj, zj);
-        const __m128i code = _mm_maskz_loadu_epi8(m, L.shift + k);
-        if (_mm_mask_cmpneq_epi8_mask(m, code, noshift)) {  // periodic images: x_j + shift, lane by lane
-          alignas(64) double px[8], py[8], pz[8];
-          _mm512_store_pd(px, xj);
-          _mm512_store_pd(py, yj);
-          _mm512_store_pd(pz, zj);
-          for (int l = 0; l < cnt; ++l)
-            if (L.shift[k + l] != NeighborList::kNoShift) {
-              const double* sh = L.shift_vec[L.shift[k + l]];
-              px[l] += sh[0];
-              py[l] += sh[1];
-              pz[l] += sh[2];
-            }
-          xj = _mm512_load_pd(px);
-          yj = _mm512_load_pd(py);
-          zj = _mm512_load_pd(pz);
-        }
-        const __m512d dx = _mm512_sub_pd(xi, xj), dy = _mm512_sub_pd(yi, yj), dz = _mm512_sub_pd(zi, zj);
-        const __m512d rsq =
-            _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
-        const __m512d radj = _mm512_mask_i32gather_pd(zero, m, j, L.radius, 8);
-        const __m512d radsum = _mm512_add_pd(radi, radj);
-        const __mmask8 touch = _mm512_mask_cmp_pd_mask(m, rsq, _mm512_mul_pd(radsum, radsum), _CMP_NGE_UQ);
-        if constexpr (kH > 0) {
-          __m256i r = _mm256_maskz_loadu_epi32(m, L.row + k);
-          const __mmask8 has = _mm256_mask_cmpge_epi32_mask(m, r, _mm256_setzero_si256());
-          const __mmask8 change = (touch & ~has) | (L.forget ? (m & ~touch & has) : 0);
-          if (change) {  // contacts begin (a new, zeroed row) or end (no row)
-            for (int l = 0; l < cnt; ++l)
-              if ((change >> l) & 1) L.row[k + l] = ((touch >> l) & 1) ? L.store->new_row() : ContactStore::kNone;
-            r = _mm256_maskz_loadu_epi32(m, L.row + k);
-          }
-          put8(ch.row + n, touch, r);
-        }
-        put8(ch.i + n, touch, _mm256_set1_epi32(i));
-        put8(ch.j + n, touch, j);
-        put8(ch.dx + n, touch, dx);
-        put8(ch.dy + n, touch, dy);
-        put8(ch.dz + n, touch, dz);
-        put8(ch.radi + n, touch, radi);
-        put8(ch.radj + n, touch, radj);
-        n += __builtin_popcount(touch);
+    int i = lo, pf = lo;  // atom of entry k; atoms prefetched so far
+    for (int k = first[lo]; k < kend; k += 8) {
+      while (first[i + 1] <= k) ++i;  // (skips atoms without entries)
+      if (n > Chunk::kCap - 8) {
+        ch.n = n;
+        flush(b, ch);
+        n = 0;
       }
+      const int cnt = std::min(8, kend - k);
+      const __mmask8 all = static_cast<__mmask8>((1u << cnt) - 1);
+      // lane l's atom: i plus the number of atom starts first[i + 1 ..] <= k + l
+      const __m256i kl = _mm256_add_epi32(_mm256_set1_epi32(k), lane);
+      __m256i iv = _mm256_set1_epi32(i);
+      while (i + 1 < hi && first[i + 1] < k + cnt) {
+        ++i;
+        iv = _mm256_mask_add_epi32(iv, _mm256_cmpge_epi32_mask(kl, _mm256_set1_epi32(first[i])), iv, one);
+      }
+      for (; pf <= i && pf + lead < hi; ++pf) prefetch_atom(b.a, pf + lead);
+      const __m256i j = _mm256_maskz_loadu_epi32(all, L.jlist + k);
+      const __mmask8 m = _mm256_mask_cmplt_epi32_mask(all, j, hiv);
+      alignas(32) int ii[8], jj[8];  // lanes past cnt read atom 0 (masked off below)
+      _mm256_store_si256(reinterpret_cast<__m256i*>(ii), _mm256_maskz_mov_epi32(all, iv));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(jj), j);
+      __m512d xi, yi, zi, xj, yj, zj;
+      rows3(L.x, ii, xi, yi, zi);
+      rows3(L.x, jj, xj, yj, zj);
+      const __m128i code = _mm_maskz_loadu_epi8(all, L.shift + k);
+      if (_mm_mask_cmpneq_epi8_mask(m, code, noshift)) {  // periodic images: x_j + shift, lane by lane
+        alignas(64) double px[8], py[8], pz[8];
+        _mm512_store_pd(px, xj);
+        _mm512_store_pd(py, yj);
+        _mm512_store_pd(pz, zj);
+        for (int l = 0; l < cnt; ++l)
+          if (((m >> l) & 1) && L.shift[k + l] != NeighborList::kNoShift) {
+            const double* sh = L.shift_vec[L.shift[k + l]];
+            px[l] += sh[0];
+            py[l] += sh[1];
+            pz[l] += sh[2];
+          }
+        xj = _mm512_load_pd(px);
+        yj = _mm512_load_pd(py);
+        zj = _mm512_load_pd(pz);
+      }
+      const __m512d dx = _mm512_sub_pd(xi, xj), dy = _mm512_sub_pd(yi, yj), dz = _mm512_sub_pd(zi, zj);
+      const __m512d rsq =
+          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+      const __m512d radi = _mm512_mask_i32gather_pd(zero, m, iv, L.radius, 8);
+      const __m512d radj = _mm512_mask_i32gather_pd(zero, m, j, L.radius, 8);
+      const __m512d radsum = _mm512_add_pd(radi, radj);
+      const __mmask8 touch = _mm512_mask_cmp_pd_mask(m, rsq, _mm512_mul_pd(radsum, radsum), _CMP_NGE_UQ);
+      if constexpr (kH > 0) {
+        __m256i r = _mm256_maskz_loadu_epi32(m, L.row + k);
+        const __mmask8 has = _mm256_mask_cmpge_epi32_mask(m, r, _mm256_setzero_si256());
+        const __mmask8 change = (touch & ~has) | (L.forget ? (m & ~touch & has) : 0);
+        if (change) {  // contacts begin (a new, zeroed row) or end (no row), in list order
+          for (int l = 0; l < cnt; ++l)
+            if ((change >> l) & 1) L.row[k + l] = ((touch >> l) & 1) ? L.store->new_row() : ContactStore::kNone;
+          r = _mm256_maskz_loadu_epi32(m, L.row + k);
+        }
+        put8(ch.row + n, touch, r);
+      }
+      put8(ch.i + n, touch, iv);
+      put8(ch.j + n, touch, j);
+      put8(ch.dx + n, touch, dx);
+      put8(ch.dy + n, touch, dy);
+      put8(ch.dz + n, touch, dz);
+      put8(ch.radi + n, touch, radi);
+      put8(ch.radj + n, touch, radj);
+      n += __builtin_popcount(touch);
     }
     ch.n = n;
   }
