@@ -434,6 +434,56 @@ TEST(StressCG, FrameMeshMapsNodesAndRotatesTensorsBack) {
   }
 }
 
+// A column at rest under gravity, built in equilibrium: 12 layers of 4 x 4
+// touching grains (periodic in x and y) on a zplane floor, each layer's
+// contacts with the one below compressed by the weight above (kn dn = k m g).
+// Away from the floor and the top by more than the support, stress_zz(z) is
+// the weight above per area, m g (z_top - z) / d^3 (z_top = top layer + d/2:
+// a linear profile is unchanged by a symmetric kernel; the layers' staircase
+// differs from it by a sawtooth the kernel damps). Measured deviation at most
+// 2.3e-3 m g / d^2 (Lucy, w = 2 d): tolerance 0.01 m g / d^2 (of a stress up to
+// 9.5 m g / d^2); stress_xx, stress_yy 0 (no lateral forces; 1e-9).
+TEST(StressCG, ColumnUnderGravityCarriesTheWeightAbove) {
+  const double d = 0.002, kn = 2e5, g = 9.81;
+  const int N = 12;
+  Deck deck;
+  std::string h = head("p p f", "0 0.008 0 0.008 0 0.03");
+  h.replace(h.find("kn peratomtypepair 1 2000"), 25, "kn peratomtypepair 1 200000");
+  deck(h);
+  deck("fix floor all wall/gran model hooke/stiffness tangential history primitive type 1 zplane 0.0 "
+       "absolute_damping on\nfix grav all gravity 9.81 vector 0 0 -1");
+  deck("create_atoms 1 single 0.001 0.001 0.001 units box\nset group all diameter 0.002 density 2500");
+  const double mg = deck->atoms.rmass[0] * g;
+  deck("delete_atoms group all");
+  double z = d / 2 - N * mg / kn;  // the floor carries all N layers
+  char line[160];
+  for (int k = 0; k < N; ++k) {
+    if (k > 0) z += d - (N - k) * mg / kn;  // the contacts below layer k carry N - k layers
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) {
+        std::snprintf(line, sizeof line, "create_atoms 1 single %.17g %.17g %.17g units box", (i + 0.5) * d,
+                      (j + 0.5) * d, z);
+        deck(line);
+      }
+  }
+  deck("set group all diameter 0.002 density 2500");
+  const double ztop = z + d / 2;
+  deck("compute cg all stress/cg kernel lucy 0.004 grid 0.0013 0.0017 1 0.0023 0.0027 1 0.0049 0.0191 29");
+  deck("run 0");
+  const std::vector<double>& out = cg_of(deck, "cg")->fields();
+  const sable::CgField& f = cg_of(deck, "cg")->field();
+  double worst = 0;
+  for (int k = 0; k < 29; ++k) {
+    const double zk = f.coord(2, k), want = mg * (ztop - zk) / (d * d * d);
+    const double* o = &out[k * CgField::kFields];
+    worst = std::max(worst, std::fabs(o[kS + ZZ] - want) / (mg / (d * d)));
+    EXPECT_NEAR(o[kS + ZZ], want, 0.01 * mg / (d * d)) << "z " << zk;
+    EXPECT_NEAR(o[kS + XX], 0.0, 1e-9 * mg / (d * d));
+    EXPECT_NEAR(o[kS + YY], 0.0, 1e-9 * mg / (d * d));
+  }
+  std::printf("[ measured ] column: stress_zz deviation at most %.2e m g / d^2\n", worst);
+}
+
 // fix ave/cg: two colliding grains sampled every 2 steps, averaged every 6:
 // the file's rows are the means of the compute's samples (1e-12 relative),
 // with the step, sample count, node coordinates and attributes; f_ID is the last mean.
