@@ -7,7 +7,7 @@ guillard2015 Fig. 7 in a vertical plane: at each node the ellipse sigma n / P
 (n a unit vector of the plane), i.e. axes along the in-plane principal
 directions with lengths proportional to eigenvalue / P, coloured by P.
 
-    cg_fields.py F.h5 [--windows A:B] [--line P.png] [--ellipses E.png] [--plane xz|yz] [--at 0]
+    cg_fields.py F.h5 [--windows=A:B] [--line P.png] [--ellipses E.png] [--plane xz|yz] [--at 0]
 
 Grid coordinates are those of the compute (the mesh body frame with `frame mesh`).
 """
@@ -76,16 +76,16 @@ def plot_ellipses(d, out, plane="xz", at=0.0):
     t = tensor(s)[..., [a, 2], :][..., :, [a, 2]]  # in-plane 2x2
     P = pressure(s)
     val, vec = np.linalg.eigh(t)
-    ok = P > 0
+    ok = P > 1e-3 * P.max()  # empty and surface nodes: no stress to draw
     h = min(np.diff(d["xyz"[a]]).min(initial=np.inf), np.diff(d["z"]).min(initial=np.inf))
     h = h if np.isfinite(h) else 1.0
     X, Z = np.meshgrid(d["xyz"[a]], d["z"], indexing="ij")
-    size = 0.45 * h / np.maximum(np.abs(val[..., 1]) / np.where(ok, P, 1), 1e-12)[ok].max() if ok.any() else h
-    widths = 2 * size * val[..., 1][ok] / P[ok]  # major axis: larger eigenvalue
-    heights = 2 * size * val[..., 0][ok] / P[ok]
+    # Diameters 0.3 h per unit of eigenvalue / P (at most 3 for a compressive tensor: 0.9 h).
+    widths = 0.3 * h * np.clip(val[..., 1][ok] / P[ok], 0, 3)  # major axis: larger eigenvalue
+    heights = 0.3 * h * np.clip(val[..., 0][ok] / P[ok], 0, 3)
     angles = np.degrees(np.arctan2(vec[..., 1, 1], vec[..., 0, 1]))[ok]
     fig, ax = plt.subplots(figsize=(6, 7))
-    ec = EllipseCollection(widths, np.abs(heights), angles, units="xy", offsets=np.c_[X[ok], Z[ok]],
+    ec = EllipseCollection(widths, heights, angles, units="xy", offsets=np.c_[X[ok], Z[ok]],
                            offset_transform=ax.transData, array=P[ok], cmap="viridis")
     ax.add_collection(ec)
     ax.autoscale_view()
@@ -93,14 +93,14 @@ def plot_ellipses(d, out, plane="xz", at=0.0):
     ax.set_xlabel(plane[0])
     ax.set_ylabel("z")
     ax.set_title(f"sigma n / P in the {plane} plane at {'xyz'[cut]} = {d['xyz'[cut]][k]:.3g}")
-    fig.colorbar(ec, label="P (Pa)")
+    fig.colorbar(ec, label="P (Pa)", shrink=0.6)
     fig.savefig(out, dpi=150)
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("file")
-    p.add_argument("--windows", default=":", help="python slice of windows to average, e.g. -10: (default all)")
+    p.add_argument("--windows", default=":", help="python slice of windows to average, e.g. --windows=-10: (default all)")
     p.add_argument("--line", help="figure: P and phi along the vertical line x = y = 0")
     p.add_argument("--ellipses", help="figure: stress ellipses in a vertical plane")
     p.add_argument("--plane", default="xz", choices=("xz", "yz"))
