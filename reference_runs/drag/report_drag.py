@@ -230,7 +230,7 @@ def reference_case(series, code):
     return max(ran, key=lambda c: c['scene']['particle_steps']) if ran else None
 
 
-def fig_speed(cases, path):
+def fig_speed(cases, path, clock):
     names = sorted({c['series'] for c in cases if c.get('series')})
     fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 3.4), squeeze=False)
     for ax, name in zip(axes[0], names):
@@ -247,13 +247,13 @@ def fig_speed(cases, path):
                 m, se, _ = sm['F_stat']
                 y = 100 * abs(m - f_ref) / f_ref
                 star = c is ref
-                ax.errorbar(sm['wall'], y, 100 * se / f_ref, marker='*' if star else 'o', ms=10 if star else 5,
+                ax.errorbar(sm[clock], y, 100 * se / f_ref, marker='*' if star else 'o', ms=10 if star else 5,
                             color=COLORS[code], capsize=2, ls='none')
-                ax.annotate(c['name'] + (' (ref)' if star else ''), (sm['wall'], y), fontsize=6,
+                ax.annotate(c['name'] + (' (ref)' if star else ''), (sm[clock], y), fontsize=6,
                             xytext=(3, 3), textcoords='offset points')
             ax.plot([], [], 'o', color=COLORS[code], label=NAMES[code])
         ax.set_xscale('log')
-        ax.set_xlabel('wall time per run (s)')
+        ax.set_xlabel(f'{clock} time per run (s)')
         ax.set_ylabel('|F_stat − F_stat(ref)| / F_stat(ref) (%)')
         ax.set_title(f'series {name} (ref: star, each code its own)', fontsize=9)
         ax.legend(fontsize=7)
@@ -262,7 +262,7 @@ def fig_speed(cases, path):
     plt.close(fig)
 
 
-def figures(cases, folder):
+def figures(cases, folder, clock):
     out = ['drag_turns.png', 'drag_depth.png', 'drag_stiffness.png']
     fig_turns(cases, os.path.join(folder, out[0]))
     fig_scatter(study_cases(cases), os.path.join(folder, out[1]), lambda c, sm: sm['hL'], 'h/L (measured)',
@@ -271,7 +271,7 @@ def figures(cases, folder):
                 ('F_stat',), logx=True)
     if any(c.get('series') for c in cases):
         out.append('speed_error.png')
-        fig_speed(cases, os.path.join(folder, out[-1]))
+        fig_speed(cases, os.path.join(folder, out[-1]), clock)
     return out
 
 
@@ -280,13 +280,15 @@ def main():
     p.add_argument('--out', default=os.path.join(run_drag.REPO, 'build', 'drag_runs'), help='the runs folder')
     p.add_argument('--report', default=None, help='where results.md and the figures go (default: --out)')
     p.add_argument('--sigma', type=float, default=1.0)
+    p.add_argument('--time', choices=('wall', 'cpu'), default='wall',
+                   help='the speed plot\'s clock (cpu: for runs made on a busy machine)')
     args = p.parse_args()
     folder = args.report or args.out
     os.makedirs(folder, exist_ok=True)
     cases = load(args.out)
     if not cases:
         sys.exit(f'no finished runs in {args.out}')
-    figs = figures(cases, folder)
+    figs = figures(cases, folder, args.time)
     ok, lines = write_markdown(cases, os.path.join(folder, 'results.md'), args.sigma, figs)
     print('\n'.join(l for l in lines if l.startswith(('|', '###'))))
     print(f"written: {os.path.join(folder, 'results.md')} and {', '.join(figs)}")
