@@ -20,6 +20,7 @@ import argparse, datetime, glob, json, math, os, sys
 
 import numpy as np
 import matplotlib
+import matplotlib.ticker
 matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -104,6 +105,27 @@ def fmt(m):
     return f'{mean:.3f} ± {se:.3f} ({n})' if not math.isnan(se) else f'{mean:.3f} ({n})'
 
 
+def times(sm):
+    return '—' if math.isnan(sm['wall']) else f"{sm['wall']:.0f} ({sm['cpu']:.0f})"
+
+
+def series_table(cases, name):
+    """Markdown lines: each case of a speed-against-error series against its reference."""
+    series = [c for c in cases if c.get('series') == name]
+    lines = [f'### series {name}: F_stat against the costliest case (ref)', '',
+             '| case | code | particle-steps | F_stat mean ± SE (n) | error vs ref | wall (CPU) s |', '|---|---|---|---|---|---|']
+    for code in ('sable', 'liggghts'):
+        ref = reference_case(series, code)
+        for c in series:
+            if code in c['runs']:
+                sm = summary(c, code)
+                f_ref = summary(ref, code)['F_stat'][0]
+                err = 'ref' if c is ref else f"{100 * abs(sm['F_stat'][0] - f_ref) / f_ref:.1f} %"
+                lines.append(f"| {c['name']} | {NAMES[code]} | {c['scene']['particle_steps']:.3g} | {fmt(sm['F_stat'])} "
+                             f"| {err} | {times(sm)} |")
+    return lines + ['']
+
+
 def case_table(c, sigma):
     """Markdown lines for one case; and whether every judged row passed."""
     s = c['scene']
@@ -123,8 +145,7 @@ def case_table(c, sigma):
         lines.append(f"| {q} | {fmt(a)} | {fmt(b)} | {d} | {'—' if math.isnan(comb) else f'{comb:.3f}'} | {verdict} |")
     ws, wl = sm['sable']['wall'], sm['liggghts']['wall']
     ratio = f'LIGGGHTS / sable {wl / ws:.2f}' if ws > 0 and wl > 0 else ''
-    lines.append(f"| wall (CPU) s per run | {ws:.0f} ({sm['sable']['cpu']:.0f}) | {wl:.0f} ({sm['liggghts']['cpu']:.0f}) "
-                 f"| {ratio} | | |")
+    lines.append(f"| wall (CPU) s per run | {times(sm['sable'])} | {times(sm['liggghts'])} | {ratio} | | |")
     return lines + [''], ok
 
 
@@ -150,6 +171,8 @@ def write_markdown(cases, path, sigma, figures):
         t, ok = case_table(c, sigma)
         lines += t
         status = status and ok
+    for name in sorted({c['series'] for c in cases if c.get('series')}):
+        lines += series_table(cases, name)
     lines += ['Code versions:'] + versions(cases) + [''] + [f'![{f}]({f})' for f in figures]
     open(path, 'w').write('\n'.join(lines) + '\n')
     return status, lines
@@ -253,8 +276,9 @@ def fig_speed(cases, path, clock):
                             xytext=(3, 3), textcoords='offset points')
             ax.plot([], [], 'o', color=COLORS[code], label=NAMES[code])
         ax.set_xscale('log')
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel(f'{clock} time per run (s)')
-        ax.set_ylabel('|F_stat − F_stat(ref)| / F_stat(ref) (%)')
+        ax.set_ylabel('|F_stat / F_stat(ref) − 1| (%)')
         ax.set_title(f'series {name} (ref: star, each code its own)', fontsize=9)
         ax.legend(fontsize=7)
     fig.tight_layout()
