@@ -74,8 +74,8 @@ def scene(variables):
     ntot = round(0.6 * (math.pi * R * R * (zc + h) - math.pi * 0.25 * D * D * L) / vg)
     G = v['E'] / (2 * (1 + v['nu']))
     t_r = math.pi * r * math.sqrt(v['rho'] / G) / (0.1631 * v['nu'] + 0.8766)
-    nrec = math.ceil(0.02 / (v['dtf'] * t_r))
-    dt = 0.02 / nrec
+    nrec = math.ceil(v['period'] / 100 / (v['dtf'] * t_r))
+    dt = v['period'] / 100 / nrec
     h2 = h * 0.6 / 0.25 + 2 * d
     fill1 = math.ceil((math.sqrt(2 * zc * 0.6 / 0.25 / g) + v['settle']) / dt)
     # second fill from just above the cylinder's top, then on average half of the half-turn alignment
