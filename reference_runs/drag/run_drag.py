@@ -88,7 +88,7 @@ def scene(variables):
 # ---------------------------------------------------------------- one run
 def code_version(code, exe):
     """What identifies the binary: for sable its sha256 and the git commit of the
-    checkout it was built in; for LIGGGHTS the Debian package version."""
+    checkout's HEAD at run time (the build may be older: see 'built'); for LIGGGHTS the Debian package version."""
     if code == 'liggghts':
         p = subprocess.run(['dpkg-query', '-W', '-f', '${Version}', 'liggghts'], capture_output=True, text=True)
         return {'binary': exe, 'package': p.stdout.strip() or 'unknown'}
@@ -97,7 +97,7 @@ def code_version(code, exe):
     git = subprocess.run(['git', '-C', top, 'log', '-1', '--format=%h %cd', '--date=short'],
                          capture_output=True, text=True).stdout.strip()
     return {'binary': exe, 'sha256': digest, 'built': time.strftime('%Y-%m-%d %H:%M', time.localtime(os.path.getmtime(exe))),
-            'source_commit': git or 'unknown'}
+            'checkout_head': git or 'unknown'}
 
 
 def parse_stdout(text):
