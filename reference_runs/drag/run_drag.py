@@ -87,8 +87,8 @@ def scene(variables):
 
 # ---------------------------------------------------------------- one run
 def code_version(code, exe):
-    """What identifies the binary: for sable its sha256 and the git commit of the
-    checkout's HEAD at run time (the build may be older: see 'built'); for LIGGGHTS the Debian package version."""
+    """What identifies the binary: for sable its sha256, build time and its checkout's
+    HEAD at run time (the build may be older); for LIGGGHTS the Debian package version."""
     if code == 'liggghts':
         p = subprocess.run(['dpkg-query', '-W', '-f', '${Version}', 'liggghts'], capture_output=True, text=True)
         return {'binary': exe, 'package': p.stdout.strip() or 'unknown'}
