@@ -29,5 +29,15 @@ for deck in collisions_hertz collisions_hooke incline poured_bed mesh_ramp mesh_
     --sable "$root/build/sable" --out "$out/compare" > "$out/compare_$deck.txt" 2>&1 || status=1
   grep -E '^\| |^\*\*' "$out/compare/$deck/comparison.md" || cat "$out/compare_$deck.txt"
 done
-echo "logs, tables (comparison.md) and figures (comparison.png) in $out"
+
+# The drag study's smoke scene in both codes (~1 min sable, ~3 min LIGGGHTS; the stored
+# LIGGGHTS run without it). A failed run fails the job; the table, from one seed and
+# two turns, is shown but does not judge the job.
+echo "== drag smoke (sable vs $live; one seed, 2 turns: shown, not judged)"
+rm -rf "$out/drag"  # fresh runs of this build, not the last job's
+/usr/bin/python3 reference_runs/drag/run_drag.py --preset smoke --sable "$root/build/sable" --out "$out/drag" \
+  > "$out/drag_runs.txt" 2>&1 || { status=1; tail -n 30 "$out/drag_runs.txt"; }
+/usr/bin/python3 reference_runs/drag/report_drag.py --out "$out/drag" > "$out/drag_report.txt" 2>&1 || true
+grep -E '^\| |^###' "$out/drag/results.md" || cat "$out/drag_report.txt"
+echo "logs, tables (comparison.md, drag/results.md) and figures (comparison.png, drag/*.png) in $out"
 exit $status

@@ -1,0 +1,323 @@
+#!/usr/bin/python3
+"""Tables and figures of a drag campaign run by run_drag.py.
+
+    /usr/bin/python3 reference_runs/drag/report_drag.py [--out RUNS_DIR] [--report DIR] [--sigma K]
+
+Reads RUNS_DIR/cases.json and every RUNS_DIR/<case>/<code>_s<seed>/run.json whose
+status is ok, and writes DIR/results.md (default DIR = RUNS_DIR) and the figures
+DIR/drag_turns.png, drag_depth.png, drag_stiffness.png and, when some cases form
+a speed-against-error series, speed_error.png. Per case and code, F_first and
+F_stat are the mean over seeds +- SE with
+    SE^2 = sd^2 / n + sum_i(err_i^2) / n^2,
+sd the sample standard deviation over the n seeds (0 for n = 1) and err_i run i's
+block error (F_stat_err; for F_first, a one-half-turn mean, F_stat_err sqrt(turns):
+the sd of one stationary half-turn block). The two terms overlap (the seed
+scatter contains the block noise): the SE errs on the large side. A case passes
+when |sable - LIGGGHTS| <= K sqrt(SE_s^2 + SE_l^2) (K = --sigma, default 1) or
+<= 5 % of LIGGGHTS. Exit status 1 if a judged quantity fails.
+"""
+import argparse, datetime, glob, json, math, os, sys
+
+import numpy as np
+import matplotlib
+import matplotlib.ticker
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_drag  # noqa: E402  (the deck's numbers)
+
+NAMES = {'sable': 'sable', 'liggghts': 'LIGGGHTS'}
+COLORS = {'sable': 'tab:blue', 'liggghts': 'tab:red'}
+REL_TOL = 0.05
+SMOOTH = 5  # 1/100-turn rows per point of the F*(turns) curves
+
+
+# ---------------------------------------------------------------- reading runs
+def torque_curve(folder, rec):
+    """(turns, F*) from drag_torque.txt: each row is M_z averaged over the 1/100 turn
+    ending at its step; plotted at the window's centre."""
+    path = os.path.join(folder, 'drag_torque.txt')
+    if not os.path.exists(path):
+        return None
+    a = np.loadtxt(path, comments='#', ndmin=2)
+    s = run_drag.scene(rec['vars'])
+    turns = (a[:, 0] - rec['settled']['step0']) / (100 * s['Nrec']) - 0.005
+    return turns, 4 * np.abs(a[:, 1]) / s['L'] / s['Fscale']
+
+
+def load(out):
+    """The cases of RUNS_DIR/cases.json, each with its ok runs per code."""
+    cases = json.load(open(os.path.join(out, 'cases.json')))['cases']
+    for c in cases:
+        c['scene'] = run_drag.scene(c['vars'])
+        c['runs'] = {}
+        for path in sorted(glob.glob(os.path.join(out, c['name'], '*_s*', 'run.json'))):
+            rec = json.load(open(path))
+            if rec.get('status') == 'ok':
+                rec['curve'] = torque_curve(os.path.dirname(path), rec)
+                c['runs'].setdefault(rec['code'], []).append(rec)
+    return [c for c in cases if c['runs']]
+
+
+# ---------------------------------------------------------------- statistics
+def mean_se(values, errors=None):
+    """Mean over seeds and its SE (seed scatter and block errors in quadrature)."""
+    v = np.array(values, float)
+    n = len(v)
+    if n == 0:
+        return math.nan, math.nan, 0
+    var = np.var(v, ddof=1) / n if n > 1 else 0.0
+    var += np.sum(np.square(errors)) / n ** 2 if errors is not None else 0.0
+    if n == 1 and errors is None:
+        var = math.nan
+    return float(v.mean()), math.sqrt(var), n
+
+
+def summary(c, code):
+    """Per code: F_first, F_stat as (mean, SE, n), wall and CPU time, measured depth."""
+    runs = c['runs'].get(code, [])
+    res = [r['result'] for r in runs]
+    # F_first is one half-turn mean: its error is taken as the sd of one stationary half-turn block
+    return {'F_first': mean_se([r['F_first'] for r in res], [r['F_stat_err'] * math.sqrt(r['turns']) for r in res]),
+            'F_stat': mean_se([r['F_stat'] for r in res], [r['F_stat_err'] for r in res]),
+            'wall': np.mean([r['wall_s'] for r in runs]) if runs else math.nan,
+            'cpu': np.mean([r['cpu_s'] for r in runs]) if runs else math.nan,
+            'hL': np.mean([r['result']['h_meas'] for r in runs]) / c['scene']['L'] if runs else math.nan,
+            'stored': any(r.get('stored') for r in runs)}
+
+
+def judge(a, b, sigma):
+    """(diff, combined error, verdict) of sable's (mean, SE, n) against LIGGGHTS'."""
+    if not (a[2] and b[2]):
+        return math.nan, math.nan, '—'
+    diff = a[0] - b[0]
+    comb = math.sqrt(a[1] ** 2 + b[1] ** 2)
+    ok = abs(diff) <= REL_TOL * abs(b[0]) or (not math.isnan(comb) and abs(diff) <= sigma * comb)
+    return diff, comb, 'pass' if ok else 'FAIL'
+
+
+# ---------------------------------------------------------------- the table
+def fmt(m):
+    mean, se, n = m
+    if not n:
+        return '—'
+    return f'{mean:.3f} ± {se:.3f} ({n})' if not math.isnan(se) else f'{mean:.3f} ({n})'
+
+
+def times(sm):
+    return '—' if math.isnan(sm['wall']) else f"{sm['wall']:.0f} ({sm['cpu']:.0f})"
+
+
+def series_table(cases, name):
+    """Markdown lines: each case of a speed-against-error series against its reference."""
+    series = [c for c in cases if c.get('series') == name]
+    lines = [f'### series {name}: F_stat against the costliest case (ref)', '',
+             '| case | code | particle-steps | F_stat mean ± SE (n) | error vs ref | wall (CPU) s |', '|---|---|---|---|---|---|']
+    for code in ('sable', 'liggghts'):
+        ref = reference_case(series, code)
+        for c in series:
+            if code in c['runs']:
+                sm = summary(c, code)
+                f_ref = summary(ref, code)['F_stat'][0]
+                err = 'ref' if c is ref else f"{100 * abs(sm['F_stat'][0] - f_ref) / f_ref:.1f} %"
+                lines.append(f"| {c['name']} | {NAMES[code]} | {c['scene']['particle_steps']:.3g} | {fmt(sm['F_stat'])} "
+                             f"| {err} | {times(sm)} |")
+    return lines + ['']
+
+
+def case_table(c, sigma):
+    """Markdown lines for one case; and whether every judged row passed."""
+    s = c['scene']
+    sm = {code: summary(c, code) for code in ('sable', 'liggghts')}
+    hl = sm['sable']['hL'] if not math.isnan(sm['sable']['hL']) else sm['liggghts']['hL']
+    lig = 'LIGGGHTS' + (' (stored)' if sm['liggghts']['stored'] else '')
+    lines = [f"### {c['name']}: h/L = {s['hL']:g} (measured {hl:.2f}), E* = {s['Estar']:.3g}, "
+             f"{s['grains']} grains, {s['turns']:g} turns, dt = {s['dt']:.3g} s", '',
+             f'| quantity | sable mean ± SE (n) | {lig} mean ± SE (n) | sable − LIGGGHTS | combined SE | result |',
+             '|---|---|---|---|---|---|']
+    ok = True
+    for q in ('F_first', 'F_stat'):
+        a, b = sm['sable'][q], sm['liggghts'][q]
+        diff, comb, verdict = judge(a, b, sigma)
+        ok = ok and verdict != 'FAIL'
+        d = '—' if math.isnan(diff) else f'{diff:+.3f} ({100 * diff / b[0]:+.1f} %)'
+        lines.append(f"| {q} | {fmt(a)} | {fmt(b)} | {d} | {'—' if math.isnan(comb) else f'{comb:.3f}'} | {verdict} |")
+    ws, wl = sm['sable']['wall'], sm['liggghts']['wall']
+    ratio = f'LIGGGHTS / sable {wl / ws:.2f}' if ws > 0 and wl > 0 else ''
+    lines.append(f"| wall (CPU) s per run | {times(sm['sable'])} | {times(sm['liggghts'])} | {ratio} | | |")
+    return lines + [''], ok
+
+
+def versions(cases):
+    v = {}
+    for c in cases:
+        for code, runs in c['runs'].items():
+            for r in runs:
+                v.setdefault(code, set()).add(', '.join(f'{k} {x}' for k, x in r['version'].items() if k != 'binary'))
+    return [f'- {NAMES.get(k, k)}: ' + '; '.join(sorted(x)) for k, x in v.items()]
+
+
+def write_markdown(cases, path, sigma, figures):
+    lines = [f'# Drag: sable against LIGGGHTS ({datetime.date.today().isoformat()})', '',
+             'F* = F / (ρ g D L²), F = 4|M_z|/L. F_first: over turns 0-0.5; F_stat: over the last half of '
+             'the turns in half-turn blocks. Mean over seeds ± SE, SE² = sd²/n + Σ err_i²/n² (seed scatter '
+             'and each run\'s block error; for F_first, one half-turn, err = F_stat_err √turns, the sd of one '
+             'stationary half-turn block). '
+             f'Pass: |sable − LIGGGHTS| ≤ {sigma:g} × combined SE or ≤ {100 * REL_TOL:g} % of LIGGGHTS. '
+             'Wall time: the process alone; CPU: its user + system time.', '']
+    status = True
+    for c in cases:
+        t, ok = case_table(c, sigma)
+        lines += t
+        status = status and ok
+    for name in sorted({c['series'] for c in cases if c.get('series')}):
+        lines += series_table(cases, name)
+    lines += ['Code versions:'] + versions(cases) + [''] + [f'![{f}]({f})' for f in figures]
+    open(path, 'w').write('\n'.join(lines) + '\n')
+    return status, lines
+
+
+# ---------------------------------------------------------------- figures
+def seed_mean_curve(runs):
+    """Mean over seeds of F*(turns) on the shortest common grid, and the seed sd."""
+    curves = [r['curve'] for r in runs if r['curve'] is not None]
+    if not curves:
+        return None
+    n = min(len(t) for t, _ in curves)
+    k = np.ones(SMOOTH) / SMOOTH  # running mean over SMOOTH/100 turn
+    f = np.array([np.convolve(y[:n], k, 'valid') for _, y in curves])
+    t = np.convolve(curves[0][0][:n], k, 'valid')
+    return t, f.mean(0), f.std(0, ddof=1) if len(f) > 1 else np.zeros(len(t))
+
+
+def study_cases(cases):
+    """The cases outside a speed-against-error series (all of them if none is)."""
+    plain = [c for c in cases if not c.get('series')]
+    return plain or cases
+
+
+def fig_turns(cases, path):
+    cs = study_cases(cases)[:6]
+    fig, axes = plt.subplots(1, len(cs), figsize=(3.6 * len(cs), 3), squeeze=False, sharey=True)
+    for ax, c in zip(axes[0], cs):
+        for code, runs in c['runs'].items():
+            m = seed_mean_curve(runs)
+            if m is None:
+                continue
+            t, f, sd = m
+            ax.plot(t, f, color=COLORS.get(code), lw=0.8, label=f'{NAMES.get(code, code)} ({len(runs)} seeds)')
+            ax.fill_between(t, f - sd, f + sd, color=COLORS.get(code), alpha=0.25, lw=0)
+        ax.set_title(f"{c['name']}: h/L {c['scene']['hL']:g}", fontsize=9)
+        ax.set_xlabel('turns')
+        ax.legend(fontsize=7)
+    axes[0][0].set_ylabel(f'F* ({SMOOTH}/100-turn means; band: ± sd over seeds)', fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+
+
+def points(cases, x, quantity):
+    """Per code: x values, means and SEs of a quantity over the cases."""
+    out = {}
+    for c in cases:
+        for code in c['runs']:
+            sm = summary(c, code)
+            m, se, _ = sm[quantity]
+            xs, ms, ses = out.setdefault(code, ([], [], []))
+            xs.append(x(c, sm))
+            ms.append(m)
+            ses.append(0 if math.isnan(se) else se)
+    return out
+
+
+def fig_scatter(cases, path, x, xlabel, quantities, logx=False):
+    fig, ax = plt.subplots(figsize=(4.5, 3.2))
+    for q, marker, fill in zip(quantities, 'os', (True, False)):
+        for code, (xs, ms, ses) in points(cases, x, q).items():
+            ax.errorbar(xs, ms, ses, ls='none', marker=marker, color=COLORS.get(code), capsize=2,
+                        mfc=COLORS.get(code) if fill else 'none', label=f'{q} {NAMES.get(code, code)}')
+    if logx:
+        ax.set_xscale('log')
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel('F*')
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+
+
+def reference_case(series, code):
+    """The series' costliest setting that this code ran: finest step, stiffest, largest."""
+    ran = [c for c in series if code in c['runs']]
+    return max(ran, key=lambda c: c['scene']['particle_steps']) if ran else None
+
+
+def fig_speed(cases, path, clock):
+    names = sorted({c['series'] for c in cases if c.get('series')})
+    fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 3.4), squeeze=False)
+    for ax, name in zip(axes[0], names):
+        series = [c for c in cases if c.get('series') == name]
+        for code in ('sable', 'liggghts'):
+            ref = reference_case(series, code)
+            if ref is None:
+                continue
+            f_ref = summary(ref, code)['F_stat'][0]
+            for c in series:
+                if code not in c['runs']:
+                    continue
+                sm = summary(c, code)
+                m, se, _ = sm['F_stat']
+                y = 100 * abs(m - f_ref) / f_ref
+                star = c is ref
+                ax.errorbar(sm[clock], y, 100 * se / f_ref, marker='*' if star else 'o', ms=10 if star else 5,
+                            color=COLORS[code], capsize=2, ls='none')
+                ax.annotate(c['name'] + (' (ref)' if star else ''), (sm[clock], y), fontsize=6,
+                            xytext=(3, 3), textcoords='offset points')
+            ax.plot([], [], 'o', color=COLORS[code], label=NAMES[code])
+        ax.set_xscale('log')
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.set_xlabel(f'{clock} time per run (s)')
+        ax.set_ylabel('|F_stat / F_stat(ref) − 1| (%)')
+        ax.set_title(f'series {name} (ref: star, each code its own)', fontsize=9)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+
+
+def figures(cases, folder, clock):
+    out = ['drag_turns.png', 'drag_depth.png', 'drag_stiffness.png']
+    fig_turns(cases, os.path.join(folder, out[0]))
+    fig_scatter(study_cases(cases), os.path.join(folder, out[1]), lambda c, sm: sm['hL'], 'h/L (measured)',
+                ('F_stat', 'F_first'))
+    fig_scatter(cases, os.path.join(folder, out[2]), lambda c, sm: c['scene']['Estar'], 'E* = E / (ρ g d)',
+                ('F_stat',), logx=True)
+    if any(c.get('series') for c in cases):
+        out.append('speed_error.png')
+        fig_speed(cases, os.path.join(folder, out[-1]), clock)
+    return out
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('--out', default=os.path.join(run_drag.REPO, 'build', 'drag_runs'), help='the runs folder')
+    p.add_argument('--report', default=None, help='where results.md and the figures go (default: --out)')
+    p.add_argument('--sigma', type=float, default=1.0)
+    p.add_argument('--time', choices=('wall', 'cpu'), default='wall',
+                   help='the speed plot\'s clock (cpu: for runs made on a busy machine)')
+    args = p.parse_args()
+    folder = args.report or args.out
+    os.makedirs(folder, exist_ok=True)
+    cases = load(args.out)
+    if not cases:
+        sys.exit(f'no finished runs in {args.out}')
+    figs = figures(cases, folder, args.time)
+    ok, lines = write_markdown(cases, os.path.join(folder, 'results.md'), args.sigma, figs)
+    print('\n'.join(l for l in lines if l.startswith(('|', '###'))))
+    print(f"written: {os.path.join(folder, 'results.md')} and {', '.join(figs)}")
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,280 @@
+#!/usr/bin/python3
+"""Run the drag study's deck (input_scripts/drag/drag.in) in sable and LIGGGHTS.
+
+    /usr/bin/python3 reference_runs/drag/run_drag.py (--preset NAME | --cases FILE.json)
+        [--out DIR] [-j N] [--sable PATH] [--liggghts PATH] [--only CASE ...] [--dry-run]
+
+A case is a name, deck variables, codes and seeds (and optionally a speed-against-
+error `series` name). Each run gets its own folder OUT/<case>/<code>_s<seed>/ with
+the cylinder STL, log.txt, stdout.txt, drag_torque.txt and run.json (the parsed
+SCENE, SETTLED, BLOCK and RESULT lines, wall and CPU time, code version, status).
+Runs whose run.json says "ok" are skipped, so a cut campaign resumes where it
+stopped; failed runs are run again and reported with their error tail.
+
+-j N runs N at once. Keep the default 1 for campaigns whose wall times feed the
+speed-against-error plot: those must come from runs alone on the machine.
+Case file: {"cases": [{"name": ..., "vars": {"hL": 2, ...}, "codes": ["sable", "liggghts"],
+"seeds": [49979687, ...], "series": "dt"}, ...]}. Exit status 1 if any run failed.
+"""
+import argparse, concurrent.futures, datetime, hashlib, json, math, os, re, shutil, subprocess, sys, threading, time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+DECK = os.path.join(REPO, 'input_scripts', 'drag', 'drag.in')
+STORED = os.path.join(HERE, 'stored')  # LIGGGHTS runs kept for machines without it
+STL_MAKER = os.path.join(REPO, 'input_scripts', 'drag', 'make_cylinder_stl.py')
+SEEDS = [49979687, 67867967, 86028121, 104395301, 122949823, 141650939, 160481183, 179424673]
+SPEED = {'sable': 1.5e7, 'liggghts': 5e6}  # particle-steps/s on one core, for the time estimate
+SMOKE = {'Wd': 15, 'Ld': 6, 'Dd': 2, 'hL': 1, 'zcL': 1, 'turns': 2}
+BOTH = ['sable', 'liggghts']
+
+
+def preset(name):
+    """The named list of cases."""
+    if name == 'smoke':  # ~1 min in sable, ~3 min in LIGGGHTS
+        return [dict(name='smoke', vars=SMOKE, codes=BOTH, seeds=SEEDS[:1])]
+    if name == 'speed-smoke':  # the smoke scene at two time steps: checks the speed/error path
+        return [dict(name=f'smoke_dtf{f}', vars={**SMOKE, 'dtf': f}, codes=BOTH, seeds=SEEDS[:1], series='dt')
+                for f in (0.15, 0.08)]
+    if name == 'small':  # three depths at E 5e6 (E* = 1.4e5), 2 seeds
+        return [dict(name=f'small_hL{h}', vars={**SMOKE, 'hL': h, 'turns': 4}, codes=BOTH, seeds=SEEDS[:2])
+                for h in (1, 2, 3)]
+    if name == 'speed':  # speed against error on the smoke scene: time step, then stiffness
+        dt = [dict(name=f'speed_dtf{f}', vars={**SMOKE, 'turns': 3, 'dtf': f}, codes=BOTH, seeds=SEEDS[:2],
+                   series='dt') for f in (0.18, 0.15, 0.1, 0.05)]
+        stiff = [dict(name=f'speed_E{e}', vars={**SMOKE, 'turns': 3, 'E': e}, codes=BOTH, seeds=SEEDS[:2],
+                      series='E') for e in ('2e6', '5e6', '2e7', '8e7')]
+        return dt + stiff
+    sys.exit(f'unknown preset {name} (smoke, speed-smoke, small, speed)')
+
+
+PRESETS = ['smoke', 'speed-smoke', 'small', 'speed']
+
+
+# ---------------------------------------------------------------- the deck's numbers
+def deck_defaults():
+    """The deck's `variable NAME index VALUE` lines."""
+    out = {}
+    for line in open(DECK):
+        w = line.split()
+        if len(w) >= 4 and w[0] == 'variable' and w[2] == 'index':
+            out[w[1]] = w[3]
+    return out
+
+
+def scene(variables):
+    """Deck variables (defaults + case) as floats, with the quantities the deck derives
+    from them: lengths, Nrec, dt, grain counts and the particle-steps of a run."""
+    v = {k: float(x) for k, x in {**deck_defaults(), **variables}.items() if k not in ('stl', 'out')}
+    d, r = v['d'], 0.5 * v['d']
+    L, D, R = v['Ld'] * d, v['Dd'] * d, 0.5 * v['Wd'] * d
+    zc, h, g = v['zcL'] * L, v['hL'] * L, 9.81
+    vg = math.pi * d ** 3 / 6
+    n1 = round(0.6 * math.pi * R * R * zc / vg)
+    ntot = round(0.6 * (math.pi * R * R * (zc + h) - math.pi * 0.25 * D * D * L) / vg)
+    G = v['E'] / (2 * (1 + v['nu']))
+    t_r = math.pi * r * math.sqrt(v['rho'] / G) / (0.1631 * v['nu'] + 0.8766)
+    nrec = math.ceil(v['period'] / 100 / (v['dtf'] * t_r))
+    dt = v['period'] / 100 / nrec
+    h2 = h * 0.6 / 0.25 + 2 * d
+    fill1 = math.ceil((math.sqrt(2 * zc * 0.6 / 0.25 / g) + v['settle']) / dt)
+    # second fill from just above the cylinder's top, then on average half of the half-turn alignment
+    fill2 = math.ceil((math.sqrt(2 * (0.5 * D + 2 * d + h2 - h) / g) + v['settle']) / dt) + 25 * nrec
+    steps_rot = round(v['turns'] * 100 * nrec)
+    return dict(v, L=L, D=D, Nrec=nrec, dt=dt, grains=ntot, Fscale=v['rho'] * g * D * L * L,
+                Estar=v['E'] / (v['rho'] * g * d), particle_steps=n1 * fill1 + ntot * (fill2 + steps_rot))
+
+
+# ---------------------------------------------------------------- one run
+def code_version(code, exe):
+    """What identifies the binary: for sable its sha256, build time and its checkout's
+    HEAD at run time (the build may be older); for LIGGGHTS the Debian package version."""
+    if code == 'liggghts':
+        p = subprocess.run(['dpkg-query', '-W', '-f', '${Version}', 'liggghts'], capture_output=True, text=True)
+        return {'binary': exe, 'package': p.stdout.strip() or 'unknown'}
+    digest = hashlib.sha256(open(exe, 'rb').read()).hexdigest()[:16]
+    top = os.path.dirname(os.path.dirname(os.path.realpath(exe)))
+    git = subprocess.run(['git', '-C', top, 'log', '-1', '--format=%h %cd', '--date=short'],
+                         capture_output=True, text=True).stdout.strip()
+    return {'binary': exe, 'sha256': digest, 'built': time.strftime('%Y-%m-%d %H:%M', time.localtime(os.path.getmtime(exe))),
+            'checkout_head': git or 'unknown'}
+
+
+def parse_stdout(text):
+    """SCENE/SETTLED/RESULT key=value lines, BLOCK values, summed Loop times."""
+    rec = {'blocks': [float(m) for m in re.findall(r'^BLOCK \d+ F=(\S+)', text, re.M)],
+           'loop_time_s': sum(float(t) for t in re.findall(r'^Loop time of (\S+)', text, re.M))}
+    for key in ('SCENE', 'SETTLED', 'RESULT'):
+        lines = [l for l in text.splitlines() if l.startswith(key + ' ')]
+        if lines:
+            rec[key.lower()] = {k: float(v) for k, v in re.findall(r'(\w+)=(\S+)', lines[-1])}
+    return rec
+
+
+def run_dir(out, case, code, seed):
+    return os.path.join(out, case['name'], f'{code}_s{seed}')
+
+
+def is_done(folder):
+    try:
+        return json.load(open(os.path.join(folder, 'run.json'))).get('status') == 'ok'
+    except (OSError, ValueError):
+        return False
+
+
+def run_one(case, code, seed, folder, exe):
+    """Run the deck once in its folder and write run.json; returns the record."""
+    os.makedirs(folder, exist_ok=True)
+    v = {**{k: str(x) for k, x in case['vars'].items()}, 'seed': str(seed), 'stl': 'cylinder.stl', 'out': 'drag'}
+    s = scene(v)
+    subprocess.run([sys.executable, STL_MAKER, repr(s['D']), repr(s['L']), os.path.join(folder, 'cylinder.stl')],
+                   check=True, capture_output=True)
+    cmd = (['stdbuf', '-o0', '-e0'] if code == 'liggghts' else []) + [exe, '-in', DECK, '-log', 'log.txt']
+    cmd += (['-echo', 'none'] if code == 'liggghts' else []) + [w for k, x in v.items() for w in ('-var', k, x)]
+    rec = {'case': case['name'], 'code': code, 'seed': seed, 'vars': v, 'series': case.get('series'),
+           'command': ' '.join(cmd), 'started': datetime.datetime.now().isoformat(timespec='seconds'),
+           'version': code_version(code, exe), 'estimate': {'grains': s['grains'], 'particle_steps': s['particle_steps']}}
+    t0 = time.monotonic()
+    with open(os.path.join(folder, 'stdout.txt'), 'w') as f:
+        p = subprocess.Popen(cmd, cwd=folder, stdout=f, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(p.pid, 0)  # wait4: the run's own CPU time, whatever else runs
+        p.returncode = os.waitstatus_to_exitcode(status)
+    rec['wall_s'] = time.monotonic() - t0
+    rec['cpu_s'] = usage.ru_utime + usage.ru_stime
+    text = open(os.path.join(folder, 'stdout.txt'), errors='replace').read()
+    rec.update(parse_stdout(text))
+    rec['returncode'] = p.returncode
+    rec['status'] = 'ok' if p.returncode == 0 and 'result' in rec else 'failed'
+    if rec['status'] != 'ok':
+        rec['error_tail'] = text.strip().splitlines()[-15:]
+    with open(os.path.join(folder, 'run.json'), 'w') as f:
+        json.dump(rec, f, indent=1)
+    return rec
+
+
+def use_stored(case, code, seed, folder):
+    """Without the code's binary: its stored run (run.json, torque) if there is one."""
+    src = os.path.join(STORED, case['name'], f'{code}_s{seed}')
+    if not os.path.exists(os.path.join(src, 'run.json')):
+        return False
+    shutil.copytree(src, folder, dirs_exist_ok=True)
+    rec = json.load(open(os.path.join(folder, 'run.json')))
+    if rec['vars'] != {**case['vars'], 'seed': str(seed), 'stl': 'cylinder.stl', 'out': 'drag'}:
+        sys.exit(f'{src} was run with other variables: {rec["vars"]}')
+    rec['stored'] = True
+    json.dump(rec, open(os.path.join(folder, 'run.json'), 'w'), indent=1)
+    return True
+
+
+def store(runs):
+    """Keep the finished LIGGGHTS runs' run.json and torque in STORED."""
+    for c, code, seed, folder, _ in runs:
+        if code == 'liggghts' and is_done(folder):
+            dst = os.path.join(STORED, c['name'], f'{code}_s{seed}')
+            os.makedirs(dst, exist_ok=True)
+            for f in ('run.json', 'drag_torque.txt'):
+                shutil.copy(os.path.join(folder, f), dst)
+            print(f'stored {dst}')
+
+
+# ---------------------------------------------------------------- the campaign
+def load_cases(args):
+    cases = preset(args.preset) if args.preset else json.load(open(args.cases))['cases']
+    if args.only:
+        cases = [c for c in cases if c['name'] in args.only]
+    for c in cases:
+        c.setdefault('codes', BOTH)
+        if args.codes:
+            c['codes'] = [x for x in c['codes'] if x in args.codes.split(',')]
+        c.setdefault('seeds', SEEDS[:1])
+        c['vars'] = {k: str(x) for k, x in c['vars'].items()}
+    return cases
+
+
+def save_cases(out, cases):
+    """OUT/cases.json: every case run into OUT so far (report_drag.py reads it)."""
+    path = os.path.join(out, 'cases.json')
+    known = json.load(open(path))['cases'] if os.path.exists(path) else []
+    names = [c['name'] for c in cases]
+    with open(path, 'w') as f:
+        json.dump({'cases': [c for c in known if c['name'] not in names] + cases}, f, indent=1)
+
+
+def plan(cases, out):
+    """(case, code, seed, folder) of every run, and the estimated time of those still to do."""
+    runs, todo_s = [], 0.0
+    for c in cases:
+        s = scene(c['vars'])
+        for code in c['codes']:
+            for seed in c['seeds']:
+                folder = run_dir(out, c, code, seed)
+                done = is_done(folder)
+                runs.append((c, code, seed, folder, done))
+                todo_s += 0 if done else s['particle_steps'] / SPEED[code]
+        print(f"  {c['name']}: {' '.join(f'{k}={x}' for k, x in c['vars'].items())}; ~{s['grains']} grains, "
+              f"dt {s['dt']:.3g} s, {s['particle_steps']:.3g} particle-steps per run; "
+              f"est. {s['particle_steps'] / SPEED['sable'] / 60:.1f} min sable, "
+              f"{s['particle_steps'] / SPEED['liggghts'] / 60:.1f} min LIGGGHTS per seed")
+    return runs, todo_s
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument('--preset', choices=PRESETS)
+    g.add_argument('--cases', help='JSON case file')
+    p.add_argument('--out', default=os.path.join(REPO, 'build', 'drag_runs'))
+    p.add_argument('-j', type=int, default=1, help='runs at once (default 1: wall times measured alone)')
+    p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
+    p.add_argument('--liggghts', default=shutil.which('liggghts') or 'liggghts')
+    p.add_argument('--only', nargs='+', metavar='CASE', help='only these cases')
+    p.add_argument('--codes', default=None, help='only these codes (comma-separated)')
+    p.add_argument('--store', action='store_true', help=f'keep the LIGGGHTS runs in {os.path.relpath(STORED, REPO)}')
+    p.add_argument('--dry-run', action='store_true', help='print the plan and the time estimate only')
+    args = p.parse_args()
+    exe = {'sable': os.path.abspath(args.sable), 'liggghts': args.liggghts}
+    cases = load_cases(args)
+    print(f'drag campaign: {len(cases)} cases into {args.out}')
+    runs, todo_s = plan(cases, args.out)
+    todo = [r for r in runs if not r[4]]
+    print(f'{len(runs)} runs, {len(runs) - len(todo)} already done; estimated {todo_s / 60:.1f} min of one core '
+          f'(sable {SPEED["sable"]:.2g}, LIGGGHTS {SPEED["liggghts"]:.2g} particle-steps/s), '
+          f'{todo_s / 60 / max(1, min(args.j, len(todo) or 1)):.1f} min at -j {args.j}', flush=True)
+    if args.dry_run:
+        return
+    os.makedirs(args.out, exist_ok=True)
+    for code in {r[1] for r in todo}:
+        if not (os.path.exists(exe[code]) or shutil.which(exe[code])):
+            print(f'{code}: {exe[code]} not found; using its stored runs ({os.path.relpath(STORED, REPO)})')
+            missing = [r for r in todo if r[1] == code and not use_stored(r[0], code, r[2], r[3])]
+            if missing:
+                sys.exit(f'{code}: no stored run for ' + ', '.join(f'{r[0]["name"]} s{r[2]}' for r in missing))
+            todo = [r for r in todo if r[1] != code]
+    save_cases(args.out, cases)
+    failed, lock, t0, count = [], threading.Lock(), time.monotonic(), [0]
+
+    def job(r):
+        c, code, seed, folder, _ = r
+        rec = run_one(c, code, seed, folder, exe[code])
+        with lock:
+            count[0] += 1
+            res = rec.get('result', {})
+            head = f"[{count[0]}/{len(todo)} {(time.monotonic() - t0) / 60:.1f} min] {c['name']} {code} s{seed}"
+            if rec['status'] == 'ok':
+                print(f"{head}: F_first {res['F_first']:.4g} F_stat {res['F_stat']:.4g} +- {res['F_stat_err']:.2g}"
+                      f", {rec['wall_s']:.0f} s wall", flush=True)
+            else:
+                failed.append(rec)
+                print(f"{head}: FAILED (exit {rec['returncode']}) in {folder}:\n    " +
+                      '\n    '.join(rec['error_tail']), flush=True)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.j)) as pool:
+        list(pool.map(job, todo))
+    if args.store:
+        store(runs)
+    print(f'done: {len(todo) - len(failed)} ran, {len(failed)} failed, {len(runs) - len(todo)} skipped; '
+          f'{(time.monotonic() - t0) / 60:.1f} min')
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == '__main__':
+    main()
