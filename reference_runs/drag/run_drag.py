@@ -122,8 +122,9 @@ def is_done(folder):
         return False
 
 
-def run_one(case, code, seed, folder, exe):
-    """Run the deck once in its folder and write run.json; returns the record."""
+def run_one(case, code, seed, folder, exe, threads=1):
+    """Run the deck once in its folder and write run.json; returns the record. sable runs on
+    `threads` OpenMP threads (default 1, as LIGGGHTS' one process, so that times compare per core)."""
     os.makedirs(folder, exist_ok=True)
     v = {**{k: str(x) for k, x in case['vars'].items()}, 'seed': str(seed), 'stl': 'cylinder.stl', 'out': 'drag'}
     s = scene(v)
@@ -133,10 +134,12 @@ def run_one(case, code, seed, folder, exe):
     cmd += (['-echo', 'none'] if code == 'liggghts' else []) + [w for k, x in v.items() for w in ('-var', k, x)]
     rec = {'case': case['name'], 'code': code, 'seed': seed, 'vars': v, 'series': case.get('series'),
            'command': ' '.join(cmd), 'started': datetime.datetime.now().isoformat(timespec='seconds'),
+           'threads': threads if code == 'sable' else 1,
            'version': code_version(code, exe), 'estimate': {'grains': s['grains'], 'particle_steps': s['particle_steps']}}
     t0 = time.monotonic()
     with open(os.path.join(folder, 'stdout.txt'), 'w') as f:
-        p = subprocess.Popen(cmd, cwd=folder, stdout=f, stderr=subprocess.STDOUT)
+        env = {**os.environ, 'OMP_NUM_THREADS': str(threads)}
+        p = subprocess.Popen(cmd, cwd=folder, stdout=f, stderr=subprocess.STDOUT, env=env)
         _, status, usage = os.wait4(p.pid, 0)  # wait4: the run's own CPU time, whatever else runs
         p.returncode = os.waitstatus_to_exitcode(status)
     rec['wall_s'] = time.monotonic() - t0
@@ -227,6 +230,7 @@ def main():
     p.add_argument('-j', type=int, default=1, help='runs at once (default 1: wall times measured alone)')
     p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
     p.add_argument('--liggghts', default=shutil.which('liggghts') or 'liggghts')
+    p.add_argument('--threads', type=int, default=1, help="sable's OpenMP threads per run (default 1)")
     p.add_argument('--only', nargs='+', metavar='CASE', help='only these cases')
     p.add_argument('--codes', default=None, help='only these codes (comma-separated)')
     p.add_argument('--store', action='store_true', help=f'keep the LIGGGHTS runs in {os.path.relpath(STORED, REPO)}')
@@ -255,7 +259,7 @@ def main():
 
     def job(r):
         c, code, seed, folder, _ = r
-        rec = run_one(c, code, seed, folder, exe[code])
+        rec = run_one(c, code, seed, folder, exe[code], args.threads)
         with lock:
             count[0] += 1
             res = rec.get('result', {})
