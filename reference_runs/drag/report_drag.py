@@ -231,17 +231,23 @@ def points(cases, x, quantity):
     return out
 
 
-def fig_scatter(cases, path, x, xlabel, quantities, logx=False):
-    fig, ax = plt.subplots(figsize=(4.5, 3.2))
-    for q, marker, fill in zip(quantities, 'os', (True, False)):
-        for code, (xs, ms, ses) in points(cases, x, q).items():
-            ax.errorbar(xs, ms, ses, ls='none', marker=marker, color=COLORS.get(code), capsize=2,
-                        mfc=COLORS.get(code) if fill else 'none', label=f'{q} {NAMES.get(code, code)}')
-    if logx:
-        ax.set_xscale('log')
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel('F*')
-    ax.legend(fontsize=7)
+def fig_scatter(cases, path, x, xlabel, quantities, logx=False, panels=None):
+    """F* against x, both codes; with `panels` (case -> label), one panel per label."""
+    groups = {}
+    for c in cases:
+        groups.setdefault(panels(c) if panels else '', []).append(c)
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.5 * len(groups), 3.2), squeeze=False, sharey=True)
+    for ax, (label, group) in zip(axes[0], sorted(groups.items())):
+        for q, marker, fill in zip(quantities, 'os', (True, False)):
+            for code, (xs, ms, ses) in points(group, x, q).items():
+                ax.errorbar(xs, ms, ses, ls='none', marker=marker, color=COLORS.get(code), capsize=2,
+                            mfc=COLORS.get(code) if fill else 'none', label=f'{q} {NAMES.get(code, code)}')
+        if logx:
+            ax.set_xscale('log')
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel(xlabel)
+        ax.legend(fontsize=7)
+    axes[0][0].set_ylabel('F*')
     fig.tight_layout()
     fig.savefig(path, dpi=80)
     plt.close(fig)
@@ -290,7 +296,7 @@ def figures(cases, folder, clock):
     out = ['drag_turns.png', 'drag_depth.png', 'drag_stiffness.png']
     fig_turns(cases, os.path.join(folder, out[0]))
     fig_scatter(study_cases(cases), os.path.join(folder, out[1]), lambda c, sm: sm['hL'], 'h/L (measured)',
-                ('F_stat', 'F_first'))
+                ('F_stat', 'F_first'), panels=lambda c: f"E* = {c['scene']['Estar']:.2g}")
     fig_scatter(cases, os.path.join(folder, out[2]), lambda c, sm: c['scene']['Estar'], 'E* = E / (ρ g d)',
                 ('F_stat',), logx=True)
     if any(c.get('series') for c in cases):
