@@ -5,12 +5,14 @@
 // per snapshot; else snapshots are appended, as LIGGGHTS does. The group is ignored.
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <utility>
 
 #include "core/dump.h"
 #include "core/error.h"
+#include "core/mesh.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
-#include "fixes/fix_mesh_surface.h"
 
 namespace sable {
 
@@ -18,15 +20,15 @@ class DumpMeshStl : public Dump {
  public:
   DumpMeshStl(Simulation& s, const Args& a) : Dump(s, a) {
     for (std::size_t i = 6; i < a.size(); ++i) {
-      if (!dynamic_cast<FixMeshSurface*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
+      if (!dynamic_cast<MeshHolder*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
       ids_.push_back(a[i]);
     }
   }
   void init() override {
     meshes_.clear();
     for (auto& f : sim.fixes)
-      if (auto* m = dynamic_cast<FixMeshSurface*>(f.get()))
-        if (ids_.empty() || std::find(ids_.begin(), ids_.end(), m->id) != ids_.end()) meshes_.push_back(m);
+      if (auto* m = dynamic_cast<MeshHolder*>(f.get()))
+        if (ids_.empty() || std::find(ids_.begin(), ids_.end(), f->id) != ids_.end()) meshes_.push_back({f->id, m});
     if (meshes_.empty()) args.fail_line("dump mesh/stl: no fix mesh/surface to write");
   }
 
@@ -34,10 +36,10 @@ class DumpMeshStl : public Dump {
   void write_snapshot(long step, const std::string& path, bool append) override {
     FILE* f = std::fopen(path.c_str(), append ? "ab" : "wb");
     if (!f) fail("dump mesh/stl: cannot open '" + path + "' for writing");
-    for (FixMeshSurface* m : meshes_) {
+    for (auto& [id, m] : meshes_) {
       m->update_pose();
       const TriMesh& mesh = m->mesh();
-      std::fprintf(f, "solid %s_step_%ld\n", m->id.c_str(), step);
+      std::fprintf(f, "solid %s_step_%ld\n", id.c_str(), step);
       for (std::size_t t = 0; t < mesh.ntri(); ++t) {
         const Vec3d n = mesh.dir_to_world({mesh.normal[3 * t], mesh.normal[3 * t + 1], mesh.normal[3 * t + 2]});
         std::fprintf(f, "  facet normal %.10g %.10g %.10g\n    outer loop\n", n[0], n[1], n[2]);
@@ -47,14 +49,14 @@ class DumpMeshStl : public Dump {
         }
         std::fprintf(f, "    endloop\n  endfacet\n");
       }
-      std::fprintf(f, "endsolid %s_step_%ld\n", m->id.c_str(), step);
+      std::fprintf(f, "endsolid %s_step_%ld\n", id.c_str(), step);
     }
     if (std::fclose(f) != 0) fail("dump mesh/stl: writing '" + path + "' failed");
   }
 
  private:
   std::vector<std::string> ids_;
-  std::vector<FixMeshSurface*> meshes_;
+  std::vector<std::pair<std::string, MeshHolder*>> meshes_;  // fix ID, its mesh
 };
 
 SABLE_DUMP("mesh/stl", DumpMeshStl);

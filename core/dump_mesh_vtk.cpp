@@ -9,9 +9,9 @@
 
 #include "core/dump.h"
 #include "core/error.h"
+#include "core/mesh.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
-#include "fixes/fix_mesh_surface.h"
 
 namespace sable {
 
@@ -19,15 +19,15 @@ class DumpMeshVtk : public Dump {
  public:
   DumpMeshVtk(Simulation& s, const Args& a) : Dump(s, a) {
     for (std::size_t i = 6; i < a.size(); ++i) {
-      if (!dynamic_cast<FixMeshSurface*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
+      if (!dynamic_cast<MeshHolder*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
       ids_.push_back(a[i]);
     }
   }
   void init() override {
     meshes_.clear();
     for (auto& f : sim.fixes)
-      if (auto* m = dynamic_cast<FixMeshSurface*>(f.get()))
-        if (ids_.empty() || std::find(ids_.begin(), ids_.end(), m->id) != ids_.end()) meshes_.push_back(m);
+      if (auto* m = dynamic_cast<MeshHolder*>(f.get()))
+        if (ids_.empty() || std::find(ids_.begin(), ids_.end(), f->id) != ids_.end()) meshes_.push_back(m);
     if (meshes_.empty()) args.fail_line("dump mesh/vtk: no fix mesh/surface to write");
   }
 
@@ -36,13 +36,13 @@ class DumpMeshVtk : public Dump {
     FILE* f = std::fopen(path.c_str(), "wb");  // one snapshot per file: VTK holds one
     if (!f) fail("dump mesh/vtk: cannot open '" + path + "' for writing");
     std::size_t ntri = 0;
-    for (FixMeshSurface* m : meshes_) {
+    for (MeshHolder* m : meshes_) {
       m->update_pose();
       ntri += m->mesh().ntri();
     }
     std::fprintf(f, "# vtk DataFile Version 2.0\nsable meshes, step %ld\nASCII\nDATASET POLYDATA\nPOINTS %zu double\n", step,
                  3 * ntri);
-    for (FixMeshSurface* m : meshes_) {
+    for (MeshHolder* m : meshes_) {
       const TriMesh& mesh = m->mesh();
       for (std::size_t t = 0; t < mesh.ntri(); ++t)
         for (int k = 0; k < 3; ++k) {
@@ -56,14 +56,14 @@ class DumpMeshVtk : public Dump {
     for (std::size_t m = 0; m < meshes_.size(); ++m)
       for (std::size_t t = 0; t < meshes_[m]->mesh().ntri(); ++t) std::fprintf(f, "%zu\n", m);
     std::fprintf(f, "SCALARS type int 1\nLOOKUP_TABLE default\n");
-    for (FixMeshSurface* m : meshes_)
+    for (MeshHolder* m : meshes_)
       for (std::size_t t = 0; t < m->mesh().ntri(); ++t) std::fprintf(f, "%d\n", m->wall_type());
     if (std::fclose(f) != 0) fail("dump mesh/vtk: writing '" + path + "' failed");
   }
 
  private:
   std::vector<std::string> ids_;
-  std::vector<FixMeshSurface*> meshes_;
+  std::vector<MeshHolder*> meshes_;
 };
 
 SABLE_DUMP("mesh/vtk", DumpMeshVtk);

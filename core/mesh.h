@@ -114,4 +114,14 @@ class TriMesh {
   void find_adjacency(double curvature_deg);
 };
 
+// What other parts ask of a fix that owns a mesh (fix mesh/surface): dumps
+// find meshes through this, without knowing the fix.
+class MeshHolder {
+ public:
+  virtual ~MeshHolder() = default;
+  virtual TriMesh& mesh() = 0;
+  virtual int wall_type() const = 0;
+  virtual void update_pose() = 0;  // brings the pose to the current step (move/mesh motions)
+};
+
 }  // namespace sable

@@ -20,14 +20,13 @@
 
 namespace sable {
 
-class FixMeshSurface : public Fix {
+class FixMeshSurface : public Fix, public MeshHolder {
  public:
   FixMeshSurface(Simulation& sim, const Args& args);
   double compute_vector(int i) override;
-  TriMesh& mesh() { return mesh_; }
-  int wall_type() const { return type_; }
-  // Brings the pose to the current step (move/mesh motions).
-  void update_pose();
+  TriMesh& mesh() override { return mesh_; }
+  int wall_type() const override { return type_; }
+  void update_pose() override;
   // Restart: the pose (a restarted deck's move/mesh fixes continue from it).
   bool write_state(std::string& out) const override;
   void read_state(const std::string& in) override;

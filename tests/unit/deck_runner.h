@@ -5,8 +5,13 @@
 #include <string>
 
 #include <algorithm>
+#include <filesystem>
 #include <vector>
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "core/error.h"
 #include "core/input.h"
 #include "core/neighbor.h"
 #include "core/simulation.h"
@@ -54,5 +59,29 @@ inline std::vector<double> entry_history(const ContactStore& s) {
     if (const double* h = s.history(k)) std::copy(h, h + s.size, out.begin() + k * s.size);
   return out;
 }
+
+// The message of the error a deck line raises, or "(no error)".
+inline std::string error_of(Deck& d, const std::string& text) {
+  try {
+    d(text);
+  } catch (const SableError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// A fresh folder for the running test, removed with everything in it at the end.
+struct TempDir {
+  std::filesystem::path dir;
+  TempDir() {
+    const auto* t = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = std::filesystem::temp_directory_path() /
+          ("sable_" + std::string(t->test_suite_name()) + "_" + t->name() + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  ~TempDir() { std::filesystem::remove_all(dir); }
+  std::string operator/(const std::string& f) const { return (dir / f).string(); }
+};
 
 }  // namespace sable::test

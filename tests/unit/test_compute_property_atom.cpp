@@ -17,17 +17,9 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 double var(Deck& d, const std::string& name) {
   double v = 0;

@@ -12,6 +12,7 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
 
@@ -58,15 +59,6 @@ variable sq atom vx*vx)");
 }
 
 double mass(double r, double rho) { return 4.0 / 3.0 * std::numbers::pi * r * r * r * rho; }
-
-std::string error_of(Deck& d, const std::string& line) {
-  try {
-    d(line);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 }  // namespace
 

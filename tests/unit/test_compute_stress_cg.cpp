@@ -24,6 +24,8 @@
 using sable::CgField;
 using sable::CgKernel;
 using sable::test::Deck;
+using sable::test::error_of;
+using sable::test::TempDir;
 
 namespace {
 
@@ -80,28 +82,6 @@ double maxabs(const std::vector<double>& f, int field) {
     m = std::max(m, std::fabs(f[p * CgField::kFields + field]));
   return m;
 }
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-struct TempDir {
-  std::filesystem::path dir;
-  TempDir() {
-    dir = std::filesystem::temp_directory_path() /
-          ("sable_cg_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~TempDir() { std::filesystem::remove_all(dir); }
-  std::string operator/(const std::string& f) const { return (dir / f).string(); }
-};
 
 }  // namespace
 

@@ -24,21 +24,11 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
+using sable::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    dir = fs::temp_directory_path() / ("sable_ave_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string operator/(const std::string& f) const { return (dir / f).string(); }
-};
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -78,15 +68,6 @@ variable s equal step*step
 variable t equal step)";
 
 double rel(double a, double b) { return std::fabs(a - b) / std::max(1.0, std::fabs(b)); }
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 }  // namespace
 

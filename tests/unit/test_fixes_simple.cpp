@@ -9,17 +9,9 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 const char* kTwoGrains = R"(units si
 atom_style granular

@@ -10,17 +10,9 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // Box [0, L]^3 (boundary given), two atom types, nve/sphere, no gravity, no contacts.
 std::string box(double L, const char* boundary = "f f f") {

@@ -15,17 +15,9 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // Box [0, 0.1]^3, one grain kind (r = 1 mm, 2500 kg/m^3), no contacts, no
 // gravity: inserted grains stay where they were put.

@@ -16,24 +16,14 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
+using sable::test::TempDir;
 using sable::test::entry_history;
 namespace fs = std::filesystem;
 
 namespace {
 
 // A scratch directory per test, removed afterwards.
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    dir = fs::temp_directory_path() / ("sable_restart_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string operator/(const std::string& f) const { return (dir / f).string(); }
-};
-
 // Box and groups: what the restart file carries.
 const char* kHead = R"(units si
 atom_style granular
@@ -133,15 +123,6 @@ std::size_t active_wall_history(sable::Simulation& s) {
     }
   }
   return c;
-}
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 void write_bytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }

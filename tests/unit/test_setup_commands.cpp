@@ -9,6 +9,7 @@
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
 
@@ -20,15 +21,6 @@ create_atoms 1 single 0.1 0.5 0.5 units box
 create_atoms 1 single 0.3 0.5 0.5 units box
 create_atoms 2 single 0.5 0.5 0.5 units box
 create_atoms 2 single 0.7 0.5 0.5 units box)";
-
-std::string error_of(Deck& d, const std::string& text) {
-  try {
-    d(text);
-  } catch (const sable::SableError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 std::size_t at(Deck& d, long id) { return d->atoms.index_of(id); }
 
