@@ -39,12 +39,14 @@ def preset(name):
     if name == 'small':  # three depths at E 5e6 (E* = 1.4e5), 2 seeds
         return [dict(name=f'small_hL{h}', vars={**SMOKE, 'hL': h, 'turns': 4}, codes=BOTH, seeds=SEEDS[:2])
                 for h in (1, 2, 3)]
-    if name == 'speed':  # speed against error on the smoke scene: time step, then stiffness
+    if name == 'speed':  # speed against error on the smoke scene: time step, stiffness, container width
         dt = [dict(name=f'speed_dtf{f}', vars={**SMOKE, 'turns': 3, 'dtf': f}, codes=BOTH, seeds=SEEDS[:2],
-                   series='dt') for f in (0.18, 0.15, 0.1, 0.05)]
+                   series='dt') for f in (0.17, 0.15, 0.1, 0.05)]
         stiff = [dict(name=f'speed_E{e}', vars={**SMOKE, 'turns': 3, 'E': e}, codes=BOTH, seeds=SEEDS[:2],
                       series='E') for e in ('2e6', '5e6', '2e7', '8e7')]
-        return dt + stiff
+        size = [dict(name=f'speed_Wd{w}', vars={**SMOKE, 'turns': 3, 'Wd': w}, codes=BOTH, seeds=SEEDS[:2],
+                     series='W') for w in (12, 20)]  # Wd 15 is speed_E5e6
+        return dt + stiff + size
     sys.exit(f'unknown preset {name} (smoke, speed-smoke, small, speed)')
 
 
