@@ -1,0 +1,85 @@
+// fix ID group addforce fx fy fz [every N] [region R]   (LAMMPS fix addforce)
+// Adds (fx, fy, fz) to the force on each grain of the group (inside R, if
+// given) after all other forces so far, every N steps. Each component is a
+// number or v_name (equal- or atom-style, evaluated every step it acts);
+// NULL is not allowed (as in LAMMPS). f_ID is the potential energy of the
+// added field, -sum F.x (unwrapped x), and f_ID[1..3] the group's total force
+// before the addition. The `energy` keyword (for minimisation) is not supported.
+#include "core/block_sum.h"
+#include "core/style_registry.h"
+#include "core/threads.h"
+#include "fixes/group_force.h"
+
+namespace sable {
+
+class FixAddforce : public Fix {
+ public:
+  FixAddforce(Simulation& s, const Args& a) : Fix(s, a) {
+    hooks = atom_tasks = POST_FORCE;
+    scalar_flag = 1;
+    vector_size = 3;
+    if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz after 'addforce'");
+    force_.parse(a, 4, false, true);
+    for (std::size_t i = 7; i < a.size(); i += 2) {
+      if (a[i] == "every") {
+        every_ = a.integer(i + 1, "a step interval > 0");
+        if (every_ <= 0) a.fail(i + 1, "a step interval > 0");
+      } else if (a[i] == "region") {
+        region_.parse(s, a, i + 1);
+      } else if (a[i] == "energy") {
+        a.fail(i, "every or region ('energy' serves minimisation, which sable does not do)");
+      } else {
+        a.fail(i, "every or region");
+      }
+    }
+  }
+  void init() override {
+    force_.check(sim, args);
+    region_.init(sim, args);
+  }
+  bool keeps_plane() const override { return force_.keeps_plane(); }
+
+  void begin(FixHook) override {
+    active_ = sim.step % every_ == 0;
+    if (!active_) return;
+    force_.evaluate(sim, args);
+    sum_.begin(sim.atoms.n, kBlock, atom_pass_threads());
+  }
+  void range(FixHook, const AtomRange& r) override {
+    if (!active_) return;
+    Atoms& at = sim.atoms;
+    sum_.range(r.thread, r.lo);
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
+      if (!(at.mask[i] & groupbit) || !region_.admits(&at.x[3 * i])) continue;
+      double* f = &at.f[3 * i];
+      double xu[3], add[4];
+      sim.domain.unmap(&at.x[3 * i], &at.image[3 * i], xu);
+      add[0] = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double F = force_.value(k, i);
+        add[0] -= F * xu[k];
+        add[k + 1] = f[k];
+        f[k] += F;
+      }
+      sum_.add(r.thread, i, add);
+    }
+  }
+  void end(FixHook) override {
+    if (active_) sum_.finish(total_);
+  }
+  double compute_scalar() override { return total_[0]; }
+  double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i] : 0.0; }
+
+ private:
+  static constexpr std::size_t kBlock = 1024;
+  ForceComponents force_;
+  RegionOption region_;
+  long every_ = 1;
+  bool active_ = false;
+  BlockSum<4> sum_;
+  double total_[4] = {0, 0, 0, 0};  // energy, force before
+};
+
+SABLE_FIX("addforce", FixAddforce);
+
+}  // namespace sable

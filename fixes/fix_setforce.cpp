@@ -1,0 +1,60 @@
+// fix ID group setforce fx fy fz [region R]   (LAMMPS fix setforce)
+// Sets each given force component on each grain of the group (inside R, if
+// given) after all other forces so far; NULL leaves a component alone. Each
+// component is a number, NULL or v_name (equal- or atom-style, evaluated every
+// step). Torques are left alone (LAMMPS). f_ID[1..3] is the group's total force
+// before it was set (the grains inside R).
+#include "core/block_sum.h"
+#include "core/style_registry.h"
+#include "core/threads.h"
+#include "fixes/group_force.h"
+
+namespace sable {
+
+class FixSetforce : public Fix {
+ public:
+  FixSetforce(Simulation& s, const Args& a) : Fix(s, a) {
+    hooks = atom_tasks = POST_FORCE;
+    vector_size = 3;
+    if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz (number, v_name or NULL) after 'setforce'");
+    force_.parse(a, 4, true, true);
+    for (std::size_t i = 7; i < a.size(); i += 2) {
+      if (a[i] != "region") a.fail(i, "region");
+      region_.parse(s, a, i + 1);
+    }
+  }
+  void init() override {
+    force_.check(sim, args);
+    region_.init(sim, args);
+  }
+  bool keeps_plane() const override { return force_.keeps_plane(); }
+
+  void begin(FixHook) override {
+    force_.evaluate(sim, args);
+    sum_.begin(sim.atoms.n, kBlock, atom_pass_threads());
+  }
+  void range(FixHook, const AtomRange& r) override {
+    Atoms& at = sim.atoms;
+    sum_.range(r.thread, r.lo);
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
+      if (!(at.mask[i] & groupbit) || !region_.admits(&at.x[3 * i])) continue;
+      double* f = &at.f[3 * i];
+      sum_.add(r.thread, i, f);
+      for (int k = 0; k < 3; ++k)
+        if (force_.active(k)) f[k] = force_.value(k, i);
+    }
+  }
+  void end(FixHook) override { sum_.finish(total_); }
+  double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i - 1] : 0.0; }
+
+ private:
+  static constexpr std::size_t kBlock = 1024;
+  ForceComponents force_;
+  RegionOption region_;
+  BlockSum<3> sum_;
+  double total_[3] = {0, 0, 0};
+};
+
+SABLE_FIX("setforce", FixSetforce);
+
+}  // namespace sable
