@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CI hook: the collision, incline and mesh-wall comparisons, sable against real LIGGGHTS
+# CI hook: the collision, incline, mesh-wall and group-motion comparisons, sable against real LIGGGHTS
 # when `liggghts` is on PATH, else against the stored LIGGGHTS results in
 # reference_runs/reference/. Exits non-zero if any observable fails.
 # Usage: bash reference_runs/run_ci_comparisons.sh [SABLE_BINARY]  (default build/sable)
@@ -12,7 +12,7 @@ if command -v liggghts >/dev/null; then ref=liggghts; else
   echo "liggghts not found (apt-get install liggghts); comparing against the stored references"
 fi
 status=0
-for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor; do
+for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor move_wiggle aveforce_lid; do
   "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
