@@ -13,6 +13,7 @@
 // another integrator's group too: like LAMMPS, both then update them, in
 // definition order (a warning says how many). X0 and the time origin are
 // restart state: a restarted deck that defines the fix again continues it.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -120,7 +121,8 @@ class FixMove : public Fix {
     if (style_ == Linear) return std::sqrt(sq(set_[0] ? vel_[0] : 0) + sq(set_[1] ? vel_[1] : 0) + sq(set_[2] ? vel_[2] : 0));
     if (style_ == Wiggle)
       return omega_ * std::sqrt(sq(set_[0] ? amp_[0] : 0) + sq(set_[1] ? amp_[1] : 0) + sq(set_[2] ? amp_[2] : 0));
-    return 0.0;  // rotate: depends on the grains' distance from the axis; variable: unknown
+    if (style_ == Rotate) return omega_ * farthest_from_axis();
+    return 0.0;  // variable: unknown
   }
 
  private:
@@ -282,6 +284,19 @@ class FixMove : public Fix {
     v[1] = omega_ * (r[2] * disp[0] - r[0] * disp[2]);
     v[2] = omega_ * (r[0] * disp[1] - r[1] * disp[0]);
     for (int k = 0; k < 3; ++k) at.omega[3 * i + k] = omega_ * r[k];
+  }
+
+  double farthest_from_axis() const {
+    const Atoms& at = sim.atoms;
+    double r2 = 0;
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (!(at.mask[i] & groupbit)) continue;
+      double d[3], dr = 0, d2 = 0;
+      for (int k = 0; k < 3; ++k) d[k] = at.x[3 * i + k] - point_[k], dr += d[k] * axis_[k];
+      for (int k = 0; k < 3; ++k) d2 += sq(d[k] - dr * axis_[k]);
+      r2 = std::max(r2, d2);
+    }
+    return std::sqrt(r2);
   }
 
   void warn_double_integration() const {

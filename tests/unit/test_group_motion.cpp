@@ -474,9 +474,10 @@ run 600
 
 struct Result {
   std::vector<double> x, v, fids;
+  long fused_steps = 0;
 };
 
-Result run_threads(int threads, const std::string& deck) {
+Result run_threads(int threads, const std::string& deck, bool fusion = true) {
   sable::ThreadSettings& ts = sable::thread_settings();
   const sable::ThreadSettings saved = ts;
   ts.pair_atoms = ts.pair_entries = ts.loop_work = 0;  // every loop threaded
@@ -485,6 +486,7 @@ Result run_threads(int threads, const std::string& deck) {
   omp_set_num_threads(threads);
 #endif
   Deck d;
+  d->step_fusion = fusion;
   d(deck);
   ts = saved;
 #ifdef _OPENMP
@@ -495,19 +497,48 @@ Result run_threads(int threads, const std::string& deck) {
   r.x.assign(a.x.begin(), a.x.begin() + 3 * a.n);
   r.v.assign(a.v.begin(), a.v.begin() + 3 * a.n);
   for (const char* id : {"add", "set", "ave"})
-    for (int k = 1; k <= 3; ++k) r.fids.push_back(d->find_fix(id)->compute_vector(k));
+    if (sable::Fix* f = d->find_fix(id))
+      for (int k = 1; k <= 3; ++k) r.fids.push_back(f->compute_vector(k));
   r.fids.push_back(d->find_fix("add")->compute_scalar());
+  r.fused_steps = d->fused_steps;
   return r;
 }
 }  // namespace
 
+// addforce and setforce run inside the force pass (pipelined step), aveforce
+// after it (two passes): the bits of 1 thread for 2 and 3, and of separate passes.
 TEST(GroupForces, SameBitsForAnyThreadCount) {
   const Result one = run_threads(1, kThreadsDeck);
   ASSERT_GT(one.x.size(), 3000u);
   EXPECT_NE(one.fids[2], 0.0);
+  const Result separate = run_threads(1, kThreadsDeck, false);
+  EXPECT_TRUE(same_bits(one.x, separate.x, one.x.size())) << "step fusion changes x";
+  EXPECT_TRUE(same_bits(one.v, separate.v, one.v.size())) << "step fusion changes v";
 #ifdef _OPENMP
   for (int t : {2, 3}) {
     const Result r = run_threads(t, kThreadsDeck);
+    EXPECT_TRUE(same_bits(one.x, r.x, one.x.size())) << t << " threads: x differs";
+    EXPECT_TRUE(same_bits(one.v, r.v, one.v.size())) << t << " threads: v differs";
+    EXPECT_TRUE(same_bits(one.fids, r.fids, one.fids.size())) << t << " threads: f_ID differs";
+  }
+#endif
+}
+
+// Without aveforce every post-force fix is a per-atom task: addforce and
+// setforce run on each thread's atoms inside the force pass (the pipelined
+// step); the same bits for 1, 2 and 3 threads and as separate passes.
+TEST(GroupForces, PipelinedStepSameBits) {
+  std::string deck = kThreadsDeck;
+  const std::string ave = "fix ave c aveforce NULL 1e-6 NULL\n";
+  deck.erase(deck.find(ave), ave.size());
+  const Result one = run_threads(1, deck);
+  ASSERT_GT(one.fused_steps, 500);  // pipelined and fused
+  const Result separate = run_threads(1, deck, false);
+  EXPECT_TRUE(same_bits(one.x, separate.x, one.x.size())) << "step fusion changes x";
+  EXPECT_TRUE(same_bits(one.fids, separate.fids, one.fids.size())) << "step fusion changes f_ID";
+#ifdef _OPENMP
+  for (int t : {2, 3}) {
+    const Result r = run_threads(t, deck);
     EXPECT_TRUE(same_bits(one.x, r.x, one.x.size())) << t << " threads: x differs";
     EXPECT_TRUE(same_bits(one.v, r.v, one.v.size())) << t << " threads: v differs";
     EXPECT_TRUE(same_bits(one.fids, r.fids, one.fids.size())) << t << " threads: f_ID differs";
