@@ -148,6 +148,7 @@ class FixMove : public Fix {
   int col_ = -1;
   std::size_t seen_n_ = 0;
   long seen_id_ = 0;
+  bool warned_ = false;
 
   static bool number_or_null(const Args& a, std::size_t i, const std::string& what, double& out) {
     if (a.word(i, what) == "NULL") return false;
@@ -299,16 +300,19 @@ class FixMove : public Fix {
     return std::sqrt(r2);
   }
 
-  void warn_double_integration() const {
+  // Once per fix (a label/jump loop of runs would repeat it).
+  void warn_double_integration() {
+    if (warned_) return;
     const Atoms& at = sim.atoms;
     for (auto& f : sim.fixes) {
       if (f.get() == this || !(f->hooks & INITIAL_INTEGRATE)) continue;
       long both = 0;
       for (std::size_t i = 0; i < at.n; ++i) both += (at.mask[i] & groupbit) && (at.mask[i] & f->groupbit);
-      if (both)
-        sim.warn("fix move " + id + ": " + std::to_string(both) + " of its grains are also integrated by fix " +
-                 f->style + " '" + f->id + "': both update them, in definition order (as in LAMMPS and LIGGGHTS); "
-                 "leave them out of that fix's group");
+      if (!both) continue;
+      warned_ = true;
+      sim.warn("fix move " + id + ": " + std::to_string(both) + " of its grains are also integrated by fix " +
+               f->style + " '" + f->id + "': both update them, in definition order (as in LAMMPS and LIGGGHTS); "
+               "leave them out of that fix's group");
     }
   }
 };
