@@ -361,7 +361,17 @@ void Simulation::explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix
               "integrator run as separate passes over every grain (3 parallel regions a step instead of 1)");
 }
 
+void Simulation::request_stop(const std::string& why) {
+  stop_ = true;
+  if (!why.empty()) skip_runs_ = why;
+}
+
 void Simulation::run(long nsteps) {
+  if (!skip_runs_.empty()) {
+    print("run " + std::to_string(nsteps) + " skipped: " + skip_runs_);
+    return;
+  }
+  stop_ = false;
   run_first = step;
   run_last = step + nsteps;
   setup();
@@ -430,7 +440,7 @@ void Simulation::run(long nsteps) {
   std::vector<Fix*> tail_fixes;
   double tail_fix_s = 0.0, tail_int_s = 0.0;  // thread 0's seconds in them (time split)
 
-  while (step < run_last) {
+  while (step < run_last && !stop_) {
     ++step;
     time += dt;
     tic = clock::now();
@@ -506,7 +516,7 @@ void Simulation::run(long nsteps) {
     // which the rebuild check catches: a separate pass only when it did not scan.
     // (With the final half deferred, next step's checks see its result.)
     if (neighbor.positions_scanned_step != step && !deferred) check_atoms(false);
-    if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last) thermo->line(step);
+    if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last || stop_) thermo->line(step);
     for (auto& d : dumps)
       if (step % d->every == 0) d->write(step);
     lap(timers.output);
@@ -523,6 +533,7 @@ void Simulation::run(long nsteps) {
     }
   }
   timers.total = std::chrono::duration<double>(clock::now() - t_start).count();
+  if (stop_) nsteps = (run_last = step) - run_first;  // ended early: the run's bounds as they came out
   for (auto& f : fixes) f->post_run();
   const double tot = std::max(timers.total, 1e-12);
   char buf[512];

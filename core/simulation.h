@@ -106,6 +106,10 @@ class Simulation {
 
   // Run N steps (the `run` command).
   void run(long nsteps);
+  // Ends the current run after this step, with its thermo line (fix halt). Only
+  // from end_of_step: its steps keep no half kick deferred. `why` non-empty:
+  // the deck's later runs are skipped too, saying why (LAMMPS' error soft).
+  void request_stop(const std::string& why = "");
   // Set up for a run without stepping (forces, lists); used by write_dump etc.
   void setup();
   // Flush every output (before an error stops the run).
@@ -136,6 +140,8 @@ class Simulation {
   void explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix* fused, bool ranged);
   std::set<std::string> slow_path_noted_;
   void claim_restart_leftovers();
+  bool stop_ = false;
+  std::string skip_runs_;  // why later runs are skipped (request_stop)
   std::chrono::steady_clock::time_point t0_;
 };
 

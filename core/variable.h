@@ -28,6 +28,10 @@ class Variables {
   // atom-style variable: one value per atom.
   bool atom_values(const std::string& name, std::vector<double>& out);
   bool is_atom_style(const std::string& name) const;
+  bool is_equal_style(const std::string& name) const {
+    auto it = vars_.find(name);
+    return it != vars_.end() && it->second.style == "equal";
+  }
   // Evaluate a formula now; errors name the deck line.
   double evaluate(const std::string& expr, const Args& where);
 

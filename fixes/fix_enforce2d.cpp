@@ -15,6 +15,7 @@ class FixEnforce2d : public Fix {
     if (a.size() > 4) a.fail(4, "nothing after 'enforce2d'");
     if (s.domain.dimension != 2) a.fail(3, "a 2D simulation for fix enforce2d ('dimension 2' before create_box)");
   }
+  bool keeps_plane() const override { return true; }  // it only zeroes components
   void init() override {
     bool after = false;
     for (auto& f : sim.fixes) {
