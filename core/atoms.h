@@ -25,6 +25,8 @@ class Atoms {
   std::vector<int> image;  // 3 per atom: periodic image counters
 
   int ntypes = 1;
+  // Extra column holding the mass contacts see (rigid bodies: the body's); -1: rmass.
+  int mass_override = -1;
   long max_id = 0;
   AtomSplit split;  // thread ranges of the per-atom passes (set by the pair pass)
 
@@ -48,6 +50,7 @@ class Atoms {
   // With a different stride the old data is meaningless and the column restarts at init.
   int add_column(const std::string& name, int stride, double init = 0.0);
   std::vector<double>& column(int handle) { return extra_[handle].data; }
+  const std::vector<double>& column(int handle) const { return extra_[handle].data; }
   int column_stride(int handle) const { return extra_[handle].stride; }
   int ncolumns() const { return static_cast<int>(extra_.size()); }
   const std::string& column_name(int handle) const { return extra_[handle].name; }

@@ -60,7 +60,7 @@ inline AtomView atom_view(Atoms& at, std::size_t n, std::uint32_t freeze_bit) {
   a.v = at.v.data();
   a.omega = at.omega.data();
   a.radius = at.radius.data();
-  a.rmass = at.rmass.data();
+  a.rmass = at.mass_override >= 0 ? at.column(at.mass_override).data() : at.rmass.data();
   a.type = at.type.data();
   a.mask = at.mask.data();
   a.f = at.f.data();

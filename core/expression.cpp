@@ -96,6 +96,7 @@ struct ExprNode {
   Op op = Op::Num;
   double value = 0.0;
   int fn = 0;                      // Func: index into kFns; Ref: vector index (0 = scalar)
+  int fn2 = 0;                     // Ref: array column (0 = not an array element)
   char kind = 0;                   // Ref: 'c' or 'f'
   std::string name;                // full token as written (v_a, c_t[2], x, xcm(all,x)): messages, local lookup
   std::string id;                  // bare name passed to the context (a, t, x, xcm)
@@ -216,7 +217,6 @@ class Parser {
     int v = p_ > b ? std::atoi(s_.substr(b, p_ - b).c_str()) : 0;
     if (v < 1) { p_ = b; fail("bad index " + token() + " for " + name, "a positive integer such as " + name + "[1]"); }
     expect(']', "']' closing " + name + "[");
-    if (skip() < s_.size() && s_[p_] == '[') fail(name + "[i][j] (array element) is not supported", "a single [index]");
     return v;
   }
 
@@ -281,6 +281,10 @@ class Parser {
       if (eat("[")) {
         n->fn = int_in_brackets(w);
         n->name += "[" + std::to_string(n->fn) + "]";
+        if (eat("[")) {  // f_ID[i][j]: a global array element
+          n->fn2 = int_in_brackets(w);
+          n->name += "[" + std::to_string(n->fn2) + "]";
+        }
       }
     } else if (eat("[")) {  // x[ID], v_name[ID]: per-atom value of the atom with this ID
       n = make(Op::AtomById);
@@ -360,9 +364,10 @@ struct Evaluator {
         if (local(n.name, v) || ctx.variable(n.id, v)) return v;
         err("unknown variable '" + n.id + "' (referenced as " + n.name + ")");
       case Op::Ref:
-        if (local(n.name, v) || ctx.compute_or_fix(n.kind, n.id, n.fn, v)) return v;
+        if (local(n.name, v) || ctx.compute_or_fix(n.kind, n.id, n.fn, n.fn2, v)) return v;
         err(std::string("unknown ") + (n.kind == 'c' ? "compute" : "fix") + " reference '" + n.name +
-            (n.fn ? "' (no such ID, or it has no vector element " + std::to_string(n.fn) + ")" : "' (no such ID, or it has no global scalar)"));
+            (n.fn2 ? "' (no such ID, or it has no global array element [" + std::to_string(n.fn) + "][" + std::to_string(n.fn2) + "])"
+             : n.fn ? "' (no such ID, or it has no vector element " + std::to_string(n.fn) + ")" : "' (no such ID, or it has no global scalar)"));
       case Op::AtomById: {
         double x = k(0);
         if (!(x >= 1.0) || x != std::floor(x) || x > 9.0e18) err("atom ID in " + n.id + "[...] must be a positive integer, got " + std::to_string(x));
@@ -450,7 +455,7 @@ struct Evaluator {
 struct NoContext : ExprContext {  // "if" Booleans reference nothing
   bool thermo_keyword(const std::string&, double&) override { return false; }
   bool variable(const std::string&, double&) override { return false; }
-  bool compute_or_fix(char, const std::string&, int, double&) override { return false; }
+  bool compute_or_fix(char, const std::string&, int, int, double&) override { return false; }
   bool atom_value_by_id(const std::string&, long, double&) override { return false; }
   bool group_function(const std::string&, const std::vector<std::string>&, double&) override { return false; }
 };

@@ -39,8 +39,9 @@ struct ExprContext {
   virtual bool thermo_keyword(const std::string& name, double& out) = 0;
   // v_name (equal-style): return false if unknown. v_name[ID] goes to atom_value_by_id("v_name", ID).
   virtual bool variable(const std::string& name, double& out) = 0;
-  // c_ID, c_ID[i], f_ID, f_ID[i] (index 0 = scalar; 1-based vector index otherwise). return false if unknown
-  virtual bool compute_or_fix(char kind /*'c' or 'f'*/, const std::string& id, int index, double& out) = 0;
+  // c_ID, c_ID[i], f_ID, f_ID[i], f_ID[i][j] (index 0 = scalar; 1-based vector index otherwise;
+  // column > 0: element (index, column) of a global array). return false if unknown
+  virtual bool compute_or_fix(char kind /*'c' or 'f'*/, const std::string& id, int index, int column, double& out) = 0;
   // per-atom value by atom ID: x[1], vx[2], omegaz[1], fz[3], radius[4], mass[2], type[1] ... name is e.g. "x","vx","omegaz","fz"
   virtual bool atom_value_by_id(const std::string& name, long id, double& out) = 0;
   // group functions: count(g), mass(g), xcm(g,x), vcm(g,y), fcm(g,z), bound(g,xmin) etc.; args are the raw comma-separated words

@@ -52,6 +52,9 @@ class Fix {
   int scalar_flag = 0, vector_size = 0;
   virtual double compute_scalar() { return 0.0; }
   virtual double compute_vector(int /*i*/) { return 0.0; }
+  // A global array, f_ID[i][j] (1-based; LAMMPS' fix rigid: one row per body).
+  int array_rows = 0, array_cols = 0;
+  virtual double compute_array(int /*i*/, int /*j*/) { return 0.0; }
 
   // Restart state (write_restart / read_restart). A fix whose behaviour depends on
   // its history (insertion counters, random streams) appends that state to `out`

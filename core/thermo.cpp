@@ -10,11 +10,20 @@
 
 namespace sable {
 
-bool parse_reference(const std::string& w, char& kind, std::string& id, int& index) {
+bool parse_reference(const std::string& w, char& kind, std::string& id, int& index, int* column) {
   if (w.size() < 3 || w[1] != '_' || (w[0] != 'c' && w[0] != 'f' && w[0] != 'v')) return false;
   kind = w[0];
   id = w.substr(2);
   index = 0;
+  if (column) {
+    *column = 0;
+    const std::size_t b2 = id.find("][");
+    if (b2 != std::string::npos && id.back() == ']') {
+      *column = std::atoi(id.substr(b2 + 2, id.size() - b2 - 3).c_str());
+      if (*column < 1) return false;
+      id = id.substr(0, b2 + 1);
+    }
+  }
   const std::size_t b = id.find('[');
   if (b != std::string::npos) {
     if (id.back() != ']') return false;
@@ -68,8 +77,8 @@ double Thermo::column(const std::string& w, const Args& where) {
   if (keyword(w, v)) return v;
   char kind;
   std::string id;
-  int index;
-  if (!parse_reference(w, kind, id, index))
+  int index, col;
+  if (!parse_reference(w, kind, id, index, &col))
     where.fail_line("thermo column '" + w + "' is not a keyword (step, atoms, ke, time, dt, cpu, xlo..zhi, lx, ly, lz, vol) nor c_ID, f_ID, v_name");
   if (kind == 'v') {
     if (!sim_.variables->numeric(id, v)) where.fail_line("thermo column '" + w + "': variable '" + id + "' is not defined or not equal-style");
@@ -82,6 +91,7 @@ double Thermo::column(const std::string& w, const Args& where) {
   }
   Fix* f = sim_.find_fix(id);
   if (!f) where.fail_line("thermo column '" + w + "': no fix with ID '" + id + "'");
+  if (col) return f->compute_array(index, col);
   return index == 0 ? f->compute_scalar() : f->compute_vector(index);
 }
 
@@ -101,12 +111,19 @@ void Thermo::set_style(const Args& a) {
     double v;
     char kind;
     std::string id;
-    int index;
+    int index, col;
     if (keyword(a[i], v)) continue;
-    if (!parse_reference(a[i], kind, id, index))
-      a.fail(i, "a thermo keyword (step, atoms, ke, time, dt, cpu, xlo, ..., vol) or c_ID, f_ID, v_name");
+    if (!parse_reference(a[i], kind, id, index, &col))
+      a.fail(i, "a thermo keyword (step, atoms, ke, time, dt, cpu, xlo, ..., vol) or c_ID, f_ID, f_ID[i][j], v_name");
     if (kind == 'c' && !sim_.find_compute(id)) a.fail(i, "an existing compute ID");
     if (kind == 'f' && !sim_.find_fix(id)) a.fail(i, "an existing fix ID");
+    if (kind == 'c' && col) a.fail(i, "c_ID or c_ID[i] (sable computes have no global arrays)");
+    if (kind == 'f' && col) {
+      const Fix* f = sim_.find_fix(id);
+      if (index > f->array_rows || col > f->array_cols)
+        a.fail(i, "an element of fix " + id + "'s global array, within [1.." + std::to_string(f->array_rows) + "][1.." +
+                      std::to_string(f->array_cols) + "]");
+    }
     if (kind == 'v' && !sim_.variables->exists(id)) a.fail(i, "a defined variable");
   }
 }

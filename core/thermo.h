@@ -33,7 +33,8 @@ class Thermo {
   bool norm_ = false;
 };
 
-// Parses "c_ID", "c_ID[3]", "f_ID[2]", "v_name" into kind/id/index (index 0 = scalar).
-bool parse_reference(const std::string& word, char& kind, std::string& id, int& index);
+// Parses "c_ID", "c_ID[3]", "f_ID[2]", "v_name" into kind/id/index (index 0 = scalar);
+// with `column`, also "f_ID[2][5]" (an array element; column 0 otherwise).
+bool parse_reference(const std::string& word, char& kind, std::string& id, int& index, int* column = nullptr);
 
 }  // namespace sable

@@ -38,8 +38,9 @@ class SimContext : public ExprContext {
     }
     return sim.variables->numeric(name, out);
   }
-  bool compute_or_fix(char kind, const std::string& id, int index, double& out) override {
+  bool compute_or_fix(char kind, const std::string& id, int index, int column, double& out) override {
     if (kind == 'c') {
+      if (column) return false;  // sable computes have no global arrays
       Compute* c = sim.find_compute(id);
       if (!c) return false;
       if (atom != Atoms::npos && c->peratom_flag) {
@@ -55,6 +56,11 @@ class SimContext : public ExprContext {
       return true;
     }
     Fix* f = sim.find_fix(id);
+    if (f && column) {
+      if (index > f->array_rows || column > f->array_cols) return false;
+      out = f->compute_array(index, column);
+      return true;
+    }
     if (!f || (index == 0 ? !f->scalar_flag : index > f->vector_size)) return false;
     out = index == 0 ? f->compute_scalar() : f->compute_vector(index);
     return true;

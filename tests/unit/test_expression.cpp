@@ -21,7 +21,7 @@ namespace {
 struct MockContext : sable::ExprContext {
   std::map<std::string, double> thermo{{"step", 1000}, {"dt", 1e-5}, {"atoms", 3}, {"beginstep", 0}, {"endstep", 2000}};
   std::map<std::string, double> vars{{"b", 2.5}, {"zero", 0}};
-  std::map<std::string, double> refs{{"c:t:0", 300}, {"c:t:2", 7}, {"f:f:0", 4}, {"f:f:1", 1.5}};
+  std::map<std::string, double> refs{{"c:t:0", 300}, {"c:t:2", 7}, {"f:f:0", 4}, {"f:f:1", 1.5}, {"f:rb:2:5", -3}};
   std::map<std::string, std::vector<double>> per{{"x", {1, 2, 9}}, {"vx", {0.5, -1, 2}}, {"mass", {1, 2, 3}},
                                                  {"v_pa", {10, 20, 30}}, {"c_pe", {-1, -2, -3}}};
   std::string last_func;
@@ -35,8 +35,8 @@ struct MockContext : sable::ExprContext {
   }
   bool thermo_keyword(const std::string& n, double& out) override { return get(thermo, n, out); }
   bool variable(const std::string& n, double& out) override { return get(vars, n, out); }
-  bool compute_or_fix(char kind, const std::string& id, int index, double& out) override {
-    return get(refs, std::string(1, kind) + ":" + id + ":" + std::to_string(index), out);
+  bool compute_or_fix(char kind, const std::string& id, int index, int column, double& out) override {
+    return get(refs, std::string(1, kind) + ":" + id + ":" + std::to_string(index) + (column ? ":" + std::to_string(column) : ""), out);
   }
   bool atom_value_by_id(const std::string& n, long id, double& out) override {
     auto it = per.find(n);
@@ -211,6 +211,7 @@ TEST(Expression, References) {
   EXPECT_EQ(evaluate("c_t", ctx), 300.0);
   EXPECT_EQ(evaluate("c_t[2]", ctx), 7.0);
   EXPECT_EQ(evaluate("f_f + f_f[1]", ctx), 5.5);
+  EXPECT_EQ(evaluate("f_rb[2][5] * 2", ctx), -6);  // a global array element (fix rigid)
   EXPECT_EQ(evaluate("vx[1+1]", ctx), -1.0);  // the atom ID may be a formula
   EXPECT_EQ(evaluate("mass[3]*2", ctx), 6.0);
   EXPECT_EQ(evaluate("v_pa[2]", ctx), 20.0);  // per-atom variable of atom ID 2
@@ -274,7 +275,7 @@ TEST(Expression, SyntaxErrorsNameTheToken) {
   EXPECT_ERROR("", "formula ends too early");
   EXPECT_ERROR("atan2(1)", "function 'atan2' takes 2 argument(s), got 1");
   EXPECT_ERROR("c_t[0]", "bad index '0' for c_t");
-  EXPECT_ERROR("c_t[1][2]", "c_t[i][j]");
+  EXPECT_ERROR("c_t[1][2]", "no global array element [1][2]");
   EXPECT_ERROR("1.2e", "malformed exponent");
   EXPECT_ERROR("count()", "empty argument in count()");
   EXPECT_ERROR("2 $ 3", "'$'");

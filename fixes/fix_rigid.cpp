@@ -1,0 +1,551 @@
+// fix ID group rigid bodystyle args [force M xf yf zf] [torque M xf yf zf]
+// fix ID group rigid/small (molecule | custom v_name)
+// LAMMPS' fix rigid (NVE, Richardson iteration for the orientation) for granular spheres.
+//
+// Bodies: `single` (the fix group), `group N g1 .. gN`, `custom v_name` (an
+// atom-style variable whose integer value is each grain's body ID; 0 = in no
+// body), evaluated once, at the first run. Granular atoms carry no molecule
+// ID, so `molecule` is refused with that advice. Each body has at least two grains.
+// Mass and inertia: the sum of the member spheres (2/5 m r^2 each, plus the
+// parallel-axis term), overlaps counted twice, as LAMMPS and LIGGGHTS do.
+// Contacts see the body's mass as each member's mass (LIGGGHTS' m_eff for rigid
+// members: a flat dumbbell bouncing on a floor at e = 0.5 comes back at 0.366).
+// f_ID[i][j]: body i, columns x y z (centre of mass, in the box), vx vy vz,
+// fx fy fz, tx ty tz (summed force and torque before the force/torque flags),
+// ix iy iz (image counters), as LAMMPS' global array.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/restart.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+#include "core/variable.h"
+
+namespace sable {
+
+namespace {
+
+using V3 = std::array<double, 3>;
+using Q4 = std::array<double, 4>;  // w, x, y, z
+
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Columns of the rotation matrix of unit quaternion q: the body axes in the world frame.
+void axes(const Q4& q, V3& ex, V3& ey, V3& ez) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  ex = {w * w + x * x - y * y - z * z, 2 * (x * y + w * z), 2 * (x * z - w * y)};
+  ey = {2 * (x * y - w * z), w * w - x * x + y * y - z * z, 2 * (y * z + w * x)};
+  ez = {2 * (x * z + w * y), 2 * (y * z - w * x), w * w - x * x - y * y + z * z};
+}
+
+void normalize(Q4& q) {
+  const double s = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (double& c : q) c *= s;
+}
+
+// Angular velocity from angular momentum m, body axes and principal moments (a zero moment: no spin about it).
+V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& moments) {
+  const V3 e[3] = {ex, ey, ez};
+  V3 w = {0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    if (moments[k] == 0.0) continue;
+    const double wk = dot(m, e[k]) / moments[k];
+    for (int c = 0; c < 3; ++c) w[c] += wk * e[k][c];
+  }
+  return w;
+}
+
+// dq/dt = 1/2 (0, w) q, as the product (0, w) q.
+Q4 spin(const V3& w, const Q4& q) {
+  return {-(w[0] * q[1] + w[1] * q[2] + w[2] * q[3]), q[0] * w[0] + w[1] * q[3] - w[2] * q[2],
+          q[0] * w[1] + w[2] * q[1] - w[0] * q[3], q[0] * w[2] + w[0] * q[2] - w[1] * q[1]};
+}
+
+Q4 step_q(const Q4& q, const Q4& wq, double h) {
+  Q4 r;
+  for (int c = 0; c < 4; ++c) r[c] = q[c] + h * wq[c];
+  normalize(r);
+  return r;
+}
+
+// One orientation step of dt = 2 dtq by Richardson extrapolation (LAMMPS' fix rigid):
+// a full step and two half steps (omega recomputed from m at the midpoint), combined as 2 half - full.
+void richardson(Q4& q, const V3& m, V3& w, const V3& moments, double dtq) {
+  const Q4 wq = spin(w, q);
+  const Q4 full = step_q(q, wq, dtq);
+  Q4 half = step_q(q, wq, 0.5 * dtq);
+  V3 ex, ey, ez;
+  axes(half, ex, ey, ez);
+  w = omega_of(m, ex, ey, ez, moments);
+  half = step_q(half, spin(w, half), 0.5 * dtq);
+  for (int c = 0; c < 4; ++c) q[c] = 2.0 * half[c] - full[c];
+  normalize(q);
+}
+
+struct Body {
+  double mass = 0;
+  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{};  // xcm unwrapped
+  Q4 q{1, 0, 0, 0};
+  V3 force{}, torque{};  // sums over the members, before the flags
+  std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
+  int members = 0;
+};
+
+}  // namespace
+
+class FixRigid : public Fix {
+ public:
+  FixRigid(Simulation& s, const Args& a) : Fix(s, a) {
+    hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
+    small_ = style == "rigid/small";
+    parse(a);
+    const auto st = sim.restart.fix_states.find(id);
+    if (st == sim.restart.fix_states.end() || st->second.style != style) define_bodies();  // else read_state
+  }
+
+  void init() override {
+    check_integrators();
+    mass_col_ = sim.atoms.add_column("rigid:contact_mass", 1);
+    sim.atoms.mass_override = mass_col_;
+    refresh_state();
+    place_members(false);
+    refresh_contact_mass(true);
+  }
+  void pre_force() override { refresh_contact_mass(false); }
+
+  void initial_integrate() override {
+    const double dtf = 0.5 * sim.dt;
+    for (Body& b : bodies_) {
+      for (int k = 0; k < 3; ++k) {
+        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
+        b.xcm[k] += sim.dt * b.vcm[k];
+        if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
+      }
+      if (rotates(b)) {
+        V3 ex, ey, ez;
+        axes(b.q, ex, ey, ez);
+        b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
+        richardson(b.q, b.angmom, b.omega, b.moments, 0.5 * sim.dt);
+      }
+    }
+    place_members(true);
+  }
+
+  void final_integrate() override {
+    sum_forces();
+    const double dtf = 0.5 * sim.dt;
+    for (Body& b : bodies_) {
+      for (int k = 0; k < 3; ++k) {
+        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
+        if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
+      }
+      if (rotates(b)) {
+        V3 ex, ey, ez;
+        axes(b.q, ex, ey, ez);
+        b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
+      }
+    }
+    place_members(false);
+  }
+
+  void setup() override { sum_forces(); }
+
+  double compute_array(int i, int j) override {
+    if (i < 1 || i > static_cast<int>(bodies_.size()) || j < 1 || j > 15)
+      args.fail_line("f_" + id + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: index out of range [1.." +
+                     std::to_string(bodies_.size()) + "][1..15]");
+    const Body& b = bodies_[i - 1];
+    double x[3] = {b.xcm[0], b.xcm[1], b.xcm[2]};
+    int image[3] = {0, 0, 0};
+    sim.domain.remap(x, image);
+    const int k = (j - 1) % 3;
+    switch ((j - 1) / 3) {
+      case 0: return x[k];
+      case 1: return b.vcm[k];
+      case 2: return b.force[k];
+      case 3: return b.torque[k];
+      default: return image[k];
+    }
+  }
+
+  bool write_state(std::string& out) const override {
+    restart::Packer p;
+    p.put<std::uint8_t>(defined_);
+    p.put_vector(bodies_);
+    out = p.bytes;
+    return true;
+  }
+  void read_state(const std::string& in) override {
+    restart::Unpacker u(in, "the restart state of fix " + id);
+    defined_ = u.get<std::uint8_t>();
+    bodies_ = u.get_vector<Body>();
+    for (Body& b : bodies_) b.fflag = b.tflag = {true, true, true};
+    apply_flags();  // the deck's force/torque flags, as written again
+    col_ = sim.atoms.find_column("rigid:" + id);
+    if (col_ < 0) args.fail_line("the restart file holds fix " + id + " but not its per-grain body data");
+    array_rows = static_cast<int>(bodies_.size());
+    array_cols = 15;
+  }
+
+ private:
+  enum class Style { Single, Group, Custom };
+  Style bodystyle_ = Style::Single;
+  bool small_ = false, defined_ = false;
+  std::vector<int> groups_;  // bodystyle group
+  std::string var_;          // bodystyle custom
+  struct FlagSpec {
+    bool torque;
+    std::string range;
+    std::array<bool, 3> on;
+    std::size_t at;
+  };
+  std::vector<FlagSpec> flag_specs_;
+  std::vector<Body> bodies_;
+  int col_ = -1;       // per atom: body index + 1 (0: none), offset in the body frame (3), in the world frame (3)
+  int mass_col_ = -1;  // per atom: the mass contacts see
+  std::size_t last_n_ = 0;
+  static constexpr int kStride = 7;
+
+  // A member also moved by a per-atom integrator (nve/sphere) would be integrated twice.
+  void check_integrators() const {
+    const Atoms& at = sim.atoms;
+    const auto& c = at.column(col_);
+    for (auto& f : sim.fixes) {
+      if (f.get() == this || !(f->atom_tasks & INITIAL_INTEGRATE)) continue;
+      for (std::size_t i = 0; i < at.n; ++i)
+        if (c[kStride * i] != 0 && (at.mask[i] & f->groupbit))
+          args.fail_line("atom " + std::to_string(at.id[i]) + " of a rigid body is also integrated by fix " + f->id +
+                         " (" + f->style + "): give that fix a group without the body grains (LAMMPS would move "
+                         "them twice)");
+    }
+  }
+
+  static bool rotates(const Body& b) {
+    return b.tflag[0] || b.tflag[1] || b.tflag[2] || b.angmom[0] != 0 || b.angmom[1] != 0 || b.angmom[2] != 0;
+  }
+
+  void parse(const Args& a) {
+    const std::string& bs = a.word(4, "a body style (single, group, custom; molecule)");
+    std::size_t i = 5;
+    if (bs == "molecule") {
+      a.fail(4, "'custom v_name' (an atom-style variable giving each grain's body ID) or 'group N ...': sable's "
+                "granular atoms carry no molecule ID");
+    } else if (bs == "single" && !small_) {
+      bodystyle_ = Style::Single;
+    } else if (bs == "group" && !small_) {
+      bodystyle_ = Style::Group;
+      const long n = a.integer(5, "the number of groups");
+      if (n < 1) a.fail(5, "a number of groups >= 1");
+      for (long g = 0; g < n; ++g) {
+        const std::string& name = a.word(6 + g, "group " + std::to_string(g + 1) + " of " + std::to_string(n));
+        const int gi = sim.groups.find(name);
+        if (gi < 0) a.fail(6 + g, "an existing group ID");
+        groups_.push_back(gi);
+      }
+      i = 6 + n;
+    } else if (bs == "custom") {
+      bodystyle_ = Style::Custom;
+      const std::string& v = a.word(5, "v_name (an atom-style variable with each grain's body ID)");
+      if (v.rfind("v_", 0) != 0) a.fail(5, "v_name (an atom-style variable; sable has no i_name properties)");
+      var_ = v.substr(2);
+      if (!sim.variables->is_atom_style(var_)) a.fail(5, "an atom-style variable");
+      i = 6;
+    } else {
+      a.fail(4, small_ ? "a rigid/small body style: custom (molecule needs molecule IDs)"
+                       : "a body style: single, group N ..., custom v_name");
+    }
+    while (i < a.size()) {
+      const std::string& k = a[i];
+      if ((k == "force" || k == "torque") && !small_) {
+        a.need(i + 5, k + " M xflag yflag zflag");
+        FlagSpec f{k == "torque", a[i + 1], {}, i + 1};
+        for (int c = 0; c < 3; ++c) f.on[c] = a.yes_no(i + 2 + c, "on or off");
+        flag_specs_.push_back(f);
+        i += 5;
+      } else {
+        a.fail(i, small_ ? "nothing (fix rigid/small takes no keywords in sable)"
+                         : "a keyword sable supports: force or torque (langevin, temp, iso, infile ... are not)");
+      }
+    }
+  }
+
+  // Which atoms are in which body, then mass, centre, inertia and momentum of each.
+  void define_bodies() {
+    Atoms& at = sim.atoms;
+    std::vector<long> key(at.n, 0);  // 0: in no body
+    if (bodystyle_ == Style::Single) {
+      for (std::size_t i = 0; i < at.n; ++i) key[i] = (at.mask[i] & groupbit) ? 1 : 0;
+    } else if (bodystyle_ == Style::Group) {
+      for (std::size_t i = 0; i < at.n; ++i) {
+        if (!(at.mask[i] & groupbit)) continue;
+        for (std::size_t g = 0; g < groups_.size(); ++g)
+          if (at.mask[i] & (1u << groups_[g])) {
+            if (key[i]) args.fail_line("atom " + std::to_string(at.id[i]) + " is in two of the listed groups: a grain "
+                                       "belongs to one rigid body at most");
+            key[i] = static_cast<long>(g) + 1;
+          }
+      }
+    } else {
+      std::vector<double> val;
+      sim.variables->atom_values(var_, val);
+      for (std::size_t i = 0; i < at.n; ++i) {
+        if (!(at.mask[i] & groupbit)) continue;
+        if (val[i] != std::floor(val[i]) || val[i] < 0)
+          args.fail_line("variable " + var_ + " gives atom " + std::to_string(at.id[i]) + " the body ID " +
+                         std::to_string(val[i]) + ": body IDs are integers >= 0 (0: in no body)");
+        key[i] = static_cast<long>(val[i]);
+      }
+    }
+    // Bodies numbered in ascending key order (LAMMPS: by molecule ID; group order for group).
+    std::map<long, int> index;
+    for (long k : key)
+      if (k) index.emplace(k, 0);
+    if (bodystyle_ == Style::Group)
+      for (std::size_t g = 0; g < groups_.size(); ++g) index.emplace(static_cast<long>(g) + 1, 0);
+    int nb = 0;
+    for (auto& [k, v] : index) v = nb++;
+    bodies_.assign(nb, Body{});
+    col_ = at.add_column("rigid:" + id, kStride);
+    auto& c = at.column(col_);
+    for (std::size_t i = 0; i < at.n; ++i) c[kStride * i] = key[i] ? index[key[i]] + 1 : 0;
+    for (std::size_t i = 0; i < at.n; ++i)
+      if (key[i]) bodies_[index[key[i]]].members++;
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (bodies_[b].members < 2)
+        args.fail_line("rigid body " + std::to_string(b + 1) + " has " + std::to_string(bodies_[b].members) +
+                       " grain" + (bodies_[b].members == 1 ? "" : "s") + ": each body needs two or more");
+    apply_flags();
+    for (std::size_t b = 0; b < bodies_.size(); ++b) measure_static(static_cast<int>(b));
+    measure_dynamic();
+    defined_ = true;
+    last_n_ = at.n;
+    array_rows = nb;
+    array_cols = 15;
+    sim.print(std::to_string(nb) + " rigid bodies with " + std::to_string(std::count_if(
+        key.begin(), key.end(), [](long k) { return k != 0; })) + " atoms");
+  }
+
+  void apply_flags() {
+    const long nb = static_cast<long>(bodies_.size());
+    for (const FlagSpec& f : flag_specs_) {
+      long lo = 1, hi = nb;
+      const std::string& r = f.range;
+      const auto star = r.find('*');
+      auto num = [&](const std::string& s) {
+        long v;
+        if (!parse_long(s, v)) args.fail(f.at, "a body number M, or a range *, *n, n*, m*n");
+        return v;
+      };
+      if (star == std::string::npos) {
+        lo = hi = num(r);
+      } else {
+        if (star > 0) lo = num(r.substr(0, star));
+        if (star + 1 < r.size()) hi = num(r.substr(star + 1));
+      }
+      if (lo < 1 || hi > nb || lo > hi)
+        args.fail(f.at, "bodies within 1.." + std::to_string(nb) + " (this fix has " + std::to_string(nb) + ")");
+      for (long b = lo; b <= hi; ++b) (f.torque ? bodies_[b - 1].tflag : bodies_[b - 1].fflag) = f.on;
+    }
+  }
+
+  // Mass, centre of mass, principal moments and axes, and each member's offset in the body frame.
+  void measure_static(int body) {
+    Atoms& at = sim.atoms;
+    auto& c = at.column(col_);
+    Body& b = bodies_[body];
+    b.mass = 0;
+    V3 s{0, 0, 0};
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (c[kStride * i] != body + 1) continue;
+      double u[3];
+      sim.domain.unmap(&at.x[3 * i], &at.image[3 * i], u);
+      for (int k = 0; k < 3; ++k) s[k] += at.rmass[i] * u[k];
+      b.mass += at.rmass[i];
+    }
+    for (int k = 0; k < 3; ++k) b.xcm[k] = s[k] / b.mass;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (c[kStride * i] != body + 1) continue;
+      const V3 d = offset(i, b);
+      const double m = at.rmass[i], r = at.radius[i];
+      const Eigen::Vector3d e(d[0], d[1], d[2]);
+      I += (0.4 * m * r * r + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+    Eigen::Matrix3d R = eig.eigenvectors();
+    if (R.determinant() < 0) R.col(2) = -R.col(2);  // right-handed body axes
+    const double imax = eig.eigenvalues().maxCoeff();
+    for (int k = 0; k < 3; ++k) b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
+    const Eigen::Quaterniond q(R);
+    b.q = {q.w(), q.x(), q.y(), q.z()};
+    normalize(b.q);
+    V3 ex, ey, ez;
+    axes(b.q, ex, ey, ez);
+    for (std::size_t i = 0; i < at.n; ++i) {
+      if (c[kStride * i] != body + 1) continue;
+      const V3 d = offset(i, b);
+      double* o = &c[kStride * i];
+      o[1] = dot(d, ex), o[2] = dot(d, ey), o[3] = dot(d, ez);
+      o[4] = d[0], o[5] = d[1], o[6] = d[2];
+    }
+  }
+
+  V3 offset(std::size_t i, const Body& b) const {
+    double u[3];
+    sim.domain.unmap(&sim.atoms.x[3 * i], &sim.atoms.image[3 * i], u);
+    return {u[0] - b.xcm[0], u[1] - b.xcm[1], u[2] - b.xcm[2]};
+  }
+
+  // Centre-of-mass velocity and angular momentum (orbital plus the members' own spin) from the grains.
+  void measure_dynamic() {
+    Atoms& at = sim.atoms;
+    auto& c = at.column(col_);
+    for (Body& b : bodies_) b.vcm = b.angmom = V3{0, 0, 0};
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      if (k < 0) continue;
+      Body& b = bodies_[k];
+      const double m = at.rmass[i], r = at.radius[i];
+      const V3 v{at.v[3 * i], at.v[3 * i + 1], at.v[3 * i + 2]};
+      const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
+      const V3 l = cross(d, v);
+      for (int e = 0; e < 3; ++e) {
+        b.vcm[e] += m * v[e];
+        b.angmom[e] += m * l[e] + 0.4 * m * r * r * at.omega[3 * i + e];
+      }
+    }
+    for (Body& b : bodies_) {
+      for (double& v : b.vcm) v /= b.mass;
+      V3 ex, ey, ez;
+      axes(b.q, ex, ey, ez);
+      b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
+    }
+  }
+
+  // Before a later run: a body whose grains were moved or given velocities since
+  // the last step (velocity, set, displace_atoms) is measured again; one left
+  // alone keeps its state bit for bit (restarts and split runs continue exactly).
+  void refresh_state() {
+    Atoms& at = sim.atoms;
+    auto& c = at.column(col_);
+    std::vector<char> moved(bodies_.size(), 0), count_ok(bodies_.size(), 0);
+    std::vector<int> count(bodies_.size(), 0);
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      if (k < 0) continue;
+      ++count[k];
+      double x[3], v[3];
+      expected(i, k, x, v);
+      for (int e = 0; e < 3; ++e)
+        if (x[e] != at.x[3 * i + e] || v[e] != at.v[3 * i + e] || bodies_[k].omega[e] != at.omega[3 * i + e])
+          moved[k] = 1;
+    }
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (count[b] != bodies_[b].members)
+        args.fail_line("rigid body " + std::to_string(b + 1) + " had " + std::to_string(bodies_[b].members) +
+                       " grains and has " + std::to_string(count[b]) + " now (grains of a body were deleted)");
+    bool any = false;
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (moved[b]) measure_static(static_cast<int>(b)), any = true;
+    if (any) measure_dynamic();
+  }
+
+  // Where place_members would put grain i of body k, and its velocity.
+  void expected(std::size_t i, int k, double* x, double* v) const {
+    const Body& b = bodies_[k];
+    const double* o = &sim.atoms.column(col_)[kStride * i];
+    const V3 d{o[4], o[5], o[6]};
+    const V3 wd = cross(b.omega, d);
+    int image[3] = {0, 0, 0};
+    for (int e = 0; e < 3; ++e) {
+      x[e] = b.xcm[e] + d[e];
+      v[e] = b.vcm[e] + wd[e];
+    }
+    sim.domain.remap(x, image);
+  }
+
+  // Members from their body: the offset turned to the body's orientation (kept
+  // as it is when the body cannot turn), the position wrapped into the box,
+  // v = vcm + w x d, and each sphere's spin the body's.
+  void place_members(bool positions) {
+    Atoms& at = sim.atoms;
+    auto& c = at.column(col_);
+    std::vector<std::array<V3, 3>> ax(bodies_.size());
+    for (std::size_t b = 0; b < bodies_.size(); ++b) axes(bodies_[b].q, ax[b][0], ax[b][1], ax[b][2]);
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      if (k < 0) continue;
+      const Body& b = bodies_[k];
+      double* o = &c[kStride * i];
+      if (positions && rotates(b))
+        for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * ax[k][0][e] + o[2] * ax[k][1][e] + o[3] * ax[k][2][e];
+      double x[3], v[3];
+      expected(i, k, x, v);
+      for (int e = 0; e < 3; ++e) {
+        if (positions) {
+          const double u = b.xcm[e] + o[4 + e];
+          at.image[3 * i + e] = 0;
+          at.x[3 * i + e] = u;
+        }
+        at.v[3 * i + e] = v[e];
+        at.omega[3 * i + e] = b.omega[e];
+      }
+      if (positions) sim.domain.remap(&at.x[3 * i], &at.image[3 * i]);
+    }
+  }
+
+  // Force and torque on each body about its centre: the members' forces, their
+  // moments d x f, and the members' own torques (serial, in atom order: the same bits for any thread count).
+  void sum_forces() {
+    Atoms& at = sim.atoms;
+    const auto& c = at.column(col_);
+    for (Body& b : bodies_) b.force = b.torque = V3{0, 0, 0};
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      if (k < 0) continue;
+      Body& b = bodies_[k];
+      const V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
+      const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
+      const V3 t = cross(d, f);
+      for (int e = 0; e < 3; ++e) {
+        b.force[e] += f[e];
+        b.torque[e] += t[e] + at.torque[3 * i + e];
+      }
+    }
+  }
+
+  // The mass contacts see: the body's for members, the grain's own otherwise
+  // (grains inserted since the last look get theirs here, before the force pass).
+  void refresh_contact_mass(bool all) {
+    Atoms& at = sim.atoms;
+    if (!all && at.n == last_n_) return;
+    auto& m = at.column(mass_col_);
+    const auto& c = at.column(col_);
+    const bool first = first_rigid();
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      if (k >= 0) m[i] = bodies_[k].mass;
+      else if (first && (all || m[i] == 0.0)) m[i] = at.rmass[i];
+    }
+    last_n_ = at.n;
+  }
+  bool first_rigid() const {
+    for (auto& f : sim.fixes)
+      if (f->style == "rigid" || f->style == "rigid/small") return f.get() == this;
+    return true;
+  }
+};
+
+SABLE_FIX("rigid", FixRigid);
+SABLE_FIX("rigid/small", FixRigid);
+
+}  // namespace sable

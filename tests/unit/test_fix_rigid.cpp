@@ -1,0 +1,241 @@
+// fix rigid / rigid/small: analytic motions of 3-sphere clumps on an incline,
+// force and torque flags, a lid on a bed, array outputs, restarts, bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/error.h"
+#include "core/variable.h"
+#include "tests/unit/deck_runner.h"
+
+using sable::test::Deck;
+using sable::test::error_of;
+
+namespace {
+
+constexpr double kG = 9.81, kR = 0.002;
+const double kSin = 0.5, kCos = std::sqrt(3.0) / 2;  // a 30 degree incline
+
+// A floor at z = 0 tilted by turning gravity 30 degrees towards +x; Hertz-Mindlin, mu 0.3.
+std::string incline() {
+  char g[160];
+  std::snprintf(g, sizeof g, "fix g all gravity %.17g vector %.17g 0 %.17g\n", kG, kSin, -kCos);
+  return std::string(R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+region box block -0.05 0.15 -0.05 0.05 -0.01 0.05 units box
+create_box 1 box
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-6
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+)") + g;
+}
+
+// Three touching spheres of radius kR resting on the floor: flat triangle or a line along y.
+std::string clump(bool line) {
+  const double r = kR, h = std::sqrt(3.0) * r;
+  char s[400];
+  if (line)
+    std::snprintf(s, sizeof s,
+                  "create_atoms 1 single 0 %.17g %.17g units box\ncreate_atoms 1 single 0 %.17g %.17g units box\n"
+                  "create_atoms 1 single 0 %.17g %.17g units box\n",
+                  -2 * r, r, 0.0, r, 2 * r, r);
+  else
+    std::snprintf(s, sizeof s,
+                  "create_atoms 1 single 0 0 %.17g units box\ncreate_atoms 1 single %.17g 0 %.17g units box\n"
+                  "create_atoms 1 single %.17g %.17g %.17g units box\n",
+                  r, 2 * r, r, r, h, r);
+  return std::string(s) + "set group all diameter 0.004 density 2500\n";
+}
+
+double value(Deck& d, const std::string& formula) {
+  d("variable q equal " + formula);
+  double v;
+  EXPECT_TRUE(d->variables->numeric("q", v));
+  return v;
+}
+
+}  // namespace
+
+// A flat 3-sphere clump slides down a 30 degree incline at mu = 0.3:
+// a = g (sin - mu cos) = 2.3563 m/s^2 (Coulomb sliding of a rigid body; each member
+// slides, so the friction sums to mu N whatever the load on each). Measured from the
+// centre-of-mass velocity f_rb[1][4] between 0.02 s and 0.05 s, 0.5 %.
+TEST(FixRigid, ClumpSlidesDownAnInclineAtCoulombAcceleration) {
+  Deck d;
+  d(incline() + clump(false) + "fix rb all rigid single\nrun 10000");
+  const double v1 = value(d, "f_rb[1][4]");
+  d("run 15000");
+  const double v2 = value(d, "f_rb[1][4]");
+  const double a = (v2 - v1) / 0.03, want = kG * (kSin - 0.3 * kCos);
+  EXPECT_NEAR(a, want, 5e-3 * want);
+  EXPECT_NEAR(value(d, "f_rb[1][6]"), 0.0, 1e-3);  // it stays on the floor
+}
+
+// Three spheres in a line across the slope roll without slipping (mu 0.3 > 2/7 tan 30):
+// a = g sin / (1 + I / (m r^2)) = 5/7 g sin (I = 3 x 2/5 m r^2: centres on the axis),
+// and the spin is v / r. 0.5 %.
+TEST(FixRigid, ClumpRollsDownAnInclineAtFiveSeventhsGSin) {
+  Deck d;
+  d(incline() + clump(true) + "fix rb all rigid single\nrun 10000");
+  const double v1 = value(d, "f_rb[1][4]");
+  d("run 15000");
+  const double v2 = value(d, "f_rb[1][4]");
+  const double a = (v2 - v1) / 0.03, want = 5.0 / 7.0 * kG * kSin;
+  EXPECT_NEAR(a, want, 5e-3 * want);
+  const auto& at = d->atoms;
+  for (std::size_t i = 0; i < at.n; ++i) EXPECT_NEAR(at.omega[3 * i + 1], v2 / kR, 5e-3 * v2 / kR);
+}
+
+// With all torque flags off and no initial spin, the body never turns: the members keep
+// their offsets from each other to round-off, and their spin is exactly zero.
+TEST(FixRigid, LockedRotationKeepsTheOrientation) {
+  Deck d;
+  d(incline() + clump(false) + "fix rb all rigid single torque 1 off off off\nrun 20000");
+  const auto& at = d->atoms;
+  const std::size_t a = at.index_of(1), b = at.index_of(2), c = at.index_of(3);
+  EXPECT_NEAR(at.x[3 * b] - at.x[3 * a], 2 * kR, 1e-15);
+  EXPECT_NEAR(at.x[3 * c + 1] - at.x[3 * a + 1], std::sqrt(3.0) * kR, 1e-15);
+  for (std::size_t i : {a, b, c})
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(at.omega[3 * i + k], 0.0);
+  EXPECT_GT(value(d, "f_rb[1][1]"), 0.001);  // it did slide
+}
+
+// A flat lid of 16 spheres spanning a periodic cell, `force * off off on`, `torque * off
+// off off`, launched at U along x, settles on a bed of 32 grains: it keeps U exactly, and
+// the floor carries bed plus lid weight (static balance, averaged over the last 0.05 s, 0.5 %).
+TEST(FixRigid, FlagLockedLidSettlesAtForceBalanceAndKeepsItsVelocity) {
+  Deck d;
+  std::string deck = R"(units si
+atom_style granular
+atom_modify map array
+boundary p p f
+newton off
+communicate single vel yes
+region box block 0 0.016 0 0.016 0 0.04 units box
+create_box 2 box
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.3 0.3 0.3 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 5e-6
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+)";
+  char s[200];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      for (int k = 0; k < 2; ++k) {
+        std::snprintf(s, sizeof s, "create_atoms 1 single %g %g %g units box\n", 0.002 + 0.004 * i + 0.0007 * k,
+                      0.002 + 0.004 * j, 0.0025 + 0.0045 * k);
+        deck += s;
+      }
+      std::snprintf(s, sizeof s, "create_atoms 2 single %g %g 0.013 units box\n", 0.002 + 0.004 * i, 0.002 + 0.004 * j);
+      deck += s;
+    }
+  deck += R"(set group all diameter 0.004 density 2500
+group bed type 1
+group lid type 2
+fix g all gravity 9.81 vector 0 0 -1
+fix i bed nve/sphere
+fix lid lid rigid single force * off off on torque * off off off
+velocity lid set 0.01 0 0
+run 60000
+)";
+  d(deck);
+  const double u = value(d, "f_lid[1][4]");  // the mass-weighted mean of 0.01: 0.01 to round-off
+  EXPECT_NEAR(u, 0.01, 1e-17);
+  d("variable fz equal f_floor[3]\nfix avg all ave/time 10 1000 10000 v_fz\nrun 10000");
+  const auto& at = d->atoms;
+  double mass = 0;
+  for (std::size_t i = 0; i < at.n; ++i) mass += at.rmass[i];
+  const double fz = d->find_fix("avg")->compute_scalar();
+  EXPECT_NEAR(-fz, mass * 9.81, 5e-3 * mass * 9.81);
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (at.type[i] == 2) EXPECT_EQ(at.v[3 * i], u);
+  EXPECT_EQ(value(d, "f_lid[1][4]"), u);
+}
+
+// Two bodies from `group 2 a b`, and from an atom-style variable (custom): same bodies, same motion.
+TEST(FixRigid, GroupAndCustomBodiesAgree) {
+  auto run = [](const std::string& fix) {
+    Deck d;
+    d(incline() + clump(false) + R"(create_atoms 1 single 0.05 0 0.002 units box
+create_atoms 1 single 0.054 0 0.002 units box
+set group all diameter 0.004 density 2500
+group a id 1 2 3
+group b id 4 5
+variable body atom (id<=3)+2*(id>3)
+)" + fix + "\nrun 2000");
+    return std::array<double, 3>{value(d, "f_rb[1][4]"), value(d, "f_rb[2][4]"), value(d, "x[5]")};
+  };
+  const auto g = run("fix rb all rigid group 2 a b"), c = run("fix rb all rigid/small custom v_body");
+  EXPECT_GT(g[0], 0.0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(g[k], c[k]);
+}
+
+// A run split by write_restart / read_restart continues bit for bit.
+TEST(FixRigid, RestartContinuesBitIdentically) {
+  sable::test::TempDir tmp;
+  const std::string body = "fix rb all rigid single torque * on on on\n";
+  Deck whole;
+  whole(incline() + clump(false) + body + "velocity all set 0 0 0.1\nrun 3000\nrun 3000");
+  Deck first;
+  first(incline() + clump(false) + body + "velocity all set 0 0 0.1\nrun 3000\nwrite_restart " + tmp / "r.bin");
+  Deck second;
+  second("read_restart " + tmp / "r.bin" + R"(
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-6
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix g all gravity 9.81 vector 0.5 0 -0.86602540378443860
+)" + body + "run 3000");
+  for (long id = 1; id <= 3; ++id) {
+    const std::size_t a = whole->atoms.index_of(id), b = second->atoms.index_of(id);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(whole->atoms.x[3 * a + k], second->atoms.x[3 * b + k]);
+      EXPECT_EQ(whole->atoms.v[3 * a + k], second->atoms.v[3 * b + k]);
+      EXPECT_EQ(whole->atoms.omega[3 * a + k], second->atoms.omega[3 * b + k]);
+    }
+  }
+}
+
+// Bad input names the line and the word.
+TEST(FixRigid, BadInputIsNamed) {
+  auto err = [](const std::string& extra, const std::string& fix) {
+    Deck d;
+    d(incline() + clump(false) + extra);
+    return error_of(d, fix);
+  };
+  EXPECT_NE(err("", "fix rb all rigid group 1 nogroup").find("an existing group ID"), std::string::npos);
+  EXPECT_NE(err("", "fix rb all rigid single force 1 off maybe on").find("on or off"), std::string::npos);
+  EXPECT_NE(err("group one id 1\n", "fix rb one rigid single").find("has 1 grain"), std::string::npos);
+  EXPECT_NE(err("", "fix rb all rigid molecule").find("no molecule ID"), std::string::npos);
+  EXPECT_NE(err("", "fix rb all rigid single langevin 1 1 1 12345").find("force or torque"), std::string::npos);
+  EXPECT_NE(err("", "fix rb all rigid single force 2 off off off").find("bodies within 1..1"), std::string::npos);
+  EXPECT_NE(err("fix i all nve/sphere\nfix rb all rigid single\n", "run 1").find("also integrated by fix i"),
+            std::string::npos);
+  EXPECT_NE(err("fix rb all rigid single\n", "thermo_style custom step f_rb[2][1]").find("within [1..1][1..15]"),
+            std::string::npos);
+}
