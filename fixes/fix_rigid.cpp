@@ -95,6 +95,7 @@ struct Body {
   double mass = 0;
   V3 xcm{}, vcm{}, angmom{}, omega{}, moments{};  // xcm unwrapped
   Q4 q{1, 0, 0, 0};
+  V3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};  // the body axes, axes(q), kept with q
   V3 force{}, torque{};  // sums over the members, before the flags
   std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
   int members = 0;
@@ -131,10 +132,9 @@ class FixRigid : public Fix {
         if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
       }
       if (rotates(b)) {
-        V3 ex, ey, ez;
-        axes(b.q, ex, ey, ez);
-        b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
+        b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.moments);
         richardson(b.q, b.angmom, b.omega, b.moments, 0.5 * sim.dt);
+        axes(b.q, b.ex, b.ey, b.ez);
       }
     }
     place_members(true);
@@ -148,11 +148,7 @@ class FixRigid : public Fix {
         if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
         if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
       }
-      if (rotates(b)) {
-        V3 ex, ey, ez;
-        axes(b.q, ex, ey, ez);
-        b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
-      }
+      if (rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.moments);
     }
     place_members(false);
   }
@@ -388,13 +384,12 @@ class FixRigid : public Fix {
     const Eigen::Quaterniond q(R);
     b.q = {q.w(), q.x(), q.y(), q.z()};
     normalize(b.q);
-    V3 ex, ey, ez;
-    axes(b.q, ex, ey, ez);
+    axes(b.q, b.ex, b.ey, b.ez);
     for (std::size_t i = 0; i < at.n; ++i) {
       if (c[kStride * i] != body + 1) continue;
       const V3 d = offset(i, b);
       double* o = &c[kStride * i];
-      o[1] = dot(d, ex), o[2] = dot(d, ey), o[3] = dot(d, ez);
+      o[1] = dot(d, b.ex), o[2] = dot(d, b.ey), o[3] = dot(d, b.ez);
       o[4] = d[0], o[5] = d[1], o[6] = d[2];
     }
   }
@@ -425,9 +420,7 @@ class FixRigid : public Fix {
     }
     for (Body& b : bodies_) {
       for (double& v : b.vcm) v /= b.mass;
-      V3 ex, ey, ez;
-      axes(b.q, ex, ey, ez);
-      b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
+      b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.moments);
     }
   }
 
@@ -479,15 +472,13 @@ class FixRigid : public Fix {
   void place_members(bool positions) {
     Atoms& at = sim.atoms;
     auto& c = at.column(col_);
-    std::vector<std::array<V3, 3>> ax(bodies_.size());
-    for (std::size_t b = 0; b < bodies_.size(); ++b) axes(bodies_[b].q, ax[b][0], ax[b][1], ax[b][2]);
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = static_cast<int>(c[kStride * i]) - 1;
       if (k < 0) continue;
       const Body& b = bodies_[k];
       double* o = &c[kStride * i];
       if (positions && rotates(b))
-        for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * ax[k][0][e] + o[2] * ax[k][1][e] + o[3] * ax[k][2][e];
+        for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * b.ex[e] + o[2] * b.ey[e] + o[3] * b.ez[e];
       double x[3], v[3];
       expected(i, k, x, v);
       for (int e = 0; e < 3; ++e) {

@@ -170,7 +170,9 @@ run 60000
   const double load = mass * 9.81 + 16 * 0.001;  // weight of bed and lid, and the push on the lid's 16 grains
   EXPECT_NEAR(-fz, load, 5e-3 * load);
   for (std::size_t i = 0; i < at.n; ++i)
-    if (at.type[i] == 2) EXPECT_EQ(at.v[3 * i], u);
+    if (at.type[i] == 2) {
+      EXPECT_EQ(at.v[3 * i], u);
+    }
   EXPECT_EQ(value(d, "f_lid[1][4]"), u);
 }
 
@@ -302,6 +304,8 @@ run 60000
   EXPECT_NEAR(u, 0.02, 1e-17);
   for (std::size_t i = 0; i < at.n; ++i) {
     EXPECT_EQ(at.x[3 * i + 2], 0.0);
-    if (at.type[i] == 2) EXPECT_EQ(at.v[3 * i], u);
+    if (at.type[i] == 2) {
+      EXPECT_EQ(at.v[3 * i], u);
+    }
   }
 }
