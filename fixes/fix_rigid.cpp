@@ -155,6 +155,11 @@ class FixRigid : public Fix {
 
   void setup() override { sum_forces(); }
 
+  int body_of(std::size_t i) const override {
+    return col_ < 0 || i >= sim.atoms.n ? -1 : static_cast<int>(sim.atoms.column(col_)[kStride * i]) - 1;
+  }
+  const double* body_force(int b) const override { return bodies_[b].force.data(); }
+
   double compute_array(int i, int j) override {
     if (i < 1 || i > static_cast<int>(bodies_.size()) || j < 1 || j > 15)
       args.fail_line("f_" + id + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: index out of range [1.." +

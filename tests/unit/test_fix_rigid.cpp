@@ -309,3 +309,38 @@ run 60000
     }
   }
 }
+
+// compute unbalanced/force counts a rigid body once, with its summed force, and leaves out the
+// contacts inside it (YADE's clumps): two spheres overlapping by a quarter radius, glued, at rest
+// on a floor. Their own net forces are the large internal push; the body's is zero at rest, so
+// the ratio falls under 1e-3, and the mean contact force is that of the two floor contacts,
+// half the weight each (symmetry; 1 %).
+TEST(FixRigid, UnbalancedForceCountsABodyOnce) {
+  Deck d;
+  d(R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+region box block -0.02 0.02 -0.02 0.02 -0.001 0.02 units box
+create_box 1 box
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-6
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+create_atoms 1 single -0.0015 0 0.002 units box
+create_atoms 1 single 0.0015 0 0.002 units box
+set group all diameter 0.004 density 2500
+fix g all gravity 9.81 vector 0 0 -1
+fix rb all rigid single
+compute ub all unbalanced/force
+run 40000)");
+  const double weight = 2 * d->atoms.rmass[0] * 9.81;
+  EXPECT_LT(value(d, "c_ub"), 1e-3);
+  EXPECT_NEAR(value(d, "c_ub[4]"), weight / 2, 0.01 * weight / 2);
+}
