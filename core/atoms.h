@@ -27,6 +27,8 @@ class Atoms {
   int ntypes = 1;
   // Extra column holding the mass contacts see (rigid bodies: the body's); -1: rmass.
   int mass_override = -1;
+  // Extra column: grains with the same nonzero value never pair (the grains of one rigid body).
+  int pair_exclusion = -1;
   long max_id = 0;
   AtomSplit split;  // thread ranges of the per-atom passes (set by the pair pass)
 

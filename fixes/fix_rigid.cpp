@@ -10,6 +10,8 @@
 // parallel-axis term), overlaps counted twice, as LAMMPS and LIGGGHTS do.
 // Contacts see the body's mass as each member's mass (LIGGGHTS' m_eff for rigid
 // members: a flat dumbbell bouncing on a floor at e = 0.5 comes back at 0.366).
+// Grains of one body never pair (LIGGGHTS' fix multisphere; with LAMMPS' fix
+// rigid a deck asks for it by neigh_modify exclude): their forces would cancel.
 // f_ID[i][j]: body i, columns x y z (centre of mass, in the box), vx vy vz,
 // fx fy fz, tx ty tz (summed force and torque before the force/torque flags),
 // ix iy iz (image counters), as LAMMPS' global array.
@@ -117,6 +119,8 @@ class FixRigid : public Fix {
     check_integrators();
     mass_col_ = sim.atoms.add_column("rigid:contact_mass", 1);
     sim.atoms.mass_override = mass_col_;
+    pair_col_ = sim.atoms.add_column("rigid:pair_exclusion", 1);
+    sim.atoms.pair_exclusion = pair_col_;
     refresh_state();
     place_members(false);
     refresh_contact_mass(true);
@@ -213,6 +217,7 @@ class FixRigid : public Fix {
   std::vector<Body> bodies_;
   int col_ = -1;       // per atom: body index + 1 (0: none), offset in the body frame (3), in the world frame (3)
   int mass_col_ = -1;  // per atom: the mass contacts see
+  int pair_col_ = -1;  // per atom: a key shared by the grains of one body, which never pair
   std::size_t last_n_ = 0;
   static constexpr int kStride = 7;
 
@@ -325,7 +330,7 @@ class FixRigid : public Fix {
         args.fail_line("rigid body " + std::to_string(b + 1) + " has " + std::to_string(bodies_[b].members) +
                        " grain" + (bodies_[b].members == 1 ? "" : "s") + ": each body needs two or more");
     apply_flags();
-    for (std::size_t b = 0; b < bodies_.size(); ++b) measure_static(static_cast<int>(b));
+    measure_static(std::vector<char>(bodies_.size(), 1));
     measure_dynamic();
     defined_ = true;
     last_n_ = at.n;
@@ -358,45 +363,63 @@ class FixRigid : public Fix {
     }
   }
 
-  // Mass, centre of mass, principal moments and axes, and each member's offset in the body frame.
-  void measure_static(int body) {
+  // Mass, centre of mass, principal moments and axes, and each member's offset in
+  // the body frame, of the bodies marked in `which`: three passes over the atoms.
+  void measure_static(const std::vector<char>& which) {
     Atoms& at = sim.atoms;
     auto& c = at.column(col_);
-    Body& b = bodies_[body];
-    b.mass = 0;
-    V3 s{0, 0, 0};
+    auto body_of_atom = [&](std::size_t i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      return k >= 0 && which[k] ? k : -1;
+    };
+    std::vector<V3> s(bodies_.size(), V3{0, 0, 0});
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (which[b]) bodies_[b].mass = 0;
     for (std::size_t i = 0; i < at.n; ++i) {
-      if (c[kStride * i] != body + 1) continue;
+      const int k = body_of_atom(i);
+      if (k < 0) continue;
       double u[3];
       sim.domain.unmap(&at.x[3 * i], &at.image[3 * i], u);
-      for (int k = 0; k < 3; ++k) s[k] += at.rmass[i] * u[k];
-      b.mass += at.rmass[i];
+      for (int e = 0; e < 3; ++e) s[k][e] += at.rmass[i] * u[e];
+      bodies_[k].mass += at.rmass[i];
     }
-    for (int k = 0; k < 3; ++k) b.xcm[k] = s[k] / b.mass;
-    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (which[b])
+        for (int e = 0; e < 3; ++e) bodies_[b].xcm[e] = s[b][e] / bodies_[b].mass;
+    std::vector<Eigen::Matrix3d> inertia(bodies_.size(), Eigen::Matrix3d::Zero());
     for (std::size_t i = 0; i < at.n; ++i) {
-      if (c[kStride * i] != body + 1) continue;
-      const V3 d = offset(i, b);
+      const int k = body_of_atom(i);
+      if (k < 0) continue;
+      const V3 d = offset(i, bodies_[k]);
       const double m = at.rmass[i], r = at.radius[i];
       const Eigen::Vector3d e(d[0], d[1], d[2]);
-      I += (0.4 * m * r * r + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
+      inertia[k] += (0.4 * m * r * r + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
     }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (which[b]) principal_axes(bodies_[b], inertia[b]);
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = body_of_atom(i);
+      if (k < 0) continue;
+      const Body& b = bodies_[k];
+      const V3 d = offset(i, b);
+      double* o = &c[kStride * i];
+      o[1] = dot(d, b.ex), o[2] = dot(d, b.ey), o[3] = dot(d, b.ez);
+      o[4] = d[0], o[5] = d[1], o[6] = d[2];
+    }
+  }
+
+  // Principal moments (a negligible one set to zero: no spin about that axis) and
+  // the orientation quaternion of the right-handed principal axes.
+  static void principal_axes(Body& b, const Eigen::Matrix3d& inertia) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertia);
     Eigen::Matrix3d R = eig.eigenvectors();
-    if (R.determinant() < 0) R.col(2) = -R.col(2);  // right-handed body axes
+    if (R.determinant() < 0) R.col(2) = -R.col(2);
     const double imax = eig.eigenvalues().maxCoeff();
     for (int k = 0; k < 3; ++k) b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
     const Eigen::Quaterniond q(R);
     b.q = {q.w(), q.x(), q.y(), q.z()};
     normalize(b.q);
     axes(b.q, b.ex, b.ey, b.ez);
-    for (std::size_t i = 0; i < at.n; ++i) {
-      if (c[kStride * i] != body + 1) continue;
-      const V3 d = offset(i, b);
-      double* o = &c[kStride * i];
-      o[1] = dot(d, b.ex), o[2] = dot(d, b.ey), o[3] = dot(d, b.ez);
-      o[4] = d[0], o[5] = d[1], o[6] = d[2];
-    }
   }
 
   V3 offset(std::size_t i, const Body& b) const {
@@ -451,10 +474,9 @@ class FixRigid : public Fix {
       if (count[b] != bodies_[b].members)
         args.fail_line("rigid body " + std::to_string(b + 1) + " had " + std::to_string(bodies_[b].members) +
                        " grains and has " + std::to_string(count[b]) + " now (grains of a body were deleted)");
-    bool any = false;
-    for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (moved[b]) measure_static(static_cast<int>(b)), any = true;
-    if (any) measure_dynamic();
+    if (std::find(moved.begin(), moved.end(), 1) == moved.end()) return;
+    measure_static(moved);
+    measure_dynamic();
   }
 
   // Where place_members would put grain i of body k, and its velocity.
@@ -477,6 +499,8 @@ class FixRigid : public Fix {
   void place_members(bool positions) {
     Atoms& at = sim.atoms;
     auto& c = at.column(col_);
+    const Domain& dom = sim.domain;
+    const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = static_cast<int>(c[kStride * i]) - 1;
       if (k < 0) continue;
@@ -484,18 +508,17 @@ class FixRigid : public Fix {
       double* o = &c[kStride * i];
       if (positions && rotates(b))
         for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * b.ex[e] + o[2] * b.ey[e] + o[3] * b.ez[e];
-      double x[3], v[3];
-      expected(i, k, x, v);
+      const V3 d{o[4], o[5], o[6]};
+      const V3 wd = cross(b.omega, d);
       for (int e = 0; e < 3; ++e) {
         if (positions) {
-          const double u = b.xcm[e] + o[4 + e];
           at.image[3 * i + e] = 0;
-          at.x[3 * i + e] = u;
+          at.x[3 * i + e] = b.xcm[e] + d[e];
         }
-        at.v[3 * i + e] = v[e];
+        at.v[3 * i + e] = b.vcm[e] + wd[e];
         at.omega[3 * i + e] = b.omega[e];
       }
-      if (positions) sim.domain.remap(&at.x[3 * i], &at.image[3 * i]);
+      if (positions && wrap) dom.remap(&at.x[3 * i], &at.image[3 * i]);
     }
   }
 
@@ -525,19 +548,27 @@ class FixRigid : public Fix {
     Atoms& at = sim.atoms;
     if (!all && at.n == last_n_) return;
     auto& m = at.column(mass_col_);
+    auto& pairs = at.column(pair_col_);
     const auto& c = at.column(col_);
-    const bool first = first_rigid();
+    const int ordinal = rigid_ordinal();
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = static_cast<int>(c[kStride * i]) - 1;
-      if (k >= 0) m[i] = bodies_[k].mass;
-      else if (first && (all || m[i] == 0.0)) m[i] = at.rmass[i];
+      if (k >= 0) {
+        m[i] = bodies_[k].mass;
+        pairs[i] = std::ldexp(ordinal, 32) + k + 1;  // unique over all rigid fixes
+      } else if (ordinal == 0 && (all || m[i] == 0.0)) {
+        m[i] = at.rmass[i];
+      }
     }
     last_n_ = at.n;
   }
-  bool first_rigid() const {
-    for (auto& f : sim.fixes)
-      if (f->style == "rigid" || f->style == "rigid/small") return f.get() == this;
-    return true;
+  int rigid_ordinal() const {  // 0 for the first rigid fix defined
+    int k = 0;
+    for (auto& f : sim.fixes) {
+      if (f.get() == this) return k;
+      k += f->style == "rigid" || f->style == "rigid/small";
+    }
+    return k;
   }
 };
 
