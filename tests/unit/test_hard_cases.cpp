@@ -8,9 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <numeric>
 #include <random>
 #include <string>
-#include <numeric>
+#include <tuple>
 #include <vector>
 
 #include "core/compute.h"
@@ -82,9 +83,9 @@ INSTANTIATE_TEST_SUITE_P(Boxes, WideSizes,
 
 namespace {
 
-// Hertz normal force 4/3 E* sqrt(R*) dn^1.5 and its potential 8/15 E* sqrt(R*) dn^2.5,
-// E* = E / (2 (1 - nu^2)) for two bodies of one material (LIGGGHTS' hertz model;
-// a plane wall of the grains' type: R* = r).
+// Hertz normal force 4/3 E* sqrt(R*) dn^1.5, E* = E / (2 (1 - nu^2)) for two
+// bodies of one material (LIGGGHTS' hertz model; a plane wall of the grains'
+// type: R* = r).
 double hertz(double estar, double rstar, double dn) { return 4.0 / 3.0 * estar * std::sqrt(rstar) * std::pow(dn, 1.5); }
 
 // The largest overlap of any contact over the smaller radius of the two
