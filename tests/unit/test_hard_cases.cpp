@@ -343,7 +343,9 @@ TEST_P(Quartz, PileSettlesAtEighteenPercentOfTheRayleighTime) {
   double ke_max = 0.0, ov_max = 0.0, ke = 0.0;
   for (int c = 0; c < 70; ++c) {
     d("run 2000");
-    if (c == 0) EXPECT_NEAR(d->step_bounds().rayleigh, tr, 1e-12 * tr);  // the bound sable checks (after setup)
+    if (c == 0) {
+      EXPECT_NEAR(d->step_bounds().rayleigh, tr, 1e-12 * tr);  // the bound sable checks (after setup)
+    }
     ASSERT_TRUE(all_finite(d->atoms)) << "step " << d->step;
     ke = kinetic(d->atoms);
     ke_max = std::max(ke_max, ke);
