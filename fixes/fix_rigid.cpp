@@ -226,7 +226,12 @@ class FixRigid : public Fix {
     const Atoms& at = sim.atoms;
     const auto& c = at.column(col_);
     for (auto& f : sim.fixes) {
-      if (f.get() == this || !(f->atom_tasks & INITIAL_INTEGRATE)) continue;
+      if (f.get() == this) continue;
+      for (std::size_t i = 0; i < at.n; ++i)
+        if (c[kStride * i] != 0 && f->body_of(i) >= 0)
+          args.fail_line("atom " + std::to_string(at.id[i]) + " belongs to a body of fix " + f->id +
+                         " too: a grain is in one rigid body at most");
+      if (!(f->atom_tasks & INITIAL_INTEGRATE)) continue;
       for (std::size_t i = 0; i < at.n; ++i)
         if (c[kStride * i] != 0 && (at.mask[i] & f->groupbit))
           args.fail_line("atom " + std::to_string(at.id[i]) + " of a rigid body is also integrated by fix " + f->id +
@@ -319,6 +324,8 @@ class FixRigid : public Fix {
       for (std::size_t g = 0; g < groups_.size(); ++g) index.emplace(static_cast<long>(g) + 1, 0);
     int nb = 0;
     for (auto& [k, v] : index) v = nb++;
+    if (nb == 0) args.fail_line("no rigid bodies: no grain of group '" + sim.groups.name(group) + "' has a body (" +
+                                (bodystyle_ == Style::Custom ? "every body ID is 0" : "the group is empty") + ")");
     bodies_.assign(nb, Body{});
     col_ = at.add_column("rigid:" + id, kStride);
     auto& c = at.column(col_);
