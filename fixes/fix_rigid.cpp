@@ -54,16 +54,11 @@ void normalize(Q4& q) {
   for (double& c : q) c *= s;
 }
 
-// Angular velocity from angular momentum m, body axes and principal moments (a zero moment: no spin about it).
-V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& moments) {
-  const V3 e[3] = {ex, ey, ez};
-  V3 w = {0, 0, 0};
-  for (int k = 0; k < 3; ++k) {
-    if (moments[k] == 0.0) continue;
-    const double wk = dot(m, e[k]) / moments[k];
-    for (int c = 0; c < 3; ++c) w[c] += wk * e[k][c];
-  }
-  return w;
+// Angular velocity from angular momentum m, body axes and inverse principal moments
+// (0 for a zero moment: no spin about that axis).
+V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv) {
+  const double a = dot(m, ex) * inv[0], b = dot(m, ey) * inv[1], c = dot(m, ez) * inv[2];
+  return {a * ex[0] + b * ey[0] + c * ez[0], a * ex[1] + b * ey[1] + c * ez[1], a * ex[2] + b * ey[2] + c * ez[2]};
 }
 
 // dq/dt = 1/2 (0, w) q, as the product (0, w) q.
@@ -81,13 +76,13 @@ Q4 step_q(const Q4& q, const Q4& wq, double h) {
 
 // One orientation step of dt = 2 dtq by Richardson extrapolation (LAMMPS' fix rigid):
 // a full step and two half steps (omega recomputed from m at the midpoint), combined as 2 half - full.
-void richardson(Q4& q, const V3& m, V3& w, const V3& moments, double dtq) {
+void richardson(Q4& q, const V3& m, V3& w, const V3& inv, double dtq) {
   const Q4 wq = spin(w, q);
   const Q4 full = step_q(q, wq, dtq);
   Q4 half = step_q(q, wq, 0.5 * dtq);
   V3 ex, ey, ez;
   axes(half, ex, ey, ez);
-  w = omega_of(m, ex, ey, ez, moments);
+  w = omega_of(m, ex, ey, ez, inv);
   half = step_q(half, spin(w, half), 0.5 * dtq);
   for (int c = 0; c < 4; ++c) q[c] = 2.0 * half[c] - full[c];
   normalize(q);
@@ -95,7 +90,8 @@ void richardson(Q4& q, const V3& m, V3& w, const V3& moments, double dtq) {
 
 struct Body {
   double mass = 0;
-  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{};  // xcm unwrapped
+  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{}, inv_moments{};  // xcm unwrapped
+  double inv_mass = 0;
   Q4 q{1, 0, 0, 0};
   V3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};  // the body axes, axes(q), kept with q
   V3 force{}, torque{};  // sums over the members, before the flags
@@ -131,13 +127,13 @@ class FixRigid : public Fix {
     const double dtf = 0.5 * sim.dt;
     for (Body& b : bodies_) {
       for (int k = 0; k < 3; ++k) {
-        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
+        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
         b.xcm[k] += sim.dt * b.vcm[k];
         if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
       }
       if (rotates(b)) {
-        b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.moments);
-        richardson(b.q, b.angmom, b.omega, b.moments, 0.5 * sim.dt);
+        b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+        richardson(b.q, b.angmom, b.omega, b.inv_moments, 0.5 * sim.dt);
         axes(b.q, b.ex, b.ey, b.ez);
       }
     }
@@ -149,10 +145,10 @@ class FixRigid : public Fix {
     const double dtf = 0.5 * sim.dt;
     for (Body& b : bodies_) {
       for (int k = 0; k < 3; ++k) {
-        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
+        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
         if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
       }
-      if (rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.moments);
+      if (rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
     }
     place_members(false);
   }
@@ -391,8 +387,10 @@ class FixRigid : public Fix {
       bodies_[k].mass += at.rmass[i];
     }
     for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (which[b])
+      if (which[b]) {
         for (int e = 0; e < 3; ++e) bodies_[b].xcm[e] = s[b][e] / bodies_[b].mass;
+        bodies_[b].inv_mass = 1.0 / bodies_[b].mass;
+      }
     std::vector<Eigen::Matrix3d> inertia(bodies_.size(), Eigen::Matrix3d::Zero());
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = body_of_atom(i);
@@ -422,7 +420,10 @@ class FixRigid : public Fix {
     Eigen::Matrix3d R = eig.eigenvectors();
     if (R.determinant() < 0) R.col(2) = -R.col(2);
     const double imax = eig.eigenvalues().maxCoeff();
-    for (int k = 0; k < 3; ++k) b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
+    for (int k = 0; k < 3; ++k) {
+      b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
+      b.inv_moments[k] = b.moments[k] > 0 ? 1.0 / b.moments[k] : 0.0;
+    }
     const Eigen::Quaterniond q(R);
     b.q = {q.w(), q.x(), q.y(), q.z()};
     normalize(b.q);
@@ -455,7 +456,7 @@ class FixRigid : public Fix {
     }
     for (Body& b : bodies_) {
       for (double& v : b.vcm) v /= b.mass;
-      b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.moments);
+      b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
     }
   }
 
