@@ -226,7 +226,8 @@ TEST(TwoD, FrozenKernelMatchesFullKernel) {
 }
 
 // Which runs may skip rotation: not with nve/sphere, nor with fix nve when a
-// grain already spins, nor with fix move rotate; yes with fix nve and no spin.
+// grain already spins, nor with fix move rotate, nor with a free rigid body;
+// yes with fix nve and no spin, and with a body whose rotation is locked.
 TEST(TwoD, RotationIsSkippedOnlyWhenNoGrainTurns) {
   auto rotation = [](const std::string& lines) {
     Deck d;
@@ -254,6 +255,8 @@ timestep_check accept
   EXPECT_TRUE(rotation("set atom 1 omegaz 1\nfix i all nve"));
   EXPECT_TRUE(rotation("group one id 1\ngroup other id 2\nfix i other nve\nfix mv one move rotate 5 5 0 0 0 1 10"));
   EXPECT_FALSE(rotation("group one id 1\ngroup other id 2\nfix i other nve\nfix mv one move linear 1 0 0"));
+  EXPECT_TRUE(rotation("fix rb all rigid single"));
+  EXPECT_FALSE(rotation("fix rb all rigid single torque * off off off"));
 }
 
 // 2D runs with z periodic or fixed; a grain dropped on a floor wall settles on
