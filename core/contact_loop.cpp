@@ -364,27 +364,38 @@ class ContactLoopT final : public ContactLoop {
   [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch) const {
     gather(b, ch);
     law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd, b.a.kinematics());
-    const bool spin = b.a.rotation;
     if (b.ctx.update)
-      spin ? scatter<true, true>(b, ch) : scatter<true, false>(b, ch);
+      scatter_as<true>(b, ch);
     else
-      spin ? scatter<false, true>(b, ch) : scatter<false, false>(b, ch);
+      scatter_as<false>(b, ch);
     ch.n = 0;
+  }
+  template <bool kUpdate>
+  void scatter_as(const PairBatch& b, const Chunk& ch) const {
+    switch (b.a.kinematics()) {
+      case Kinematics::Full: return scatter<kUpdate, true, false>(b, ch);
+      case Kinematics::Plane: return scatter<kUpdate, true, true>(b, ch);
+      case Kinematics::Frozen: return scatter<kUpdate, false, false>(b, ch);
+      case Kinematics::PlaneFrozen: return scatter<kUpdate, false, true>(b, ch);
+    }
   }
 
   // Stage 3: forces and torques onto the grains in list order; history back.
-  // kSpin false: the law made no torque (no rotation), none is added.
-  template <bool kUpdate, bool kSpin>
+  // kSpin false: the law made no torque (no rotation), none is added; kPlane:
+  // no z force and no in-plane torque (zeros in 2D) are added.
+  template <bool kUpdate, bool kSpin, bool kPlane>
   void scatter(const PairBatch& b, const Chunk& ch) const {
     double* f = b.a.f;
     double* t = b.a.torque;
     [[maybe_unused]] double* hist = b.hist;
     for (int e = 0; e < ch.n; ++e) {
       const int i = ch.i[e], j = ch.j[e];
-      for (int d = 0; d < 3; ++d) {
+      for (int d = 0; d < (kPlane ? 2 : 3); ++d) {
         f[3 * i + d] += ch.f[d][e];
         f[3 * j + d] -= ch.f[d][e];
-        if constexpr (kSpin) {
+      }
+      if constexpr (kSpin) {
+        for (int d = kPlane ? 2 : 0; d < 3; ++d) {
           t[3 * i + d] += ch.ti[d][e];
           t[3 * j + d] += ch.tj[d][e];
         }

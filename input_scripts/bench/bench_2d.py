@@ -53,6 +53,7 @@ def main():
     size = dict(nx=args.nx, ny=args.ny, prep=args.prep, shear0=args.shear0, steps=args.steps)
     tmp = tempfile.mkdtemp(prefix="sable-bench2d-")
     rates = {m: [] for m, _ in MODES}
+    pair_s = {m: [] for m, _ in MODES}  # seconds in the contact pass (pair share of the timed run)
     dumps = {}
     for rep in range(args.repeats):
         for mode, extra in MODES:
@@ -62,6 +63,7 @@ def main():
                 print("FAILED %s:\n%s" % (mode, r.get("tail")))
                 return 1
             rates[mode].append(r["psps"])
+            pair_s[mode].append(r["loop_s"] * r.get("split", {}).get("pair", float("nan")) / 100)
             dumps[mode] = r["dump"]
             print("repeat %d %-9s %s particle-steps/s  (%d atoms, %d steps, load %.1f)" %
                   (rep + 1, mode, bench.fmt_rate(r["psps"]), r["atoms"], r["steps"], r["load_before"]), flush=True)
@@ -72,15 +74,22 @@ def main():
         print("  %-9s %s particle-steps/s  (repeats: %s)" %
               (m, bench.fmt_rate(med[m]), ", ".join(bench.fmt_rate(x) for x in rates[m])))
 
-    def paired(a, b):  # per-repeat ratio (runs close in time), median
-        return statistics.median(x / y for x, y in zip(rates[a], rates[b]))
+    for m, _ in MODES:
+        print("  %-9s contact pass %.3f s (median; repeats %s)" %
+              (m, statistics.median(pair_s[m]), ", ".join("%.3f" % x for x in pair_s[m])))
+
+    def paired(a, b, table=rates):  # per-repeat ratio (runs close in time), median
+        return statistics.median(x / y for x, y in zip(table[a], table[b]))
     print("  2D kernel / 3D kernel + enforce2d    (same physics):   %.3f" % paired("plane2d", "full3d"))
     print("  frozen 2D / full 3D, both fix nve    (same physics):   %.3f" % paired("frozen2d", "full_nve"))
     print("  frozen 2D / 2D with rotation         (different scene): %.3f" % paired("frozen2d", "plane2d"))
     print("  frozen 2D / 3D kernel + enforce2d    (all savings):    %.3f" % paired("frozen2d", "full3d"))
+    print("  contact pass time, full3d / plane2d: %.3f; full_nve / frozen2d: %.3f" %
+          (paired("full3d", "plane2d", pair_s), paired("full_nve", "frozen2d", pair_s)))
     for a, b in (("full3d", "plane2d"), ("full_nve", "frozen2d")):
-        same = bench.compare_dumps(dumps[a], dumps[b])
-        print("  final state %s vs %s: %s" % (a, b, same))
+        same, nlines, maxd = bench.compare_dumps(dumps[a], dumps[b])
+        print("  final state %s vs %s: %s" % (a, b, "identical dumps" if same else
+                                             "%d lines differ, max |difference| %.3g" % (nlines, maxd)))
     if not args.keep:
         shutil.rmtree(tmp, ignore_errors=True)
     return 0
