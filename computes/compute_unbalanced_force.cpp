@@ -2,7 +2,10 @@
 // YADE's utils.unbalancedForce(): the mean over grains of |net force| divided
 // by the mean over contacts of |contact force|; 0 in static equilibrium.
 //   grains    those of the group, less the grains of fix freeze (YADE skips
-//             non-dynamic bodies; give the group of the free grains)
+//             non-dynamic bodies; give the group of the free grains); a rigid
+//             body (fix rigid) with a grain in the group counts once, with its
+//             summed force, as YADE counts a clump, and its members' contacts
+//             with each other are not counted
 //   net force the force the step applied to the grain: contacts, gravity and
 //             every other fix's force (YADE adds the integrator's gravity),
 //             without what fix damping/cundall added (YADE's forces are read
@@ -19,6 +22,8 @@
 // fix damping/cundall keeps what it added (3 doubles per grain per step).
 #include <cmath>
 #include <limits>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "contact_models/pair_gran.h"
@@ -78,9 +83,14 @@ class ComputeUnbalancedForce : public Compute {
     for (auto& f : sim.fixes)
       if (auto* d = dynamic_cast<const FixDampingCundall*>(f.get())) damp.push_back(d);
     const std::uint32_t frozen = frozen_groupbits(sim);
+    std::set<std::pair<const Fix*, int>> bodies_seen;
     for (std::size_t i = 0; i < at.n; ++i) {
       if (!(at.mask[i] & groupbit) || (at.mask[i] & frozen)) continue;
       double f[3] = {at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
+      if (const auto [fix, b] = body(i); fix) {
+        if (!bodies_seen.insert({fix, b}).second) continue;
+        std::copy(fix->body_force(b), fix->body_force(b) + 3, f);
+      }
       for (const FixDampingCundall* d : damp)
         if (const double* add = d->added(at.n, sim.step); add && (at.mask[i] & d->groupbit))
           for (int k = 0; k < 3; ++k) f[k] -= add[3 * i + k];
@@ -91,11 +101,19 @@ class ComputeUnbalancedForce : public Compute {
     }
   }
 
+  // The rigid body atom i belongs to, if any.
+  std::pair<const Fix*, int> body(std::size_t i) const {
+    for (auto& f : sim.fixes)
+      if (const int b = f->body_of(i); b >= 0) return {f.get(), b};
+    return {nullptr, -1};
+  }
+
   void contact_forces(double& sum, long& n) {
     const Atoms& at = sim.atoms;
     auto add = [&](bool pair) {
       for (const ContactRecord& c : rec_.rows) {
         if (pair && !((at.mask[c.i] | at.mask[c.j]) & groupbit)) continue;
+        if (pair && body(c.i).first && body(c.i) == body(c.j)) continue;  // inside one body
         sum += std::sqrt(c.f[0] * c.f[0] + c.f[1] * c.f[1] + c.f[2] * c.f[2]);
         ++n;
       }

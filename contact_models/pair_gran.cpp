@@ -44,6 +44,7 @@ void PairGran::init() {
   if (!coeff_set_) args.fail_line("pair_coeff * * is missing after this pair_style (LIGGGHTS requires it too)");
   auto mats = Materials::of(sim);
   kernel_->connect(mats, args);
+  connected_ = true;
   freeze_bit_ = frozen_groupbits(sim);
   // Rayleigh time needs Y and nu per type; stiffness models may not define them (see rayleigh_time).
   shear_modulus_.clear();
@@ -113,6 +114,7 @@ void PairGran::records(std::uint32_t groupbit, ContactRecords& out) {
 }
 
 double PairGran::contact_time(std::size_t i, std::size_t j, double v) const {
+  if (!connected_) return std::numeric_limits<double>::infinity();  // before the first run: no coefficients yet
   const Atoms& at = sim.atoms;
   const double ri = at.radius[i], rj = at.radius[j], mi = at.rmass[i], mj = at.rmass[j];
   return kernel_->contact_time({mi * mj / (mi + mj), ri * rj / (ri + rj), v, at.type[i] * (at.ntypes + 1) + at.type[j]});

@@ -42,6 +42,7 @@ class PairGran : public Pair {
 
  private:
   std::unique_ptr<ContactKernel> kernel_;
+  bool connected_ = false;  // the law has its per-type coefficients (init ran)
   ContactStore store_;
   bool coeff_set_ = false;
   bool setup_pass_ = true;  // the first force pass after init() is LIGGGHTS' setup: history not advanced

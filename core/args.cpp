@@ -1,6 +1,7 @@
 #include "core/args.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 #include "core/error.h"
@@ -48,6 +49,7 @@ const std::string& Args::word(std::size_t i, const std::string& what) const {
 double Args::num(std::size_t i, const std::string& what) const {
   double v;
   if (!parse_double(word(i, what), v)) fail(i, what + " (a number)");
+  if (!std::isfinite(v)) fail(i, what + " (a finite number)");  // nan or inf would poison the run later
   return v;
 }
 

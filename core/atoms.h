@@ -27,6 +27,8 @@ class Atoms {
   int ntypes = 1;
   // Extra column holding the mass contacts see (rigid bodies: the body's); -1: rmass.
   int mass_override = -1;
+  // Extra column: grains with the same nonzero value never pair (the grains of one rigid body).
+  int pair_exclusion = -1;
 
   // Grain shape for mass and moment of inertia, one place for every user
   // (integrators, rigid bodies, damping, erotate): mass = pi r^2 rho when

@@ -92,6 +92,11 @@ class Fix {
   // integrator on steps that defer the final half kick.
   virtual bool fold_acceleration(double /*a*/[3]) const { return false; }
 
+  // Rigid bodies: the body of atom i (-1: in none of this fix's bodies) and a
+  // body's summed force (as the last step applied it), for per-body statistics.
+  virtual int body_of(std::size_t /*i*/) const { return -1; }
+  virtual const double* body_force(int /*body*/) const { return nullptr; }
+
   // Grains of this fix's group count as infinitely heavy in contacts (LIGGGHTS fix freeze).
   virtual bool freezes_group() const { return false; }
   // A post_force that never puts force or spin out of a 2D plane (may follow enforce2d).

@@ -509,9 +509,11 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   };
   // Entries of atom i (partners j > i within the cutoff plus skin) in the bins
   // of `st`, appended to (js, shifts).
+  const double* exclusion = atoms.pair_exclusion >= 0 ? atoms.column(atoms.pair_exclusion).data() : nullptr;
   auto scan = [&](std::size_t i, const Stencil& st, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2], ri = radius[i];
     const int ii = static_cast<int>(i);
+    const double key = exclusion ? exclusion[i] : 0.0;
     for (int q = 0; q < st.n; ++q) {
       const int nbin = st.bin[q];
       const std::uint8_t code = st.code[q];
@@ -520,7 +522,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
       auto test = [&](int j) {
         const double dx = x[3 * j] + s0 - xi0, dy = x[3 * j + 1] + s1 - xi1, dz = x[3 * j + 2] + s2 - xi2;
         const double cut = ri + radius[j] + skin;
-        if (dx * dx + dy * dy + dz * dz < cut * cut) {
+        if (dx * dx + dy * dy + dz * dz < cut * cut && (key == 0.0 || exclusion[j] != key)) {
           js.push_back(j);
           shifts.push_back(code);
         }

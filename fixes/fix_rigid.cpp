@@ -10,6 +10,8 @@
 // parallel-axis term), overlaps counted twice, as LAMMPS and LIGGGHTS do.
 // Contacts see the body's mass as each member's mass (LIGGGHTS' m_eff for rigid
 // members: a flat dumbbell bouncing on a floor at e = 0.5 comes back at 0.366).
+// Grains of one body never pair (LIGGGHTS' fix multisphere; with LAMMPS' fix
+// rigid a deck asks for it by neigh_modify exclude): their forces would cancel.
 // f_ID[i][j]: body i, columns x y z (centre of mass, in the box), vx vy vz,
 // fx fy fz, tx ty tz (summed force and torque before the force/torque flags),
 // ix iy iz (image counters), as LAMMPS' global array.
@@ -52,16 +54,11 @@ void normalize(Q4& q) {
   for (double& c : q) c *= s;
 }
 
-// Angular velocity from angular momentum m, body axes and principal moments (a zero moment: no spin about it).
-V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& moments) {
-  const V3 e[3] = {ex, ey, ez};
-  V3 w = {0, 0, 0};
-  for (int k = 0; k < 3; ++k) {
-    if (moments[k] == 0.0) continue;
-    const double wk = dot(m, e[k]) / moments[k];
-    for (int c = 0; c < 3; ++c) w[c] += wk * e[k][c];
-  }
-  return w;
+// Angular velocity from angular momentum m, body axes and inverse principal moments
+// (0 for a zero moment: no spin about that axis).
+V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv) {
+  const double a = dot(m, ex) * inv[0], b = dot(m, ey) * inv[1], c = dot(m, ez) * inv[2];
+  return {a * ex[0] + b * ey[0] + c * ez[0], a * ex[1] + b * ey[1] + c * ez[1], a * ex[2] + b * ey[2] + c * ez[2]};
 }
 
 // dq/dt = 1/2 (0, w) q, as the product (0, w) q.
@@ -79,13 +76,13 @@ Q4 step_q(const Q4& q, const Q4& wq, double h) {
 
 // One orientation step of dt = 2 dtq by Richardson extrapolation (LAMMPS' fix rigid):
 // a full step and two half steps (omega recomputed from m at the midpoint), combined as 2 half - full.
-void richardson(Q4& q, const V3& m, V3& w, const V3& moments, double dtq) {
+void richardson(Q4& q, const V3& m, V3& w, const V3& inv, double dtq) {
   const Q4 wq = spin(w, q);
   const Q4 full = step_q(q, wq, dtq);
   Q4 half = step_q(q, wq, 0.5 * dtq);
   V3 ex, ey, ez;
   axes(half, ex, ey, ez);
-  w = omega_of(m, ex, ey, ez, moments);
+  w = omega_of(m, ex, ey, ez, inv);
   half = step_q(half, spin(w, half), 0.5 * dtq);
   for (int c = 0; c < 4; ++c) q[c] = 2.0 * half[c] - full[c];
   normalize(q);
@@ -93,8 +90,10 @@ void richardson(Q4& q, const V3& m, V3& w, const V3& moments, double dtq) {
 
 struct Body {
   double mass = 0;
-  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{};  // xcm unwrapped
+  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{}, inv_moments{};  // xcm unwrapped
+  double inv_mass = 0;
   Q4 q{1, 0, 0, 0};
+  V3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};  // the body axes, axes(q), kept with q
   V3 force{}, torque{};  // sums over the members, before the flags
   std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
   int members = 0;
@@ -116,6 +115,8 @@ class FixRigid : public Fix {
     check_integrators();
     mass_col_ = sim.atoms.add_column("rigid:contact_mass", 1);
     sim.atoms.mass_override = mass_col_;
+    pair_col_ = sim.atoms.add_column("rigid:pair_exclusion", 1);
+    sim.atoms.pair_exclusion = pair_col_;
     refresh_state();
     place_members(false);
     refresh_contact_mass(true);
@@ -126,15 +127,14 @@ class FixRigid : public Fix {
     const double dtf = 0.5 * sim.dt;
     for (Body& b : bodies_) {
       for (int k = 0; k < 3; ++k) {
-        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
+        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
         b.xcm[k] += sim.dt * b.vcm[k];
         if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
       }
       if (rotates(b)) {
-        V3 ex, ey, ez;
-        axes(b.q, ex, ey, ez);
-        b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
-        richardson(b.q, b.angmom, b.omega, b.moments, 0.5 * sim.dt);
+        b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+        richardson(b.q, b.angmom, b.omega, b.inv_moments, 0.5 * sim.dt);
+        axes(b.q, b.ex, b.ey, b.ez);
       }
     }
     place_members(true);
@@ -145,19 +145,20 @@ class FixRigid : public Fix {
     const double dtf = 0.5 * sim.dt;
     for (Body& b : bodies_) {
       for (int k = 0; k < 3; ++k) {
-        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] / b.mass;
+        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
         if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
       }
-      if (rotates(b)) {
-        V3 ex, ey, ez;
-        axes(b.q, ex, ey, ez);
-        b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
-      }
+      if (rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
     }
     place_members(false);
   }
 
   void setup() override { sum_forces(); }
+
+  int body_of(std::size_t i) const override {
+    return col_ < 0 || i >= sim.atoms.n ? -1 : static_cast<int>(sim.atoms.column(col_)[kStride * i]) - 1;
+  }
+  const double* body_force(int b) const override { return bodies_[b].force.data(); }
 
   double compute_array(int i, int j) override {
     if (i < 1 || i > static_cast<int>(bodies_.size()) || j < 1 || j > 15)
@@ -212,6 +213,7 @@ class FixRigid : public Fix {
   std::vector<Body> bodies_;
   int col_ = -1;       // per atom: body index + 1 (0: none), offset in the body frame (3), in the world frame (3)
   int mass_col_ = -1;  // per atom: the mass contacts see
+  int pair_col_ = -1;  // per atom: a key shared by the grains of one body, which never pair
   std::size_t last_n_ = 0;
   static constexpr int kStride = 7;
 
@@ -220,7 +222,12 @@ class FixRigid : public Fix {
     const Atoms& at = sim.atoms;
     const auto& c = at.column(col_);
     for (auto& f : sim.fixes) {
-      if (f.get() == this || !(f->atom_tasks & INITIAL_INTEGRATE)) continue;
+      if (f.get() == this) continue;
+      for (std::size_t i = 0; i < at.n; ++i)
+        if (c[kStride * i] != 0 && f->body_of(i) >= 0)
+          args.fail_line("atom " + std::to_string(at.id[i]) + " belongs to a body of fix " + f->id +
+                         " too: a grain is in one rigid body at most");
+      if (!(f->atom_tasks & INITIAL_INTEGRATE)) continue;
       for (std::size_t i = 0; i < at.n; ++i)
         if (c[kStride * i] != 0 && (at.mask[i] & f->groupbit))
           args.fail_line("atom " + std::to_string(at.id[i]) + " of a rigid body is also integrated by fix " + f->id +
@@ -316,6 +323,8 @@ class FixRigid : public Fix {
       for (std::size_t g = 0; g < groups_.size(); ++g) index.emplace(static_cast<long>(g) + 1, 0);
     int nb = 0;
     for (auto& [k, v] : index) v = nb++;
+    if (nb == 0) args.fail_line("no rigid bodies: no grain of group '" + sim.groups.name(group) + "' has a body (" +
+                                (bodystyle_ == Style::Custom ? "every body ID is 0" : "the group is empty") + ")");
     bodies_.assign(nb, Body{});
     col_ = at.add_column("rigid:" + id, kStride);
     auto& c = at.column(col_);
@@ -327,7 +336,7 @@ class FixRigid : public Fix {
         args.fail_line("rigid body " + std::to_string(b + 1) + " has " + std::to_string(bodies_[b].members) +
                        " grain" + (bodies_[b].members == 1 ? "" : "s") + ": each body needs two or more");
     apply_flags();
-    for (std::size_t b = 0; b < bodies_.size(); ++b) measure_static(static_cast<int>(b));
+    measure_static(std::vector<char>(bodies_.size(), 1));
     measure_dynamic();
     defined_ = true;
     last_n_ = at.n;
@@ -360,46 +369,68 @@ class FixRigid : public Fix {
     }
   }
 
-  // Mass, centre of mass, principal moments and axes, and each member's offset in the body frame.
-  void measure_static(int body) {
+  // Mass, centre of mass, principal moments and axes, and each member's offset in
+  // the body frame, of the bodies marked in `which`: three passes over the atoms.
+  void measure_static(const std::vector<char>& which) {
     Atoms& at = sim.atoms;
     auto& c = at.column(col_);
-    Body& b = bodies_[body];
-    b.mass = 0;
-    V3 s{0, 0, 0};
+    auto body_of_atom = [&](std::size_t i) {
+      const int k = static_cast<int>(c[kStride * i]) - 1;
+      return k >= 0 && which[k] ? k : -1;
+    };
+    std::vector<V3> s(bodies_.size(), V3{0, 0, 0});
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (which[b]) bodies_[b].mass = 0;
     for (std::size_t i = 0; i < at.n; ++i) {
-      if (c[kStride * i] != body + 1) continue;
+      const int k = body_of_atom(i);
+      if (k < 0) continue;
       double u[3];
       sim.domain.unmap(&at.x[3 * i], &at.image[3 * i], u);
-      for (int k = 0; k < 3; ++k) s[k] += at.rmass[i] * u[k];
-      b.mass += at.rmass[i];
+      for (int e = 0; e < 3; ++e) s[k][e] += at.rmass[i] * u[e];
+      bodies_[k].mass += at.rmass[i];
     }
-    for (int k = 0; k < 3; ++k) b.xcm[k] = s[k] / b.mass;
-    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (which[b]) {
+        for (int e = 0; e < 3; ++e) bodies_[b].xcm[e] = s[b][e] / bodies_[b].mass;
+        bodies_[b].inv_mass = 1.0 / bodies_[b].mass;
+      }
+    std::vector<Eigen::Matrix3d> inertia(bodies_.size(), Eigen::Matrix3d::Zero());
     for (std::size_t i = 0; i < at.n; ++i) {
-      if (c[kStride * i] != body + 1) continue;
-      const V3 d = offset(i, b);
+      const int k = body_of_atom(i);
+      if (k < 0) continue;
+      const V3 d = offset(i, bodies_[k]);
       const double m = at.rmass[i];
       const Eigen::Vector3d e(d[0], d[1], d[2]);
-      I += (at.inertia(i) + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
+      inertia[k] += (at.inertia(i) + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
     }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (which[b]) principal_axes(bodies_[b], inertia[b]);
+    for (std::size_t i = 0; i < at.n; ++i) {
+      const int k = body_of_atom(i);
+      if (k < 0) continue;
+      const Body& b = bodies_[k];
+      const V3 d = offset(i, b);
+      double* o = &c[kStride * i];
+      o[1] = dot(d, b.ex), o[2] = dot(d, b.ey), o[3] = dot(d, b.ez);
+      o[4] = d[0], o[5] = d[1], o[6] = d[2];
+    }
+  }
+
+  // Principal moments (a negligible one set to zero: no spin about that axis) and
+  // the orientation quaternion of the right-handed principal axes.
+  static void principal_axes(Body& b, const Eigen::Matrix3d& inertia) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertia);
     Eigen::Matrix3d R = eig.eigenvectors();
-    if (R.determinant() < 0) R.col(2) = -R.col(2);  // right-handed body axes
+    if (R.determinant() < 0) R.col(2) = -R.col(2);
     const double imax = eig.eigenvalues().maxCoeff();
-    for (int k = 0; k < 3; ++k) b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
+    for (int k = 0; k < 3; ++k) {
+      b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
+      b.inv_moments[k] = b.moments[k] > 0 ? 1.0 / b.moments[k] : 0.0;
+    }
     const Eigen::Quaterniond q(R);
     b.q = {q.w(), q.x(), q.y(), q.z()};
     normalize(b.q);
-    V3 ex, ey, ez;
-    axes(b.q, ex, ey, ez);
-    for (std::size_t i = 0; i < at.n; ++i) {
-      if (c[kStride * i] != body + 1) continue;
-      const V3 d = offset(i, b);
-      double* o = &c[kStride * i];
-      o[1] = dot(d, ex), o[2] = dot(d, ey), o[3] = dot(d, ez);
-      o[4] = d[0], o[5] = d[1], o[6] = d[2];
-    }
+    axes(b.q, b.ex, b.ey, b.ez);
   }
 
   V3 offset(std::size_t i, const Body& b) const {
@@ -428,9 +459,7 @@ class FixRigid : public Fix {
     }
     for (Body& b : bodies_) {
       for (double& v : b.vcm) v /= b.mass;
-      V3 ex, ey, ez;
-      axes(b.q, ex, ey, ez);
-      b.omega = omega_of(b.angmom, ex, ey, ez, b.moments);
+      b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
     }
   }
 
@@ -456,10 +485,9 @@ class FixRigid : public Fix {
       if (count[b] != bodies_[b].members)
         args.fail_line("rigid body " + std::to_string(b + 1) + " had " + std::to_string(bodies_[b].members) +
                        " grains and has " + std::to_string(count[b]) + " now (grains of a body were deleted)");
-    bool any = false;
-    for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (moved[b]) measure_static(static_cast<int>(b)), any = true;
-    if (any) measure_dynamic();
+    if (std::find(moved.begin(), moved.end(), 1) == moved.end()) return;
+    measure_static(moved);
+    measure_dynamic();
   }
 
   // Where place_members would put grain i of body k, and its velocity.
@@ -482,27 +510,26 @@ class FixRigid : public Fix {
   void place_members(bool positions) {
     Atoms& at = sim.atoms;
     auto& c = at.column(col_);
-    std::vector<std::array<V3, 3>> ax(bodies_.size());
-    for (std::size_t b = 0; b < bodies_.size(); ++b) axes(bodies_[b].q, ax[b][0], ax[b][1], ax[b][2]);
+    const Domain& dom = sim.domain;
+    const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = static_cast<int>(c[kStride * i]) - 1;
       if (k < 0) continue;
       const Body& b = bodies_[k];
       double* o = &c[kStride * i];
       if (positions && rotates(b))
-        for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * ax[k][0][e] + o[2] * ax[k][1][e] + o[3] * ax[k][2][e];
-      double x[3], v[3];
-      expected(i, k, x, v);
+        for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * b.ex[e] + o[2] * b.ey[e] + o[3] * b.ez[e];
+      const V3 d{o[4], o[5], o[6]};
+      const V3 wd = cross(b.omega, d);
       for (int e = 0; e < 3; ++e) {
         if (positions) {
-          const double u = b.xcm[e] + o[4 + e];
           at.image[3 * i + e] = 0;
-          at.x[3 * i + e] = u;
+          at.x[3 * i + e] = b.xcm[e] + d[e];
         }
-        at.v[3 * i + e] = v[e];
+        at.v[3 * i + e] = b.vcm[e] + wd[e];
         at.omega[3 * i + e] = b.omega[e];
       }
-      if (positions) sim.domain.remap(&at.x[3 * i], &at.image[3 * i]);
+      if (positions && wrap) dom.remap(&at.x[3 * i], &at.image[3 * i]);
     }
   }
 
@@ -532,19 +559,27 @@ class FixRigid : public Fix {
     Atoms& at = sim.atoms;
     if (!all && at.n == last_n_) return;
     auto& m = at.column(mass_col_);
+    auto& pairs = at.column(pair_col_);
     const auto& c = at.column(col_);
-    const bool first = first_rigid();
+    const int ordinal = rigid_ordinal();
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = static_cast<int>(c[kStride * i]) - 1;
-      if (k >= 0) m[i] = bodies_[k].mass;
-      else if (first && (all || m[i] == 0.0)) m[i] = at.rmass[i];
+      if (k >= 0) {
+        m[i] = bodies_[k].mass;
+        pairs[i] = std::ldexp(ordinal, 32) + k + 1;  // unique over all rigid fixes
+      } else if (ordinal == 0 && (all || m[i] == 0.0)) {
+        m[i] = at.rmass[i];
+      }
     }
     last_n_ = at.n;
   }
-  bool first_rigid() const {
-    for (auto& f : sim.fixes)
-      if (f->style == "rigid" || f->style == "rigid/small") return f.get() == this;
-    return true;
+  int rigid_ordinal() const {  // 0 for the first rigid fix defined
+    int k = 0;
+    for (auto& f : sim.fixes) {
+      if (f.get() == this) return k;
+      k += f->style == "rigid" || f->style == "rigid/small";
+    }
+    return k;
   }
 };
 

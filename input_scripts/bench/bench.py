@@ -61,6 +61,14 @@ CASES = [
          vars=dict(n=27, nz=28, prep=4000, steps=2000),
          quick=dict(n=8, nz=8, prep=500, steps=200),
          what="monodisperse bed collapsing from a lattice into a closed box (5 walls, ~2.6 half-neighbours)"),
+    dict(key="g", name="mono_16k", deck="poly.in",
+         vars=dict(pd=0, n=16, nz=16, prep=12000, steps=2000),
+         quick=dict(pd=0, n=3, nz=3, prep=1500, steps=200),
+         what="settled bed, equal radii 1 mm, periodic x/y, floor wall (the reference of poly70_16k)"),
+    dict(key="h", name="poly70_16k", deck="poly.in",
+         vars=dict(pd=0.7, n=16, nz=16, prep=12000, steps=2000),
+         quick=dict(pd=0.7, n=3, nz=3, prep=1500, steps=200),
+         what="the same bed with radii uniform in 0.3-1.7 x the mean (70 % polydispersity, same mean volume)"),
 ]
 
 SABLE_LOOP = re.compile(

@@ -114,8 +114,9 @@ TEST(FixRigid, LockedRotationKeepsTheOrientation) {
 }
 
 // A flat lid of 16 spheres spanning a periodic cell, `force * off off on`, `torque * off
-// off off`, launched at U along x, settles on a bed of 32 grains: it keeps U exactly, and
-// the floor carries bed plus lid weight (static balance, averaged over the last 0.05 s, 0.5 %).
+// off off`, pushed down by `fix addforce` and launched at U along x, settles on a bed of
+// 32 grains: it keeps U exactly, and the floor carries the weight of bed and lid plus the
+// push (static balance, averaged over the last 0.05 s, 0.5 %).
 TEST(FixRigid, FlagLockedLidSettlesAtForceBalanceAndKeepsItsVelocity) {
   Deck d;
   std::string deck = R"(units si
@@ -154,6 +155,7 @@ group lid type 2
 fix g all gravity 9.81 vector 0 0 -1
 fix i bed nve/sphere
 fix lid lid rigid single force * off off on torque * off off off
+fix push lid addforce 0 0 -0.001
 velocity lid set 0.01 0 0
 run 60000
 )";
@@ -165,9 +167,12 @@ run 60000
   double mass = 0;
   for (std::size_t i = 0; i < at.n; ++i) mass += at.rmass[i];
   const double fz = d->find_fix("avg")->compute_scalar();
-  EXPECT_NEAR(-fz, mass * 9.81, 5e-3 * mass * 9.81);
+  const double load = mass * 9.81 + 16 * 0.001;  // weight of bed and lid, and the push on the lid's 16 grains
+  EXPECT_NEAR(-fz, load, 5e-3 * load);
   for (std::size_t i = 0; i < at.n; ++i)
-    if (at.type[i] == 2) EXPECT_EQ(at.v[3 * i], u);
+    if (at.type[i] == 2) {
+      EXPECT_EQ(at.v[3 * i], u);
+    }
   EXPECT_EQ(value(d, "f_lid[1][4]"), u);
 }
 
@@ -238,4 +243,104 @@ TEST(FixRigid, BadInputIsNamed) {
             std::string::npos);
   EXPECT_NE(err("fix rb all rigid single\n", "thermo_style custom step f_rb[2][1]").find("within [1..1][1..15]"),
             std::string::npos);
+}
+
+// The cavity's lid (kneib2017) in 2D: spheres in the x-y plane, periodic in x, a floor
+// wall at y = 0; a lid row of 8 grains with `force * off on off`, `torque * off off off`,
+// pushed down by addforce and moving at U along x over a bed of 24 grains, enforce2d last.
+// The lid keeps U exactly and the floor carries bed and lid weight plus the push (static
+// balance along y, averaged over the last 0.05 s, 0.5 %); nothing leaves the plane.
+TEST(FixRigid, LidIn2DKeepsUAndBalancesTheLoad) {
+  Deck d;
+  std::string deck = R"(units si
+atom_style granular
+atom_modify map array
+dimension 2
+boundary p f p
+newton off
+communicate single vel yes
+region box block 0 0.032 0 0.04 -0.003 0.003 units box
+create_box 2 box
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.3 0.3 0.3 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.5 0.5 0.5 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 5e-6
+fix floor all wall/gran model hertz tangential history primitive type 1 yplane 0.0
+)";
+  char s[200];
+  for (int i = 0; i < 8; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      std::snprintf(s, sizeof s, "create_atoms 1 single %g %g 0 units box\n", 0.002 + 0.004 * i + 0.0007 * (k % 2),
+                    0.0025 + 0.0045 * k);
+      deck += s;
+    }
+    std::snprintf(s, sizeof s, "create_atoms 2 single %g 0.018 0 units box\n", 0.002 + 0.004 * i);
+    deck += s;
+  }
+  deck += R"(set group all diameter 0.004 density 2500
+group bed type 1
+group lid type 2
+fix g all gravity 9.81 vector 0 -1 0
+fix i bed nve/sphere
+fix lid lid rigid single force * off on off torque * off off off
+fix push lid addforce 0 -0.001 0
+velocity lid set 0.02 0 0
+fix e2d all enforce2d
+run 60000
+)";
+  d(deck);
+  const double u = value(d, "f_lid[1][4]");
+  d("variable fy equal f_floor[2]\nfix avg all ave/time 10 1000 10000 v_fy\nrun 10000");
+  const auto& at = d->atoms;
+  double mass = 0;
+  for (std::size_t i = 0; i < at.n; ++i) mass += at.rmass[i];
+  const double load = mass * 9.81 + 8 * 0.001;
+  EXPECT_NEAR(-d->find_fix("avg")->compute_scalar(), load, 5e-3 * load);
+  EXPECT_NEAR(u, 0.02, 1e-17);
+  for (std::size_t i = 0; i < at.n; ++i) {
+    EXPECT_EQ(at.x[3 * i + 2], 0.0);
+    if (at.type[i] == 2) {
+      EXPECT_EQ(at.v[3 * i], u);
+    }
+  }
+}
+
+// compute unbalanced/force counts a rigid body once, with its summed force, and leaves out the
+// contacts inside it (YADE's clumps): two spheres overlapping by a quarter radius, glued, at rest
+// on a floor. Their own net forces are the large internal push; the body's is zero at rest, so
+// the ratio falls under 1e-3, and the mean contact force is that of the two floor contacts,
+// half the weight each (symmetry; 1 %).
+TEST(FixRigid, UnbalancedForceCountsABodyOnce) {
+  Deck d;
+  d(R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+region box block -0.02 0.02 -0.02 0.02 -0.001 0.02 units box
+create_box 1 box
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 2e-6
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+create_atoms 1 single -0.0015 0 0.002 units box
+create_atoms 1 single 0.0015 0 0.002 units box
+set group all diameter 0.004 density 2500
+fix g all gravity 9.81 vector 0 0 -1
+fix rb all rigid single
+compute ub all unbalanced/force
+run 40000)");
+  const double weight = 2 * d->atoms.rmass[0] * 9.81;
+  EXPECT_LT(value(d, "c_ub"), 1e-3);
+  EXPECT_NEAR(value(d, "c_ub[4]"), weight / 2, 0.01 * weight / 2);
 }

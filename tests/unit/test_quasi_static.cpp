@@ -424,4 +424,6 @@ TEST(QuasiStatic, PistonLoopDeckRelaxesEachStep) {
       EXPECT_NEAR(rec[k - 1][5] - r[5], 1.5e-4, 1e-12);
     }
   }
+  // The set strain: five steps of dz from where the first one started.
+  EXPECT_NEAR(rec[0][5] + 1.5e-4 - rec[4][5], 5 * 1.5e-4, 1e-12);
 }

@@ -80,3 +80,16 @@ TEST(StepBounds, NoFreeFallInAFullyPeriodicBox) {
   ASSERT_TRUE(b.valid);
   EXPECT_NEAR(b.speed, 0.3, 1e-12);
 }
+
+// Before the first run the pair style has no law yet: step_bounds() answers (no contact
+// time, so no bound from it) instead of reading a law that does not exist (it crashed).
+TEST(StepBounds, BeforeTheFirstRunThereIsNoContactTime) {
+  Deck d;
+  d("units si\natom_style granular\nregion box block 0 0.1 0 0.1 0 0.02 units box\ncreate_box 1 box\n" + kMaterials +
+    "create_atoms 1 single 0.05 0.05 0.01 units box\nset atom 1 diameter 0.002 density 2500\n");
+  const auto b = d->step_bounds();
+  ASSERT_TRUE(b.valid);
+  EXPECT_TRUE(std::isinf(b.hertz));
+  d("timestep 1e-7\nfix i all nve/sphere\nrun 0");
+  EXPECT_TRUE(std::isfinite(d->step_bounds().hertz));
+}
