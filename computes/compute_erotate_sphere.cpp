@@ -1,6 +1,6 @@
 // compute ID group erotate/sphere [update_on_run_end yes|no] [halfstep]:
-// rotational kinetic energy sum 1/2 I w^2 with I = 2/5 m r^2 (solid sphere,
-// also in 2D, as LIGGGHTS), a global scalar.
+// rotational kinetic energy sum 1/2 I w^2 with I = Atoms::inertia (2/5 m r^2,
+// also in 2D as LIGGGHTS; 1/2 m r^2 for disks), a global scalar.
 #include "core/simulation.h"
 #include "core/style_registry.h"
 
@@ -24,7 +24,7 @@ class ComputeErotateSphere : public Compute {
     double e = 0.0;
     for (std::size_t i = 0; i < a.n; ++i) {
       if (!(a.mask[i] & groupbit)) continue;
-      const double inertia = 0.4 * a.rmass[i] * a.radius[i] * a.radius[i];
+      const double inertia = a.inertia(i);
       if (inertia <= 0.0) continue;  // point particles carry no rotational energy
       const double h = halfstep_ ? 0.5 * sim.dt / inertia : 0.0;  // w(t + dt/2) = w + dt/2 T/I
       double w2 = 0.0;

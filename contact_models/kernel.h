@@ -102,11 +102,11 @@ class GranKernel final
   }
   const std::vector<HistorySlot>& history_slots() const override { return slots_; }
   double contact_time(const ContactTimeInput& in) const override { return normal_.contact_time(in); }
-  void evaluate(PairChunk<kH>& ch, double dt, bool update, Simd simd) const override {
-    evaluate_columns_any(ch, dt, update, simd);
+  void evaluate(PairChunk<kH>& ch, double dt, bool update, Simd simd, Kinematics kin) const override {
+    evaluate_columns_any(ch, dt, update, simd, kin);
   }
-  void evaluate(WallChunk<kH>& ch, double dt, bool update, Simd simd) const override {
-    evaluate_columns_any(ch, dt, update, simd);
+  void evaluate(WallChunk<kH>& ch, double dt, bool update, Simd simd, Kinematics kin) const override {
+    evaluate_columns_any(ch, dt, update, simd, kin);
   }
 
   N normal_;
@@ -120,42 +120,53 @@ class GranKernel final
   std::shared_ptr<Materials> materials_;
   using Parts = ContactParts;
 
-  // All sub-models on one contact: force on i and torques on i and j.
-  [[gnu::always_inline]] inline Parts evaluate_one(const Contact& c, double* h, const StepContext& ctx) const {
+  // All sub-models on one contact: force on i and torques on i and j. K
+  // (Contact or ContactK) may leave out z (2D) or the torques (no rotation):
+  // those parts are then not computed (the scatter adds no torque).
+  template <class K>
+  [[gnu::always_inline]] inline Parts evaluate_one(const K& c, double* h, const StepContext& ctx) const {
+    constexpr bool k3 = K::kDim == 3;
     NormalForce nf = normal_.force(c, h, ctx);
     damping_.damp(normal_, c, nf);
     nf.Fn = nf.Fel - nf.gamman * c.vn;
     normal_.limit(nf);
     if constexpr (C::kActive) nf.Fn += cohesion_.force(c, nf, h + kHN + kHD + kHT + kHR, ctx);
     const Vec3 ft = tangential_.force(c, nf, h + kHN + kHD, ctx);
-    const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHD + kHT, ctx);
     const double* en = c.en;
-    Parts p;
+    Parts p{};
     p.f[0] = nf.Fn * en[0] + ft.x;
     p.f[1] = nf.Fn * en[1] + ft.y;
-    p.f[2] = nf.Fn * en[2] + ft.z;
-    const double tor[3] = {en[1] * ft.z - en[2] * ft.y, en[2] * ft.x - en[0] * ft.z, en[0] * ft.y - en[1] * ft.x};
-    p.ti[0] = -c.cri * tor[0] - mr.x;
-    p.ti[1] = -c.cri * tor[1] - mr.y;
-    p.ti[2] = -c.cri * tor[2] - mr.z;
-    p.tj[0] = -c.crj * tor[0] + mr.x;
-    p.tj[1] = -c.crj * tor[1] + mr.y;
-    p.tj[2] = -c.crj * tor[2] + mr.z;
+    p.f[2] = k3 ? nf.Fn * en[2] + ft.z : 0.0;
+    if constexpr (K::kRotation) {
+      const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHD + kHT, ctx);
+      const double tor2 = en[0] * ft.y - en[1] * ft.x;
+      p.ti[2] = -c.cri * tor2 - mr.z;
+      p.tj[2] = -c.crj * tor2 + mr.z;
+      if constexpr (k3) {
+        const double tor0 = en[1] * ft.z - en[2] * ft.y, tor1 = en[2] * ft.x - en[0] * ft.z;
+        p.ti[0] = -c.cri * tor0 - mr.x;
+        p.ti[1] = -c.cri * tor1 - mr.y;
+        p.tj[0] = -c.crj * tor0 + mr.x;
+        p.tj[1] = -c.crj * tor1 + mr.y;
+      } else {
+        p.ti[0] = p.ti[1] = p.tj[0] = p.tj[1] = 0.0;
+      }
+    }
     return p;
   }
-
 
   // Columns in,  force/torque columns and new history out.
   // Cols: PairChunk or WallChunk (their contact() builds the kinematics).
   // kUniform: one type pair (ch.tp0) for all, so each coefficient is one
   // loaded value, not a per-lane table lookup.
-  template <bool kUpdate, bool kUniform, class Cols>
+  // K: the kinematics mode (Contact: full 3D; ContactK<kD, kRot>).
+  template <bool kUpdate, bool kUniform, class K = Contact, class Cols>
   [[gnu::always_inline]] inline void evaluate_columns(Cols& ch, double dt) const {
     const StepContext ctx{dt, kUpdate};
     const int n = ch.n, tp0 = ch.tp0;
 #pragma GCC ivdep
     for (int m = 0; m < n; ++m) {
-      Contact c;
+      K c;
       ch.contact(m, c);
       if constexpr (kUniform) c.tp = tp0;
       double h[kH > 0 ? kH : 1];
@@ -163,13 +174,28 @@ class GranKernel final
       const Parts p = evaluate_one(c, h, ctx);
       if constexpr (kUpdate)
         for (int q = 0; q < kH; ++q) ch.h[q][m] = h[q];
-      ch.store(m, p);
+      ch.template store<K::kRotation>(m, p);
     }
   }
-  // The four (update, uniform) instantiations, chosen per chunk.
+  // The four (update, uniform) instantiations of the full kernel, chosen per
+  // chunk, and the reduced modes (2D, no rotation) for the force pass (update):
+  // setup and per-contact records take the full kernel, which agrees with them.
   template <class Cols>
-  [[gnu::always_inline]] inline void evaluate_columns_all(Cols& ch, double dt, bool update) const {
+  [[gnu::always_inline]] inline void evaluate_columns_all(Cols& ch, double dt, bool update, Kinematics kin) const {
     const bool uniform = ch.tp0 >= 0;
+    if (update && kin != Kinematics::Full) {
+      switch (kin) {
+        case Kinematics::Plane:
+          return uniform ? evaluate_columns<true, true, ContactK<2, true>>(ch, dt)
+                         : evaluate_columns<true, false, ContactK<2, true>>(ch, dt);
+        case Kinematics::Frozen:
+          return uniform ? evaluate_columns<true, true, ContactK<3, false>>(ch, dt)
+                         : evaluate_columns<true, false, ContactK<3, false>>(ch, dt);
+        default:
+          return uniform ? evaluate_columns<true, true, ContactK<2, false>>(ch, dt)
+                         : evaluate_columns<true, false, ContactK<2, false>>(ch, dt);
+      }
+    }
     if (update && uniform)
       evaluate_columns<true, true>(ch, dt);
     else if (update)
@@ -181,29 +207,29 @@ class GranKernel final
   }
 #if defined(__x86_64__) && defined(__GNUC__)
   template <class Cols>
-  [[gnu::target("avx2"), gnu::flatten]] void evaluate_columns_avx2(Cols& ch, double dt, bool update) const {
-    evaluate_columns_all(ch, dt, update);
+  [[gnu::target("avx2"), gnu::flatten]] void evaluate_columns_avx2(Cols& ch, double dt, bool update, Kinematics kin) const {
+    evaluate_columns_all(ch, dt, update, kin);
   }
   template <class Cols>
   [[gnu::target("avx512f,avx512dq"), gnu::flatten]] void evaluate_columns_avx512(Cols& ch, double dt,
-                                                                                 bool update) const {
-    evaluate_columns_all(ch, dt, update);
+                                                                                 bool update, Kinematics kin) const {
+    evaluate_columns_all(ch, dt, update, kin);
   }
 #endif
   template <class Cols>
-  [[gnu::flatten]] void evaluate_columns_base(Cols& ch, double dt, bool update) const {
-    evaluate_columns_all(ch, dt, update);
+  [[gnu::flatten]] void evaluate_columns_base(Cols& ch, double dt, bool update, Kinematics kin) const {
+    evaluate_columns_all(ch, dt, update, kin);
   }
   template <class Cols>
-  void evaluate_columns_any(Cols& ch, double dt, bool update, Simd simd) const {
+  void evaluate_columns_any(Cols& ch, double dt, bool update, Simd simd, Kinematics kin) const {
 #if defined(__x86_64__) && defined(__GNUC__)
     switch (simd) {
-      case Simd::AVX512: return evaluate_columns_avx512(ch, dt, update);
-      case Simd::AVX2: return evaluate_columns_avx2(ch, dt, update);
+      case Simd::AVX512: return evaluate_columns_avx512(ch, dt, update, kin);
+      case Simd::AVX2: return evaluate_columns_avx2(ch, dt, update, kin);
       case Simd::SSE2: break;
     }
 #endif
-    evaluate_columns_base(ch, dt, update);
+    evaluate_columns_base(ch, dt, update, kin);
   }
 
 };

@@ -49,7 +49,11 @@ std::size_t Atoms::add(long aid, int atype, const double xyz[3], double r, doubl
 void Atoms::set_radius_density(std::size_t i, double r, double rho) {
   radius[i] = r;
   density[i] = rho;
-  rmass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * rho;
+  rmass[i] = mass_of(r, rho);
+}
+
+double Atoms::mass_of(double r, double rho) const {
+  return area_density ? std::numbers::pi * r * r * rho : 4.0 / 3.0 * std::numbers::pi * r * r * r * rho;
 }
 
 void Atoms::remove_if(const std::vector<char>& doomed) {

@@ -29,6 +29,23 @@ class Atoms {
   int mass_override = -1;
   // Extra column: grains with the same nonzero value never pair (the grains of one rigid body).
   int pair_exclusion = -1;
+
+  // Grain shape for mass and moment of inertia, one place for every user
+  // (integrators, rigid bodies, damping, erotate): mass = pi r^2 rho when
+  // area_density (2D, as LIGGGHTS: `density` is per area), else 4/3 pi r^3 rho;
+  // I = inertia_factor m r^2 (2/5 sphere, 1/2 disk). Set by `dimension 2 [grains
+  // disks|spheres]` and `fix nve/sphere ... disc` (README, "2D").
+  bool area_density = false;
+  double inertia_factor = 0.4;
+  double mass_of(double r, double rho) const;
+  double inertia(std::size_t i) const { return inertia_factor * rmass[i] * radius[i] * radius[i]; }
+
+  // What the contact kernels may leave out (Simulation::setup decides each run):
+  // plane_2d: every grain in the x-y plane, spin about z only (dimension 2);
+  // rotation: false when no grain turns (no integrator of spin, all omega 0):
+  // contacts then neither read omega nor make torque.
+  bool plane_2d = false;
+  bool rotation = true;
   long max_id = 0;
   AtomSplit split;  // thread ranges of the per-atom passes (set by the pair pass)
 
@@ -38,7 +55,7 @@ class Atoms {
     for_atom_ranges(split, n, body);
   }
 
-  // Append one atom, returns its index. Mass from density and radius (3D sphere).
+  // Append one atom, returns its index. Mass from density and radius (mass_of).
   std::size_t add(long id, int type, const double xyz[3], double radius, double density);
   void remove_if(const std::vector<char>& doomed);
   void permute(const std::vector<std::size_t>& order);  // new[i] = old[order[i]]

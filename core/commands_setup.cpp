@@ -43,6 +43,29 @@ void cmd_dimension(Simulation& sim, const Args& a) {
   const long d = a.integer(1, "2 or 3");
   if (d != 2 && d != 3) a.fail(1, "2 or 3");
   sim.domain.dimension = static_cast<int>(d);
+  // 2D grains (sable addition after `dimension 2`): LIGGGHTS' default is a disk's
+  // mass (density per area, m = pi r^2 rho) with a sphere's inertia 2/5 m r^2;
+  // `grains disks`: I = 1/2 m r^2 as well; `grains spheres`: spheres in the
+  // plane, m = 4/3 pi r^3 rho and I = 2/5 m r^2.
+  sim.atoms.area_density = d == 2;
+  sim.atoms.inertia_factor = 0.4;
+  if (a.size() == 2) return;
+  if (d != 2 || a[2] != "grains") a.fail(2, d == 2 ? "'grains disks' or 'grains spheres'" : "nothing after 'dimension 3'");
+  const std::string& g = a.word(3, "disks or spheres");
+  if (g == "disks") sim.atoms.inertia_factor = 0.5;
+  else if (g == "spheres") sim.atoms.area_density = false;
+  else a.fail(3, "disks or spheres");
+  if (a.size() > 4) a.fail(4, "nothing after the grain shape");
+}
+
+// contact_kernels auto|full (sable addition): `full` keeps the full 3D contact
+// kernel where the 2D or no-rotation kernels would do (same physics; for
+// benchmarks and checks of those kernels).
+void cmd_contact_kernels(Simulation& sim, const Args& a) {
+  const std::string& w = a.word(1, "auto or full");
+  if (w != "auto" && w != "full") a.fail(1, "auto or full");
+  if (a.size() > 2) a.fail(2, "nothing after '" + w + "'");
+  sim.reduced_kernels = w == "auto";
 }
 
 void cmd_boundary(Simulation& sim, const Args& a) {
@@ -253,6 +276,7 @@ SABLE_COMMAND("units", cmd_units);
 SABLE_COMMAND("atom_style", cmd_atom_style);
 SABLE_COMMAND("atom_modify", cmd_atom_modify);
 SABLE_COMMAND("dimension", cmd_dimension);
+SABLE_COMMAND("contact_kernels", cmd_contact_kernels);
 SABLE_COMMAND("boundary", cmd_boundary);
 SABLE_COMMAND("newton", cmd_newton);
 SABLE_COMMAND("communicate", cmd_ignore);

@@ -222,12 +222,19 @@ class ContactLoopT final : public ContactLoop {
   void gather(const PairBatch& b, Chunk& ch) const {
     const bool types = b.a.stride > 2, general = types || b.a.freeze_bit != 0;
     ch.tp0 = types ? -1 : b.a.stride + 1;  // one atom type: one type pair
+    // Without rotation (AtomView::rotation) the spins are not gathered: the law
+    // reads none (but passes without update take the full kernel, ColumnLaw).
+    const bool spin = b.a.rotation || !b.ctx.update;
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (b.simd == Simd::AVX512) return general ? gather_columns_avx512<true>(b, ch) : gather_columns_avx512<false>(b, ch);
+    if (b.simd == Simd::AVX512) {
+      if (spin) return general ? gather_columns_avx512<true, true>(b, ch) : gather_columns_avx512<false, true>(b, ch);
+      return general ? gather_columns_avx512<true, false>(b, ch) : gather_columns_avx512<false, false>(b, ch);
+    }
 #endif
-    return general ? gather_columns<true>(b, ch) : gather_columns<false>(b, ch);
+    if (spin) return general ? gather_columns<true, true>(b, ch) : gather_columns<false, true>(b, ch);
+    return general ? gather_columns<true, false>(b, ch) : gather_columns<false, false>(b, ch);
   }
-  template <bool kGeneral>
+  template <bool kGeneral, bool kSpin>
   void gather_columns(const PairBatch& b, Chunk& ch) const {
     const AtomView& a = b.a;
     const double *v = a.v, *w = a.omega, *rmass = a.rmass;
@@ -238,8 +245,10 @@ class ContactLoopT final : public ContactLoop {
       ch.mj[m] = rmass[j];
       for (int d = 0; d < 3; ++d) {
         ch.vr[d][m] = v[3 * i + d] - v[3 * j + d];
-        ch.wi[d][m] = w[3 * i + d];
-        ch.wj[d][m] = w[3 * j + d];
+        if constexpr (kSpin) {
+          ch.wi[d][m] = w[3 * i + d];
+          ch.wj[d][m] = w[3 * j + d];
+        }
       }
       if constexpr (kGeneral) {
         ch.frozen[m] = ((a.mask[i] & a.freeze_bit) ? 1 : 0) | ((a.mask[j] & a.freeze_bit) ? 2 : 0);
@@ -288,7 +297,7 @@ class ContactLoopT final : public ContactLoop {
     cy = _mm512_permutex2var_pd(t1, even, t3);
     cz = _mm512_permutex2var_pd(t0, odd, t2);
   }
-  template <bool kGeneral>
+  template <bool kGeneral, bool kSpin>
   [[gnu::target("avx512f,avx512dq,avx512vl")]] void gather_columns_avx512(const PairBatch& b, Chunk& ch) const {
     const AtomView& a = b.a;
     const __m512d zero = _mm512_setzero_pd();
@@ -305,11 +314,13 @@ class ContactLoopT final : public ContactLoop {
       rows3(a.v, ii, ci[0], ci[1], ci[2]);
       rows3(a.v, jj, cj[0], cj[1], cj[2]);
       for (int d = 0; d < 3; ++d) _mm512_store_pd(ch.vr[d] + m, _mm512_sub_pd(ci[d], cj[d]));
-      rows3(a.omega, ii, ci[0], ci[1], ci[2]);
-      rows3(a.omega, jj, cj[0], cj[1], cj[2]);
-      for (int d = 0; d < 3; ++d) {
-        _mm512_store_pd(ch.wi[d] + m, ci[d]);
-        _mm512_store_pd(ch.wj[d] + m, cj[d]);
+      if constexpr (kSpin) {
+        rows3(a.omega, ii, ci[0], ci[1], ci[2]);
+        rows3(a.omega, jj, cj[0], cj[1], cj[2]);
+        for (int d = 0; d < 3; ++d) {
+          _mm512_store_pd(ch.wi[d] + m, ci[d]);
+          _mm512_store_pd(ch.wj[d] + m, cj[d]);
+        }
       }
       if constexpr (kGeneral) {
         const __m256i z = _mm256_setzero_si256(), fb = _mm256_set1_epi32(static_cast<int>(a.freeze_bit));
@@ -352,27 +363,42 @@ class ContactLoopT final : public ContactLoop {
   // keeps its values in registers.
   [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch) const {
     gather(b, ch);
-    law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd);
+    law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd, b.a.kinematics());
     if (b.ctx.update)
-      scatter<true>(b, ch);
+      scatter_as<true>(b, ch);
     else
-      scatter<false>(b, ch);
+      scatter_as<false>(b, ch);
     ch.n = 0;
+  }
+  template <bool kUpdate>
+  void scatter_as(const PairBatch& b, const Chunk& ch) const {
+    switch (b.a.kinematics()) {
+      case Kinematics::Full: return scatter<kUpdate, true, false>(b, ch);
+      case Kinematics::Plane: return scatter<kUpdate, true, true>(b, ch);
+      case Kinematics::Frozen: return scatter<kUpdate, false, false>(b, ch);
+      case Kinematics::PlaneFrozen: return scatter<kUpdate, false, true>(b, ch);
+    }
   }
 
   // Stage 3: forces and torques onto the grains in list order; history back.
-  template <bool kUpdate>
+  // kSpin false: the law made no torque (no rotation), none is added; kPlane:
+  // no z force and no in-plane torque (zeros in 2D) are added.
+  template <bool kUpdate, bool kSpin, bool kPlane>
   void scatter(const PairBatch& b, const Chunk& ch) const {
     double* f = b.a.f;
     double* t = b.a.torque;
     [[maybe_unused]] double* hist = b.hist;
     for (int e = 0; e < ch.n; ++e) {
       const int i = ch.i[e], j = ch.j[e];
-      for (int d = 0; d < 3; ++d) {
+      for (int d = 0; d < (kPlane ? 2 : 3); ++d) {
         f[3 * i + d] += ch.f[d][e];
         f[3 * j + d] -= ch.f[d][e];
-        t[3 * i + d] += ch.ti[d][e];
-        t[3 * j + d] += ch.tj[d][e];
+      }
+      if constexpr (kSpin) {
+        for (int d = kPlane ? 2 : 0; d < 3; ++d) {
+          t[3 * i + d] += ch.ti[d][e];
+          t[3 * j + d] += ch.tj[d][e];
+        }
       }
       if constexpr (kH > 0 && kUpdate) {
         const std::size_t r = static_cast<std::size_t>(ch.row[e]);
@@ -604,15 +630,16 @@ class ContactLoopT final : public ContactLoop {
 
   [[gnu::noinline]] void cross_flush(const PairBatch& b, PairPartition::Slots& out, Chunk& ch) const {
     gather(b, ch);
-    law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd);
+    law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd, b.a.kinematics());
+    const bool spin = b.a.rotation;  // else no torque columns: the slots' torques are zeros
     for (int m = 0; m < ch.n; ++m) {
       const std::size_t r = static_cast<std::size_t>(ch.slot[m]);
       double* fi = &out.fi[6 * r];
       double* tj = &out.tj[3 * r];
       for (int d = 0; d < 3; ++d) {
         fi[d] = ch.f[d][m];
-        fi[3 + d] = ch.ti[d][m];
-        tj[d] = ch.tj[d][m];
+        fi[3 + d] = spin ? ch.ti[d][m] : 0.0;
+        tj[d] = spin ? ch.tj[d][m] : 0.0;
       }
     }
     store_history(b, ch);
@@ -812,13 +839,13 @@ class ContactLoopT final : public ContactLoop {
     WallChunk<kH> ch;
     for (std::size_t k0 = 0; k0 < b.n; k0 += WallChunk<kH>::kCap) {
       wall_gather(b, k0, ch);
-      law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd);
+      law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd, a.kinematics());
       for (int m = 0; m < ch.n; ++m) {
         const std::size_t k = k0 + m;
         const int i = b.atom[k];
         for (int d = 0; d < 3; ++d) {
           a.f[3 * i + d] += ch.f[d][m];
-          a.torque[3 * i + d] += ch.ti[d][m];
+          if (a.rotation) a.torque[3 * i + d] += ch.ti[d][m];
           b.force[3 * k + d] = ch.f[d][m];
         }
         if constexpr (kH > 0)
@@ -842,7 +869,7 @@ class ContactLoopT final : public ContactLoop {
       for (int d = 0; d < 3; ++d) {
         ch.en[d][m] = b.en[3 * k + d];
         ch.vr[d][m] = a.v[3 * i + d] - b.vwall[3 * k + d];
-        ch.wi[d][m] = a.omega[3 * i + d];
+        ch.wi[d][m] = a.omega[3 * i + d];  // (read only with rotation)
       }
       ch.deltan[m] = b.deltan[k];
       ch.radi[m] = a.radius[i];
@@ -891,7 +918,7 @@ void ContactLoopT<kH>::pair_records(const PairBatch& b, ContactRecords& out) {
   ch.n = 0;
   auto flush_records = [&] {
     gather(local, ch);
-    law_.evaluate(ch, b.ctx.dt, false, b.simd);
+    law_.evaluate(ch, b.ctx.dt, false, b.simd, Kinematics::Full);
     append_records(ch, out, 0, ch.i, ch.j, shift);
     ch.n = 0;
   };
@@ -933,7 +960,7 @@ void ContactLoopT<kH>::wall_records(const WallBatch& b, ContactRecords& out) con
   int atom[WallChunk<kH>::kCap], index[WallChunk<kH>::kCap];
   for (std::size_t k0 = 0; k0 < b.n; k0 += WallChunk<kH>::kCap) {
     wall_gather(b, k0, ch);
-    law_.evaluate(ch, b.ctx.dt, false, b.simd);
+    law_.evaluate(ch, b.ctx.dt, false, b.simd, Kinematics::Full);
     for (int m = 0; m < ch.n; ++m) {
       atom[m] = b.atom[k0 + m];
       index[m] = static_cast<int>(k0 + m);

@@ -101,6 +101,10 @@ class Fix {
   virtual bool freezes_group() const { return false; }
   // A post_force that never puts force or spin out of a 2D plane (may follow enforce2d).
   virtual bool keeps_plane() const { return false; }
+  // May this fix make a grain turn (integrate or set omega)? If no fix does and
+  // every omega is 0 at setup, contacts skip rotation (Atoms::rotation). Any
+  // integrator is assumed to, unless it says otherwise.
+  virtual bool turns_grains() const { return (hooks & (INITIAL_INTEGRATE | FINAL_INTEGRATE)) != 0; }
 
   // Runs the task declared for hook h (if any) over all atoms: begin, the ranges, end.
   void run_task(FixHook h);

@@ -102,7 +102,7 @@ double Pdf::draw(Rng& rng) const {
 }
 
 double grain_mass(const Simulation& sim, double r, double rho) {
-  return sim.domain.dimension == 2 ? std::numbers::pi * r * r * rho : 4.0 / 3.0 * std::numbers::pi * r * r * r * rho;
+  return sim.atoms.mass_of(r, rho);
 }
 
 }  // namespace sable

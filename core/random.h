@@ -45,7 +45,8 @@ struct Pdf {
   double draw(Rng& rng) const;
 };
 
-// Grain mass as LIGGGHTS computes it: sphere in 3D, disc (pi r^2 rho) in 2D.
+// Grain mass from radius and density: Atoms::mass_of (sphere in 3D; in 2D a disc,
+// pi r^2 rho, as LIGGGHTS, unless `dimension 2 grains spheres`).
 double grain_mass(const Simulation& sim, double r, double rho);
 
 }  // namespace sable

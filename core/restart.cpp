@@ -320,6 +320,11 @@ void write(Simulation& sim, const std::string& path) {
   for (int k = 0; k < 3; ++k) box.put(d.hi[k]);
   put_section(file, "box", box);
 
+  Packer grains;  // the mass and inertia convention (dimension 2 grains ..., fix nve/sphere disc)
+  grains.put<std::uint8_t>(sim.atoms.area_density);
+  grains.put(sim.atoms.inertia_factor);
+  put_section(file, "grains", grains);
+
   Packer time;
   time.put<std::int64_t>(sim.step);
   time.put(sim.time);
@@ -377,6 +382,12 @@ void read(Simulation& sim, const std::string& path) {
   for (int k = 0; k < 3; ++k) d.periodic[k] = box.get<std::uint8_t>();
   for (int k = 0; k < 3; ++k) d.lo[k] = box.get<double>();
   for (int k = 0; k < 3; ++k) d.hi[k] = box.get<double>();
+  sim.atoms.area_density = d.dimension == 2;
+  if (sections.count("grains")) {  // files written before it: the 2D default
+    Unpacker grains = unpack("grains");
+    sim.atoms.area_density = grains.get<std::uint8_t>();
+    sim.atoms.inertia_factor = grains.get<double>();
+  }
 
   Unpacker time = unpack("time");
   sim.step = time.get<std::int64_t>();

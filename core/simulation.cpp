@@ -310,10 +310,22 @@ void Simulation::setup() {
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
   check_atoms(true);
   stability_check();
+  choose_kinematics();
   force_and_history();
   for (auto& f : fixes)
     if (f->hooks & POST_FORCE) f->post_force();
   for (auto& f : fixes) f->setup();
+}
+
+// "Model only what the scene needs": a 2D run's contacts are in the plane; no
+// grain turns when no fix may turn one (Fix::turns_grains) and every spin is 0
+// (omega then stays 0, and contacts need neither spin nor torque).
+void Simulation::choose_kinematics() {
+  atoms.plane_2d = reduced_kernels && domain.dimension == 2;
+  bool turns = !reduced_kernels;
+  for (auto& f : fixes) turns = turns || f->turns_grains();
+  for (std::size_t k = 0; k < 3 * atoms.n && !turns; ++k) turns = atoms.omega[k] != 0.0;
+  atoms.rotation = turns;
 }
 
 // Atoms::clear_forces, threaded for large systems (the step loop's only other per-atom pass).

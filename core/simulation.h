@@ -124,6 +124,10 @@ class Simulation {
   StepBounds step_bounds(double vmin = 0.0) const;
 
   bool step_fusion = true;  // let the integrator fuse passes (run()); off: every pass separate (tests)
+  // Let contacts run the 2D and no-rotation kernels where the scene allows
+  // (setup: Atoms::plane_2d, Atoms::rotation); off (`contact_kernels full`):
+  // always the full 3D kernel, the same physics (benchmarks, checks).
+  bool reduced_kernels = true;
   long fused_steps = 0;     // steps whose final half kick ran in the next initial pass (run())
   long folded_steps = 0;    // ... and whose gravity pass went into it too
   // Time split of the last run (seconds).
@@ -136,6 +140,7 @@ class Simulation {
   void check_atoms(bool positions);  // NaN velocities (and positions): stop with step, atom, cause
   void force_and_history();
   void rebuild_if_due();
+  void choose_kinematics();  // Atoms::plane_2d and Atoms::rotation for this run
   // Says once per fix which fix keeps the step off the fused, pipelined plan and what that costs.
   void explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix* fused, bool ranged);
   std::set<std::string> slow_path_noted_;

@@ -45,7 +45,7 @@ void FixDampingCundall::range(FixHook, const AtomRange& r) {
   double* kept = keep_ ? added_.data() : nullptr;
   for (std::size_t i = r.lo; i < r.hi; ++i) {
     if (!(at.mask[i] & groupbit)) continue;
-    const double m = at.rmass[i], inertia = 0.4 * m * at.radius[i] * at.radius[i];
+    const double m = at.rmass[i], inertia = at.inertia(i);
     for (int k = 0; k < 3; ++k) {
       double& f = at.f[3 * i + k];
       const double df = -a * f * sgn(f) * sgn(at.v[3 * i + k] + h * f / m);

@@ -7,7 +7,7 @@
 //   F_k -= alpha |F_k| sign(F_k u_k),   u = v + dt/2 F/m,
 // where v is the half-step velocity the force pass sees and u estimates the
 // velocity at the force's time (YADE's vel + dt/2 accel); torques likewise with
-// omega + dt/2 T/I, I = 2/5 m r^2 (fix nve/sphere's). 0 <= alpha < 1.
+// omega + dt/2 T/I, I = Atoms::inertia (fix nve/sphere's). 0 <= alpha < 1.
 // It damps the force present when it runs: define it after every fix that adds
 // force (gravity, walls, viscous; a later one is warned about), and before
 // enforce2d and freeze, which only zero components.

@@ -117,6 +117,7 @@ class FixMove : public Fix {
     restart::Unpacker u(in, "fix move " + id + " state");
     origin_ = u.get<std::int64_t>();
   }
+  bool turns_grains() const override { return style_ == Rotate; }  // it sets each grain's spin
   double max_speed() const override {
     if (style_ == Linear) return std::sqrt(sq(set_[0] ? vel_[0] : 0) + sq(set_[1] ? vel_[1] : 0) + sq(set_[2] ? vel_[2] : 0));
     if (style_ == Wiggle)

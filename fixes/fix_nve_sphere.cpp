@@ -1,5 +1,8 @@
-// fix ID group nve/sphere: velocity Verlet for translation and rotation of
-// spheres (moment of inertia 2/5 m r^2).
+// fix ID group nve/sphere [disc]: velocity Verlet for translation and rotation
+// of spheres (moment of inertia Atoms::inertia: 2/5 m r^2; `disc`, LAMMPS' 2D
+// keyword, makes it 1/2 m r^2 for every user of it).
+// fix ID group nve: the same for translation alone (LAMMPS fix nve: x and v;
+// omega is left as it is, so with no grain turning contacts skip rotation).
 //
 // Each atom is updated on its own, so the loops are threaded (large systems)
 // and vectorised: with group all the mask test is hoisted out of the loop.
@@ -11,11 +14,18 @@ namespace sable {
 
 class FixNveSphere : public Fix {
  public:
-  FixNveSphere(Simulation& s, const Args& a) : Fix(s, a) {
+  FixNveSphere(Simulation& s, const Args& a) : Fix(s, a), spin_(style == "nve/sphere") {
     hooks = atom_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+    if (!spin_ && a.size() > 4) a.fail(4, "nothing after 'nve'");
     for (std::size_t i = 4; i < a.size(); ++i)
       if (a[i] != "update" && a[i] != "dipole" && a[i] != "disc") a.fail(i, "nothing (or update dipole/disc)");
+    for (std::size_t i = 4; i < a.size(); ++i)
+      if (a[i] == "disc") {
+        if (s.domain.dimension != 2) a.fail(i, "a 2D simulation for 'disc' (as LAMMPS requires)");
+        s.atoms.inertia_factor = 0.5;
+      }
   }
+  bool turns_grains() const override { return spin_; }
   // Initial: half kick, then drift, in one pass over the atoms; fused (the
   // step plan, AtomRange) with last step's final half kick (and gravity)
   // before it and the force clear after it. Final: the half kick.
@@ -35,6 +45,7 @@ class FixNveSphere : public Fix {
 
  private:
   static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4, kAccel = 8;
+  const bool spin_;  // nve/sphere: omega from the torque; nve: omega untouched
 
   // Half-step velocity and spin update from force and torque (and the drift
   // x += dt v) of the atoms [lo, hi).
@@ -43,13 +54,14 @@ class FixNveSphere : public Fix {
     Atoms& at = sim.atoms;
     const double dt = sim.dt, h = 0.5 * sim.dt;
     const Arrays p{at.x.data(),      at.v.data(),      at.omega.data(), at.f.data(), at.torque.data(),
-                   at.rmass.data(), at.radius.data(), r.accel,         at.mask.data(), groupbit};
+                   at.rmass.data(), at.radius.data(), r.accel,         at.mask.data(), groupbit,
+                   at.inertia_factor};
     for (std::size_t a = r.lo; a < r.hi; a += kBlock) {
       const std::size_t b = std::min(r.hi, a + kBlock);
       if (groupbit == 1u)  // group all (bit 0): the mask test leaves the loop
-        block<kMode, false>(p, a, b, dt, h);
+        spin_ ? block<kMode, false, true>(p, a, b, dt, h) : block<kMode, false, false>(p, a, b, dt, h);
       else
-        block<kMode, true>(p, a, b, dt, h);
+        spin_ ? block<kMode, true, true>(p, a, b, dt, h) : block<kMode, true, false>(p, a, b, dt, h);
     }
   }
   struct Arrays {
@@ -63,6 +75,7 @@ class FixNveSphere : public Fix {
     const double* accel;  // kAccel: the folded gravity
     const std::uint32_t* mask;
     std::uint32_t groupbit;
+    double inertia_factor;  // Atoms::inertia
   };
   // Atoms [a, b), b - a <= kBlock: the per-atom factors first, then one loop
   // over their 3 (b - a) vector components without branches, which the
@@ -74,13 +87,13 @@ class FixNveSphere : public Fix {
   // kMasked (a named group): grains outside it keep x, v and omega (a select,
   // not arithmetic: bit for bit), and their forces are cleared with kClear.
   static constexpr std::size_t kBlock = 128;
-  template <unsigned kMode, bool kMasked>
+  template <unsigned kMode, bool kMasked, bool kSpin>
   static void block(const Arrays& p, std::size_t a, std::size_t b, double dt, double h) {
     alignas(64) double hm[3 * kBlock], hw[3 * kBlock], ma[3 * kBlock];
     alignas(64) unsigned char in[3 * kBlock];
     for (std::size_t i = a; i < b; ++i) {
       const double m = p.rmass[i], r = p.radius[i];
-      const double km = h / m, kw = h / (0.4 * m * r * r);
+      const double km = h / m, kw = h / (p.inertia_factor * m * r * r);
       const bool member = !kMasked || (p.mask[i] & p.groupbit);
       for (int k = 0; k < 3; ++k) {
         const std::size_t c = 3 * (i - a) + k;
@@ -98,25 +111,26 @@ class FixNveSphere : public Fix {
     double* __restrict t = p.t + 3 * a;
     for (std::size_t c = 0; c < n; ++c) {
       double fc = f[c];
-      const double tc = t[c];
+      [[maybe_unused]] const double tc = t[c];
       if constexpr ((kMode & kAccel) != 0) {  // fix gravity's own addition, stored as it stores it
         fc += ma[c];
         f[c] = fc;
       }
-      double vc = v[c], wc = w[c];
+      double vc = v[c];
+      [[maybe_unused]] double wc = w[c];
       if constexpr ((kMode & kFinalFirst) != 0) {
         vc += hm[c] * fc;
-        wc += hw[c] * tc;
+        if constexpr (kSpin) wc += hw[c] * tc;
       }
       vc += hm[c] * fc;
-      wc += hw[c] * tc;
+      if constexpr (kSpin) wc += hw[c] * tc;
       if constexpr (kMasked) {
         v[c] = in[c] ? vc : v[c];
-        w[c] = in[c] ? wc : w[c];
+        if constexpr (kSpin) w[c] = in[c] ? wc : w[c];
         if constexpr ((kMode & kDrift) != 0) x[c] = in[c] ? x[c] + dt * vc : x[c];
       } else {
         v[c] = vc;
-        w[c] = wc;
+        if constexpr (kSpin) w[c] = wc;
         if constexpr ((kMode & kDrift) != 0) x[c] += dt * vc;
       }
       if constexpr ((kMode & kClear) != 0) f[c] = t[c] = 0.0;
@@ -125,5 +139,6 @@ class FixNveSphere : public Fix {
 };
 
 SABLE_FIX("nve/sphere", FixNveSphere);
+SABLE_FIX("nve", FixNveSphere);
 
 }  // namespace sable

@@ -86,7 +86,11 @@ double FixParticletemplateSphere::volume_expect() const {
                                    : 4.0 / 3.0 * std::numbers::pi * radius.moment(3);
 }
 
-double FixParticletemplateSphere::mass_expect() const { return density.mean() * volume_expect(); }
+// The mass convention of Atoms::mass_of: spheres in a 2D plane weigh their volume.
+double FixParticletemplateSphere::mass_expect() const {
+  if (!sim.atoms.area_density) return density.mean() * 4.0 / 3.0 * std::numbers::pi * radius.moment(3);
+  return density.mean() * volume_expect();
+}
 
 FixParticletemplateSphere::Grain FixParticletemplateSphere::draw() {
   const double r = radius.draw(rng_), rho = density.draw(rng_);

@@ -236,6 +236,9 @@ class FixRigid : public Fix {
     }
   }
 
+  bool turns_grains() const override {
+    return std::any_of(bodies_.begin(), bodies_.end(), [](const Body& b) { return rotates(b); });
+  }
   static bool rotates(const Body& b) {
     return b.tflag[0] || b.tflag[1] || b.tflag[2] || b.angmom[0] != 0 || b.angmom[1] != 0 || b.angmom[2] != 0;
   }
@@ -396,9 +399,9 @@ class FixRigid : public Fix {
       const int k = body_of_atom(i);
       if (k < 0) continue;
       const V3 d = offset(i, bodies_[k]);
-      const double m = at.rmass[i], r = at.radius[i];
+      const double m = at.rmass[i];
       const Eigen::Vector3d e(d[0], d[1], d[2]);
-      inertia[k] += (0.4 * m * r * r + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
+      inertia[k] += (at.inertia(i) + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
     }
     for (std::size_t b = 0; b < bodies_.size(); ++b)
       if (which[b]) principal_axes(bodies_[b], inertia[b]);
@@ -445,13 +448,13 @@ class FixRigid : public Fix {
       const int k = static_cast<int>(c[kStride * i]) - 1;
       if (k < 0) continue;
       Body& b = bodies_[k];
-      const double m = at.rmass[i], r = at.radius[i];
+      const double m = at.rmass[i];
       const V3 v{at.v[3 * i], at.v[3 * i + 1], at.v[3 * i + 2]};
       const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
       const V3 l = cross(d, v);
       for (int e = 0; e < 3; ++e) {
         b.vcm[e] += m * v[e];
-        b.angmom[e] += m * l[e] + 0.4 * m * r * r * at.omega[3 * i + e];
+        b.angmom[e] += m * l[e] + at.inertia(i) * at.omega[3 * i + e];
       }
     }
     for (Body& b : bodies_) {

@@ -22,8 +22,14 @@ struct RollingCdt {
   void settings(ModelSettings& s) { s.on_off("torsionTorque", torsion_torque); }
   void connect(PropertyRequest& p) { rmu = p.pair_table("coefficientRollingFriction"); }
 
-  Vec3 torque(const Contact& c, const NormalForce& n, double*, const StepContext&) const {
+  template <class K>  // Contact or ContactK (2D: spin and torque about z alone)
+  Vec3 torque(const K& c, const NormalForce& n, double*, const StepContext&) const {
     const double* w = c.wroll;
+    if constexpr (K::kDim == 2) {  // the en component is zero already (en in the plane)
+      const double wmag = std::sqrt(w[2] * w[2]);
+      if (!(wmag > 0.0)) return {};
+      return {0.0, 0.0, w[2] * (rmu[c.tp] * n.kn * c.deltan * c.reff / wmag)};
+    }
     const double wmag = std::sqrt(dot(w, w));
     if (!(wmag > 0.0)) return {};
     const double s = rmu[c.tp] * n.kn * c.deltan * c.reff / wmag;

@@ -26,16 +26,24 @@ struct RollingEpsd2 {
   void settings(ModelSettings& s) { s.on_off("torsionTorque", torsion_torque); }
   void connect(PropertyRequest& p) { rmu = p.pair_table("coefficientRollingFriction"); }
 
-  Vec3 torque(const Contact& c, const NormalForce& n, double* h, const StepContext& ctx) const {
+  template <class K>  // Contact or ContactK (2D: spin and torque about z alone)
+  Vec3 torque(const K& c, const NormalForce& n, double* h, const StepContext& ctx) const {
+    const double kr = n.kt * c.reff * c.reff;
+    const double tmax = std::fabs(n.Fn) * c.reff * rmu[c.tp];
+    if constexpr (K::kDim == 2) {  // wroll is along z, normal to en: nothing to remove
+      double tz = h[2] + c.wroll[2] * ctx.dt * kr;
+      const double tmag = std::sqrt(tz * tz);
+      if (tmag > tmax) tz = tz * (tmax / tmag);
+      if (ctx.update) h[2] = tz;
+      return {0.0, 0.0, tz};
+    }
     double w[3] = {c.wroll[0], c.wroll[1], c.wroll[2]};
     if (!torsion_torque) {
       const double wn = dot(w, c.en);
       for (int k = 0; k < 3; ++k) w[k] -= wn * c.en[k];
     }
-    const double kr = n.kt * c.reff * c.reff;
     Vec3 t{h[0] + w[0] * ctx.dt * kr, h[1] + w[1] * ctx.dt * kr, h[2] + w[2] * ctx.dt * kr};
     const double tmag = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
-    const double tmax = std::fabs(n.Fn) * c.reff * rmu[c.tp];
     if (tmag > tmax) {
       const double f = tmax / tmag;
       t = {t.x * f, t.y * f, t.z * f};

@@ -37,18 +37,20 @@ struct TangentialHistory {
   // vectorises; with ctx.update a compile-time constant there, they fold away.
   // At slip the spring shrinks by the same ratio as the force
   // (shear = -Ft/kt = ratio shear, LIGGGHTS' expression to round-off).
-  Vec3 force(const Contact& c, const NormalForce& n, double* shear, const StepContext& ctx) const {
+  template <class K>  // Contact or ContactK (2D: the z terms, exact zeros there, are left out)
+  Vec3 force(const K& c, const NormalForce& n, double* shear, const StepContext& ctx) const {
+    constexpr bool k3 = K::kDim == 3;
     const double* en = c.en;
-    double s0 = shear[0], s1 = shear[1], s2 = shear[2];
+    double s0 = shear[0], s1 = shear[1], s2 = k3 ? shear[2] : 0.0;
     {
-      const double a0 = s0 + c.vtr[0] * ctx.dt, a1 = s1 + c.vtr[1] * ctx.dt, a2 = s2 + c.vtr[2] * ctx.dt;
-      const double rsht = a0 * en[0] + a1 * en[1] + a2 * en[2];
+      const double a0 = s0 + c.vtr[0] * ctx.dt, a1 = s1 + c.vtr[1] * ctx.dt, a2 = k3 ? s2 + c.vtr[2] * ctx.dt : 0.0;
+      const double rsht = k3 ? a0 * en[0] + a1 * en[1] + a2 * en[2] : a0 * en[0] + a1 * en[1];
       s0 = ctx.update ? a0 - rsht * en[0] : s0;
       s1 = ctx.update ? a1 - rsht * en[1] : s1;
-      s2 = ctx.update ? a2 - rsht * en[2] : s2;
+      if constexpr (k3) s2 = ctx.update ? a2 - rsht * en[2] : s2;
     }
     const double kt = n.kt;
-    const double shrmag = std::sqrt(s0 * s0 + s1 * s1 + s2 * s2);
+    const double shrmag = std::sqrt(k3 ? s0 * s0 + s1 * s1 + s2 * s2 : s0 * s0 + s1 * s1);
     const double ft_shear = kt * shrmag, ft_friction = mu[c.tp] * std::fabs(n.Fn);
     const bool slip = ft_shear > ft_friction;
     // slip with shrmag = 0 cannot happen for mu >= 0; LIGGGHTS zeroes the force then, as ratio 0 does
@@ -57,11 +59,11 @@ struct TangentialHistory {
     Vec3 f;
     f.x = -kt * s0 * fac - gam * c.vtr[0];
     f.y = -kt * s1 * fac - gam * c.vtr[1];
-    f.z = -kt * s2 * fac - gam * c.vtr[2];
+    f.z = k3 ? -kt * s2 * fac - gam * c.vtr[2] : 0.0;
     const double keep = ctx.update ? fac : 1.0;
     shear[0] = s0 * keep;
     shear[1] = s1 * keep;
-    shear[2] = s2 * keep;
+    if constexpr (k3) shear[2] = s2 * keep;
     return f;
   }
 };

@@ -18,11 +18,12 @@ struct TangentialNoHistory {
   void settings(ModelSettings&) {}
   void connect(PropertyRequest& p) { mu = p.pair_table("coefficientFriction"); }
 
-  Vec3 force(const Contact& c, const NormalForce& n, double*, const StepContext&) const {
-    const double vrel = std::sqrt(dot(c.vtr, c.vtr));
+  template <class K>  // Contact or ContactK (2D: z left out)
+  Vec3 force(const K& c, const NormalForce& n, double*, const StepContext&) const {
+    const double vrel = std::sqrt(dot_d<K::kDim>(c.vtr, c.vtr));
     if (vrel == 0.0) return {};
     const double ft = std::min(mu[c.tp] * std::fabs(n.Fn), n.gammat * vrel) / vrel;
-    return {-ft * c.vtr[0], -ft * c.vtr[1], -ft * c.vtr[2]};
+    return {-ft * c.vtr[0], -ft * c.vtr[1], K::kDim == 3 ? -ft * c.vtr[2] : 0.0};
   }
 };
 

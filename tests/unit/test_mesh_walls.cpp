@@ -279,7 +279,7 @@ TEST(MeshWall, PeriodicBoundaryCrossingWithoutAJump) {
   EXPECT_NEAR(m.vx.back(), p.vx.back(), 1e-9 * std::fabs(p.vx.back()));
 }
 
-// 2D (dimension 2, grains in z = 0): a grain set down on a mesh floor y = 0
+// 2D (dimension 2, grains in z = 0, spheres' mass kM): a grain set down on a mesh floor y = 0
 // (two triangles spanning z) comes to rest carrying its weight, as on the
 // primitive yplane (equal to 1e-9), f_floor[2] = -m g to 0.1 %.
 TEST(MeshWall, MeshFloorIn2D) {
@@ -287,7 +287,7 @@ TEST(MeshWall, MeshFloorIn2D) {
     Deck d;
     d(R"(units si
 atom_style granular
-dimension 2
+dimension 2 grains spheres
 boundary f f p
 region box block -0.01 0.01 -0.01 0.01 -0.002 0.002 units box
 create_box 1 box
