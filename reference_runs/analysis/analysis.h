@@ -1,0 +1,145 @@
+#pragma once
+// sable-analyze: the statistics every study needs (issue 23), written once on GSL.
+// Formulas and conventions: reference_runs/analysis/README.md.
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sable::analysis {
+
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+using Vec = std::vector<double>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ---------- histograms (stats.cpp) ----------
+struct Histogram {
+  Vec edges, centres, counts, pdf;  // pdf = counts / (n * width): integrates to the fraction inside
+  double mean = 0;                  // the mean the values were divided by (1 when not normalised)
+  std::size_t n = 0, outside = 0;   // values used; values outside the bins (log bins: also x <= 0)
+};
+Histogram histogram(const Vec& x, int nbins, bool log_bins, bool by_mean, double lo = 0, double hi = 0);
+double mean_of(const Vec& x);
+
+// ---------- Kolmogorov-Smirnov (stats.cpp) ----------
+struct Ks {
+  double d = 0, p = 0, critical = 0;  // distance, p-value, distance rejected at level alpha
+  double n_eff = 0;
+};
+double kolmogorov_q(double lambda);  // P(K > lambda), the Kolmogorov survival function
+Ks ks_two_sample(Vec a, Vec b, double alpha = 0.05);
+Ks ks_one_sample(Vec x, const std::function<double(double)>& cdf, double alpha = 0.05);
+
+// ---------- autocorrelation and correlated errors (stats.cpp) ----------
+Vec autocorrelation(const Vec& x, std::size_t max_lag);  // C(k), C(0) = 1 (FFT)
+double first_lag_below(const Vec& c, double threshold);  // interpolated in ln C; -1 if never
+struct CorrTime {
+  double g = 1;            // statistical inefficiency 1 + 2 sum_{k=1}^{M} C(k)
+  std::size_t window = 0;  // M: smallest with M >= 3 g (Sokal's window, c = 6 on tau = g/2)
+};
+CorrTime integrated_time(const Vec& c);
+struct BlockError {
+  double mean = 0, error = 0, error_of_error = 0, naive = 0;  // naive: sigma / sqrt(N)
+  double g = 1;
+  std::size_t block = 0, nblocks = 0;
+};
+BlockError block_error(const Vec& x, std::size_t block = 0);  // 0: block = ceil(10 g)
+
+// ---------- maximum likelihood (fit.cpp) ----------
+using Objective = std::function<double(const Vec&)>;
+struct Minimum {
+  Vec theta;
+  double value = kInf;
+};
+Minimum nelder_mead(const Objective& f, const Vec& start, const Vec& step, double tol = 1e-7, int max_iter = 4000);
+Minimum best_of_starts(const Objective& f, const std::vector<Vec>& starts, const Vec& step);
+struct Interval {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = true, hi_open = true;  // the likelihood did not fall by delta before the search bound
+};
+// prof(t, free): the minimum over the other parameters with the one of interest at t
+// (free: their start, updated to their optimum). Steps out from t_hat until the profile
+// rises by delta (1.92 = chi2_1(95 %) / 2), then bisects.
+using Profile = std::function<double(double, Vec&)>;
+Interval profile_interval(const Profile& prof, double t_hat, const Vec& free_hat, double nll_hat, double scale,
+                          double t_min, double t_max, double delta = 1.92);
+
+struct Param {
+  std::string name;
+  double value = 0;
+  Interval ci;
+};
+struct Fit {
+  std::string model;  // "eq7", "normal", "eq8", "eq9", "eq10"
+  std::vector<Param> params;
+  double loglik = 0, aic = 0;
+  Ks ks;  // against the fitted CDF (parameters estimated from the same data: p is optimistic)
+  std::function<double(double)> pdf, cdf;
+};
+// kneib2017 Eq. 7: P(x) = lognormal(x + x0; mu, sigma) / S, x > 0, S = lognormal survival at x0.
+double eq7_pdf(double x, double mu, double sigma, double x0);
+double eq7_cdf(double x, double mu, double sigma, double x0);
+struct LogNormalFit {
+  Fit eq7;                      // mu, sigma, x0
+  Fit normal;                   // the Gaussian limit: normal(m, s) truncated to x > 0
+  bool gaussian_limit = false;  // loglik(eq7) - loglik(normal) < delta: x0 -> inf is inside the 95 % region
+  int starts = 0;
+};
+LogNormalFit fit_truncated_lognormal(const Vec& x, double delta = 1.92);
+Fit fit_truncated_normal(const Vec& x, double delta = 1.92);
+Fit fit_eq8(const Vec& x, double delta = 1.92);   // q-model, k^k/Gamma(k) x^(k-1) exp(-k x), mean 1
+Fit fit_eq9(const Vec& x, double delta = 1.92);   // a [1 - b exp(-x^2)] exp(-beta x), a normalises
+Fit fit_eq10(const Vec& x, double delta = 1.92);  // Radjai, beta0 = (1 + g0) ln((1 + g0) / g0) (mean 1)
+
+// ---------- Mohr circles, power laws, quadrature (mohr.cpp) ----------
+struct Circle {
+  double centre, radius;
+};
+Circle mohr_circle(double s1, double s3);
+void principal_2d(double sxx, double syy, double sxy, double& s1, double& s3);
+struct Envelope {
+  double mu = 0, c = 0, mu_err = 0, c_err = 0, cov = 0;  // |tau| = C + mu sigma (petit2017 Eq. 8)
+  double phi = 0;                                     // friction angle, sin(phi) = slope of r on centre
+  double rms = 0;                                     // rms of (distance from centre to line - radius)
+};
+Envelope mohr_envelope(const std::vector<Circle>& circles);
+struct PowerLaw {
+  double k0 = 0, alpha = 0, k0_err = 0, alpha_err = 0, cov = 0, x0 = 1, chi2 = 0;
+  std::size_t dof = 0;
+  std::string method;
+};
+// y = K0 (x / x0)^alpha; yerr empty: unweighted, covariance scaled by chi2/dof.
+PowerLaw power_law_loglog(const Vec& x, const Vec& y, const Vec& yerr, double x0);
+PowerLaw power_law_nls(const Vec& x, const Vec& y, const Vec& yerr, double x0);
+struct Eq9 {
+  double mu_m = 0;         // petit2017 Eq. 9 with P as given
+  double mu_m_window = 0;  // with P normalised over [phi_min, phi_max]
+  double weight = 0;       // integral of P over the window
+  double phi_max = 0, abserr = 0;
+};
+// P(phi) on radians; phi_max = atan(mu) + pi/4; breaks: where P has kinks or steps.
+Eq9 quad_eq9(const std::function<double(double)>& p, double mu, double phi_min, Vec breaks = {});
+
+// ---------- files (io.cpp) ----------
+struct Column {
+  Vec values;
+  std::string label;  // "file, column NAME"
+};
+// HDF5 (dataset, default "values"; names from its "columns" attribute), LIGGGHTS dump
+// (columns from ITEM: ATOMS, every snapshot), or a text table ('#' comments, the last
+// comment line before the data names the columns). spec: 1-based number or name.
+Column read_column(const std::string& path, const std::string& spec, const std::string& dataset = "");
+struct Table {
+  std::vector<std::string> names;
+  std::vector<Vec> cols;
+  std::vector<std::pair<std::string, std::string>> meta;  // '# key: value' lines / HDF5 attributes
+};
+void write_table(const std::string& path, const Table& t);  // .csv or .h5 (by extension)
+
+}  // namespace sable::analysis
