@@ -130,7 +130,7 @@ int cmd_pdf(const Cli& c) {
   std::string label;
   const Vec x = input(c, c.pos[0], "--column", &label);
   const Histogram h = hist_of(c, x);
-  std::printf("%s: %zu values, mean %.6g, %zu outside the bins\n", label.c_str(), h.n, h.mean, h.outside);
+  std::printf("%s: %zu values divided by %.6g (%s), %zu outside the bins\n", label.c_str(), h.n, h.mean, c.flag("--raw") ? "--raw" : "their mean", h.outside);
   const Table t = hist_table(h, label);
   if (!c.has("--out"))
     for (std::size_t i = 0; i < h.pdf.size(); ++i) std::printf("%.6g %.6g %g\n", h.centres[i], h.pdf[i], h.counts[i]);
@@ -382,7 +382,8 @@ int cmd_quad_eq9(const Cli& c) {
 const std::vector<Sub>& subs() {
   static const std::vector<Sub> s{
       {"pdf", "pdf IN --column C [--bins lin|log] [--nbins 50] [--lo X --hi X] [--raw] [--out F.csv|F.h5]",
-       "Histogram and PDF of a column, values divided by their mean unless --raw; log bins drop x <= 0.",
+       "Histogram and PDF of a column, values divided by their mean unless --raw (--lo, --hi in those units;\n"
+       "default: the data's range); log bins drop x <= 0.",
        {"--column", "--dataset", "--skip", "--bins", "--nbins", "--lo", "--hi", "--out"}, {"--raw"}, 1, 1, cmd_pdf},
       {"fit-lognormal", "fit-lognormal IN --column C [--raw] [--out params.csv] [--curve curve.csv [--nbins 40] [--bins lin|log]]",
        "Maximum-likelihood fit of kneib2017 Eq. 7 (truncated log-normal) with profile-likelihood 95 % intervals,\n"
