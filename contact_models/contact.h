@@ -97,6 +97,7 @@ concept CohesionSubModel = SubModel<M> && requires(const M& m, const Contact& c,
                                                    const StepContext& x) {
   { M::kActive } -> std::convertible_to<bool>;
   { m.force(c, n, h, x) } -> std::convertible_to<double>;
+  { m.reduces_tangential() } -> std::convertible_to<bool>;
 };
 
 }  // namespace sable

@@ -24,6 +24,7 @@
 //   rolling:    Vec3 torque(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 //   cohesion:   static constexpr bool kActive;
 //               double force(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
+//               bool reduces_tangential() const;  (the Coulomb cap sees the force: tangential_reduce)
 // History columns follow the axes' order: normal, damping, tangential, rolling, cohesion.
 #include <memory>
 #include <string>
@@ -130,13 +131,22 @@ class GranKernel final
     damping_.damp(normal_, c, nf);
     nf.Fn = nf.Fel - nf.gamman * c.vn;
     normal_.limit(nf);
-    if constexpr (C::kActive) nf.Fn += cohesion_.force(c, nf, h + kHN + kHD + kHT + kHR, ctx);
+    // The cohesive pull acts on the grains; the Coulomb cap and rolling
+    // friction see it only with tangential_reduce on (LIGGGHTS 3.8's sidata.Fn).
+    double fcoh = 0.0;
+    if constexpr (C::kActive) {
+      const double f = cohesion_.force(c, nf, h + kHN + kHD + kHT + kHR, ctx);
+      const bool seen = cohesion_.reduces_tangential();
+      nf.Fn += seen ? f : 0.0;
+      fcoh = seen ? 0.0 : f;
+    }
     const Vec3 ft = tangential_.force(c, nf, h + kHN + kHD, ctx);
     const double* en = c.en;
+    const double fn = nf.Fn + fcoh;
     Parts p{};
-    p.f[0] = nf.Fn * en[0] + ft.x;
-    p.f[1] = nf.Fn * en[1] + ft.y;
-    p.f[2] = k3 ? nf.Fn * en[2] + ft.z : 0.0;
+    p.f[0] = fn * en[0] + ft.x;
+    p.f[1] = fn * en[1] + ft.y;
+    p.f[2] = k3 ? fn * en[2] + ft.z : 0.0;
     if constexpr (K::kRotation) {
       const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHD + kHT, ctx);
       const double tor2 = en[0] * ft.y - en[1] * ft.x;

@@ -137,6 +137,7 @@ const double* Materials::pair_table(const std::string& name, const std::string& 
     });
   } else {
     t = raw_pair(name, who, line);
+    check_range(name, t);
     if (name == "coefficientRestitution") {
       const GlobalProperty* f = GlobalProperty::find(sim_, name);
       each([&](int i, int j) {
@@ -151,6 +152,35 @@ const double* Materials::pair_table(const std::string& name, const std::string& 
   auto& stored = tables_[name];
   stored = std::move(t);
   return stored.data();
+}
+
+// Ranges outside which a law's formula breaks down (LIGGGHTS does not check
+// these; a zero denominator or a negative pull would pass silently there).
+void Materials::check_range(const std::string& name, const std::vector<double>& t) const {
+  struct Range {
+    const char* name;
+    double lo;
+    bool open;  // lo itself is refused
+    const char* why;
+  };
+  static const Range ranges[] = {
+      {"coefficientMaxElasticStiffness", 1.0, true, "k2Max = ratio kn must exceed kn (model hooke/hysteresis)"},
+      {"coefficientAdhesionStiffness", 0.0, false, "kc = ratio kn is an adhesive stiffness"},
+      {"coefficientPlasticityDepth", 0.0, true, "the plastic overlap limit is proportional to it"},
+      {"cohesionEnergyDensity", 0.0, false, "cohesion sjkr/sjkr2 pull with it"},
+  };
+  for (const Range& r : ranges) {
+    if (name != r.name) continue;
+    const int s = stride();
+    for (int i = 1; i <= ntypes_; ++i)
+      for (int j = 1; j <= ntypes_; ++j) {
+        const double v = t[i * s + j];
+        if (r.open ? v > r.lo : v >= r.lo) continue;  // NaN fails both
+        GlobalProperty::find(sim_, name)->line->fail_line(
+            name + (r.open ? " > " : " >= ") + fmt(r.lo) + " required (" + r.why + "); types " + std::to_string(i) +
+            "," + std::to_string(j) + " have " + fmt(v));
+      }
+  }
 }
 
 double Materials::scalar(const std::string& name, const std::string& who, const Args& line) {

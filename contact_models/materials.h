@@ -46,6 +46,7 @@ class Materials {
                                    const Args& line) const;
   std::vector<double> raw_pair(const std::string& name, const std::string& who, const Args& line) const;
   std::vector<double> raw_type(const std::string& name, const std::string& who, const Args& line) const;
+  void check_range(const std::string& name, const std::vector<double>& t) const;
   std::string example_line(const std::string& name, const char* style) const;
 };
 

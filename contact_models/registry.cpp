@@ -1,5 +1,6 @@
 #include "contact_models/registry.h"
 
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -25,8 +26,19 @@ static const char* const kAxisKeyword[kAxes] = {"model", "damping", "tangential"
 static const char* const kAxisWhat[kAxes] = {"a normal model", "a damping model", "a tangential model",
                                              "a rolling friction model", "a cohesion model"};
 
+static bool looks_numeric(const std::string& w) {
+  char* end = nullptr;
+  std::strtod(w.c_str(), &end);
+  return !w.empty() && end == w.c_str() + w.size();
+}
+
 ModelSelection parse_model_selection(const Args& a, std::size_t i) {
   ModelSelection s;
+  if (i < a.size() && looks_numeric(a[i]))  // LIGGGHTS 2.x: Kn Kt gamma_n gamma_t xmu dampflag
+    a.fail(i, "'model' followed by a normal model (" + GranModelRegistry::names(kNormalAxis) +
+                  "): the coefficients in the line are LIGGGHTS 2.x syntax, removed in LIGGGHTS 3 (3.8 rejects it "
+                  "too); use fix property/global youngsModulus, poissonsRatio, coefficientRestitution, "
+                  "coefficientFriction");
   if (i >= a.size() || a[i] != "model")
     a.fail(i, "'model' followed by a normal model (" + GranModelRegistry::names(kNormalAxis) + ")");
   // LIGGGHTS wants the order model, tangential, cohesion, rolling_friction, surface; any order is accepted here.

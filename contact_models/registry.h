@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
 
 #include "contact_models/builtin_models.h"  // generated: every built-in sub-model and its axis' TypeList
 #include "contact_models/kernel.h"
@@ -64,9 +65,15 @@ template <class N, class D, class Ts, class Rs, class Cs>
 bool register_product() {
   return register_product<N, D>(Ts{}, Rs{}, Cs{});
 }
+// Cohesion models compose with LIGGGHTS' own damping (damping liggghts) only:
+// the sable damping models have no cohesive use yet, and each cohesion model
+// would add as many laws to compile again (225 laws instead of 405).
+template <class D>
+using CohesionsFor =
+    std::conditional_t<std::is_same_v<D, DampingLiggghts>, builtin::Cohesions, TypeList<CohesionOff>>;
 template <class N, class... Ds>
 bool register_normal(TypeList<Ds...>) {
-  return (register_product<N, Ds, builtin::Tangentials, builtin::Rollings, builtin::Cohesions>() && ...);
+  return (register_product<N, Ds, builtin::Tangentials, builtin::Rollings, CohesionsFor<Ds>>() && ...);
 }
 
 // The models a deck line selects: model M [damping D] [tangential T]

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include "core/error.h"
+#include "core/removed_styles.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 
@@ -176,6 +177,7 @@ void cmd_run(Simulation& sim, const Args& a) {
 void cmd_fix(Simulation& sim, const Args& a) {
   a.need(4, "fix ID group-ID style args");
   const auto* make = FixRegistry::find(a[3]);
+  if (const std::string hint = removed_style_hint("fix", a[3]); !make && !hint.empty()) a.fail(3, hint);
   if (!make) a.fail(3, "a fix style: " + FixRegistry::names());
   sim.add_fix((*make)(sim, a));
 }
@@ -209,6 +211,7 @@ void cmd_uncompute(Simulation& sim, const Args& a) {
 
 void cmd_pair_style(Simulation& sim, const Args& a) {
   const auto* make = PairRegistry::find(a.word(1, "a pair style (gran)"));
+  if (const std::string hint = removed_style_hint("pair_style", a[1]); !make && !hint.empty()) a.fail(1, hint);
   if (!make) a.fail(1, "a pair style: " + PairRegistry::names());
   sim.pair = (*make)(sim, a);
 }

@@ -14,6 +14,7 @@ struct CohesionOff {
   void settings(ModelSettings&) {}
   void connect(PropertyRequest&) {}
   double force(const Contact&, const NormalForce&, double*, const StepContext&) const { return 0.0; }
+  bool reduces_tangential() const { return false; }
 };
 
 }  // namespace sable
