@@ -14,17 +14,17 @@
 namespace sable {
 
 struct AtomColumn {
-  enum Kind { ID, TYPE, MASS, X, XS, XU, XSU, IMAGE, V, F, OMEGA, TORQUE, RADIUS, DIAMETER, DENSITY, COMPUTE, VARIABLE };
+  enum Kind { ID, TYPE, MASS, X, XS, XU, XSU, IMAGE, V, F, OMEGA, TORQUE, RADIUS, DIAMETER, DENSITY, MOL, COMPUTE, VARIABLE };
   Kind kind = ID;
   int comp = 0;       // xyz component, or compute column (1-based; 0 = per-atom vector)
   std::string name;   // the word as written in the deck
   std::string ref;    // compute ID or variable name
-  bool integer() const { return kind == ID || kind == TYPE || kind == IMAGE; }
+  bool integer() const { return kind == ID || kind == TYPE || kind == IMAGE || kind == MOL; }
 };
 
 inline const char* atom_column_words() {
   return "id, type, mass, x, y, z, xs, ys, zs, xu, yu, zu, xsu, ysu, zsu, ix, iy, iz, vx, vy, vz, fx, fy, fz, "
-         "omegax, omegay, omegaz, tqx, tqy, tqz, radius, diameter, density, c_ID, c_ID[N], v_name";
+         "omegax, omegay, omegaz, tqx, tqy, tqz, radius, diameter, density, mol, c_ID, c_ID[N], v_name";
 }
 
 // Parses word i of `a` as a per-atom quantity. Unknown words and references to
@@ -50,6 +50,7 @@ inline AtomColumn parse_atom_column(Simulation& sim, const Args& a, std::size_t 
       {"omegax", AtomColumn::OMEGA, 0},  {"omegay", AtomColumn::OMEGA, 1},    {"omegaz", AtomColumn::OMEGA, 2},
       {"tqx", AtomColumn::TORQUE, 0},    {"tqy", AtomColumn::TORQUE, 1},      {"tqz", AtomColumn::TORQUE, 2},
       {"radius", AtomColumn::RADIUS, 0}, {"diameter", AtomColumn::DIAMETER, 0}, {"density", AtomColumn::DENSITY, 0},
+      {"mol", AtomColumn::MOL, 0},
   };
   for (const Simple& s : simple)
     if (w == s.word) {
@@ -110,6 +111,14 @@ inline void gather_atom_column(Simulation& sim, const AtomColumn& c, const std::
     case AtomColumn::RADIUS: each([&](std::size_t i) { return a.radius[i]; }); break;
     case AtomColumn::DIAMETER: each([&](std::size_t i) { return 2.0 * a.radius[i]; }); break;
     case AtomColumn::DENSITY: each([&](std::size_t i) { return a.density[i]; }); break;
+    case AtomColumn::MOL: {  // granular atoms have no molecule ID: a grain's rigid body (1, 2, ...; 0: none), as LIGGGHTS' multisphere
+      each([&](std::size_t i) {
+        for (auto& f : sim.fixes)
+          if (const int b = f->body_of(i); b >= 0) return b + 1.0;
+        return 0.0;
+      });
+      break;
+    }
     case AtomColumn::COMPUTE: {
       // Looked up each time: the compute may have been uncomputed and redefined since parsing.
       Compute* cp = sim.find_compute(c.ref);

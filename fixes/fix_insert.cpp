@@ -19,6 +19,7 @@
 
 #include "core/restart.h"
 #include "core/simulation.h"
+#include "fixes/fix_multisphere.h"
 
 namespace sable {
 namespace {
@@ -109,6 +110,22 @@ class OverlapGrid {
     return (static_cast<std::size_t>(cell(x, 2)) * n_[1] + cell(x, 1)) * n_[0] + cell(x, 0);
   }
 };
+
+// Does each sphere of a clump (centre of mass x, rotation q) stay clear of the
+// grid's spheres? With add, the spheres are added instead.
+bool clump_fits(const FixParticledistributionDiscrete::Grain& g, const double* x, const std::array<double, 4>& q,
+                OverlapGrid& grid, bool add) {
+  rigid::Q4 qb;
+  const auto d = clump_offsets(*g.g.clump, q, qb);
+  for (std::size_t j = 0; j < d.size(); ++j) {
+    const double p[3] = {x[0] + d[j][0], x[1] + d[j][1], x[2] + d[j][2]};
+    if (add)
+      grid.add(p, g.g.clump->radius[j]);
+    else if (grid.overlaps(p, g.g.clump->radius[j]))
+      return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -206,12 +223,19 @@ bool FixInsert::shared_keyword(const Args& a, std::size_t& i) {
     if (a.word(i + 1, "'constant'") != "constant") a.fail(i + 1, "'constant'");
     for (int d = 0; d < 3; ++d) w_[d] = a.num(i + 2 + d, "an angular velocity component");
     i += 5;
-  } else if (k == "orientation") {  // spheres: orientation is irrelevant
+  } else if (k == "orientation") {  // of multisphere clumps (spheres have none)
     const std::string& o = a.word(i + 1, "random, template or constant q1 q2 q3 q4");
-    if (o == "constant")
-      for (int d = 0; d < 4; ++d) a.num(i + 2 + d, "a quaternion component");
-    else if (o != "random" && o != "template")
+    if (o == "constant") {
+      orient_ = Orient::Constant;
+      double n = 0;
+      for (int d = 0; d < 4; ++d) n += std::pow(quat_[d] = a.num(i + 2 + d, "a quaternion component"), 2);
+      if (!(n > 0)) a.fail(i + 2, "a non-zero quaternion");
+      for (double& c : quat_) c /= std::sqrt(n);
+    } else if (o == "random" || o == "template") {
+      orient_ = o == "random" ? Orient::Random : Orient::Template;
+    } else {
       a.fail(i + 1, "random, template or constant q1 q2 q3 q4");
+    }
     i += o == "constant" ? 6 : 2;
   } else if (k == "region") {
     region_id_ = a.word(i + 1, "a region ID");
@@ -429,9 +453,13 @@ std::size_t FixInsert::place(const std::vector<FixParticledistributionDiscrete::
                              std::vector<double>& pos) {
   const Atoms& at = sim.atoms;
   pos.assign(3 * grains.size(), 0.0);
+  q_.assign(grains.size(), {1, 0, 0, 0});
   std::size_t placed = 0;
   if (!overlap_) {
-    for (; placed < grains.size(); ++placed) random_position(grains[placed].g.radius, &pos[3 * placed]);
+    for (; placed < grains.size(); ++placed) {
+      random_position(grains[placed].g.radius, &pos[3 * placed]);
+      if (grains[placed].g.clump) q_[placed] = orientation();
+    }
     return placed;
   }
   double rmax = 0;
@@ -453,14 +481,58 @@ std::size_t FixInsert::place(const std::vector<FixParticledistributionDiscrete::
         ++ntry;
       } while (ntry < maxtry && border_gap_ && near_box_face(x, r));
       if (ntry == maxtry) break;  // as LIGGGHTS: the last draw is not tried
-      ok = !grid.overlaps(x, r);
+      if (grains[placed].g.clump) {
+        q_[placed] = orientation();
+        ok = clump_fits(grains[placed], x, q_[placed], grid, false);
+      } else {
+        ok = !grid.overlaps(x, r);
+      }
     }
     if (ok) {
-      grid.add(x, r);
+      if (grains[placed].g.clump)
+        clump_fits(grains[placed], x, q_[placed], grid, true);
+      else
+        grid.add(x, r);
       ++placed;
     }
   }
   return placed;
+}
+
+// A clump's orientation: the template's, a constant rotation, or a uniformly
+// random one (Shoemake's method).
+std::array<double, 4> FixInsert::orientation() {
+  if (orient_ == Orient::Template) return {1, 0, 0, 0};
+  if (orient_ == Orient::Constant) return quat_;
+  const double u1 = rng_.uniform(), u2 = 2 * std::numbers::pi * rng_.uniform(), u3 = 2 * std::numbers::pi * rng_.uniform();
+  const double s1 = std::sqrt(1 - u1), s2 = std::sqrt(u1);
+  return {s2 * std::cos(u3), s1 * std::sin(u2), s1 * std::cos(u2), s2 * std::sin(u3)};
+}
+
+void FixInsert::region_content(long& np, double& vol, double& mass) const {
+  const Atoms& at = sim.atoms;
+  np = 0, vol = 0, mass = 0;
+  const FixMultisphere* ms = sim.find_fix_style<FixMultisphere>();
+  std::vector<double> rho(ms ? ms->bodies().size() : 0, 0.0);  // a clump's density, from its spheres
+  for (std::size_t i = 0; i < at.n; ++i) {
+    if (const int k = ms ? ms->body_of(i) : -1; k >= 0) {
+      rho[k] = at.density[i];
+    } else if (region_->match(&at.x[3 * i])) {
+      ++np;
+      vol += grain_volume(at.radius[i]);
+      mass += at.rmass[i];
+    }
+  }
+  for (std::size_t k = 0; k < rho.size(); ++k) {
+    const auto& b = ms->bodies()[k];
+    double x[3] = {b.xcm[0], b.xcm[1], b.xcm[2]};
+    int image[3] = {0, 0, 0};
+    sim.domain.remap(x, image);
+    if (!region_->match(x)) continue;
+    ++np;
+    vol += b.mass / rho[k];
+    mass += b.mass;
+  }
 }
 
 void FixInsert::insert() {
@@ -474,15 +546,22 @@ void FixInsert::insert() {
   double mass_now = 0;
   for (std::size_t p = 0; p < placed; ++p) {
     const auto& G = grains[p];
-    const std::size_t i = at.add(at.max_id + 1, G.g.type, &pos[3 * p], G.g.radius, G.g.density);
-    at.rmass[i] = G.g.mass;  // disc mass in 2D
-    at.mask[i] |= groupbit | G.groupbits;
+    double v[3];
     for (int k = 0; k < 3; ++k) {
-      double v = v_[k];
-      if (vstyle_ == 1) v += dv_[k] * (2 * rng_.uniform() - 1);
-      if (vstyle_ == 2) v += dv_[k] * rng_.gaussian();
-      at.v[3 * i + k] = v;
-      at.omega[3 * i + k] = w_[k];
+      v[k] = v_[k];
+      if (vstyle_ == 1) v[k] += dv_[k] * (2 * rng_.uniform() - 1);
+      if (vstyle_ == 2) v[k] += dv_[k] * rng_.gaussian();
+    }
+    if (G.g.clump) {
+      insert_clump(G, &pos[3 * p], q_[p], v);
+    } else {
+      const std::size_t i = at.add(at.max_id + 1, G.g.type, &pos[3 * p], G.g.radius, G.g.density);
+      at.rmass[i] = G.g.mass;  // disc mass in 2D
+      at.mask[i] |= groupbit | G.groupbits;
+      for (int k = 0; k < 3; ++k) {
+        at.v[3 * i + k] = v[k];
+        at.omega[3 * i + k] = w_[k];
+      }
     }
     mass_now += G.g.mass;
   }
@@ -503,6 +582,25 @@ void FixInsert::insert() {
                   style.c_str(), id.c_str(), placed, grains.size(), sim.step, maxattempt_);
     sim.warn(buf);
   }
+}
+
+// A clump's spheres as atoms carrying the body's mass (LIGGGHTS), handed to fix multisphere.
+void FixInsert::insert_clump(const FixParticledistributionDiscrete::Grain& G, const double* x,
+                             const std::array<double, 4>& q, const double* v) {
+  auto* ms = sim.find_fix_style<FixMultisphere>();
+  if (!ms) args.fail_line("fix " + id + " inserts multisphere clumps: define a fix multisphere (LIGGGHTS: exactly one)");
+  Atoms& at = sim.atoms;
+  const ClumpShape& c = *G.g.clump;
+  rigid::Q4 qb;
+  const auto d = clump_offsets(c, q, qb);
+  const std::size_t first = at.n;
+  for (std::size_t j = 0; j < d.size(); ++j) {
+    const double p[3] = {x[0] + d[j][0], x[1] + d[j][1], x[2] + d[j][2]};
+    const std::size_t i = at.add(at.max_id + 1, G.g.type, p, c.radius[j], c.density);
+    at.rmass[i] = c.mass;
+    at.mask[i] |= groupbit | G.groupbits;
+  }
+  ms->add_body(c, x, q, v, w_, first);
 }
 
 }  // namespace sable

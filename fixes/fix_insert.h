@@ -7,6 +7,7 @@
 // placement; adding the grains; the INFO lines; f_ID[1] (grains inserted) and
 // f_ID[2] (their mass); and the restart state. A style says how many grains
 // each insertion step wants and when it is done.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,9 @@ class FixInsert : public Fix {
 
   int dim() const;
   double grain_volume(double r) const;
+  // Grains (count, volume, mass) whose centre is in the region, any group; a
+  // multisphere clump counts once, by its centre of mass (LIGGGHTS).
+  void region_content(long& np, double& vol, double& mass) const;
 
   long seed_ = 0, insert_every_ = -1, next_step_ = -1, maxattempt_ = 50, ntry_mc_ = 100000;
   bool every_given_ = false, once_allowed_ = true;  // insert/rate/region forbids insert_every once
@@ -61,6 +65,9 @@ class FixInsert : public Fix {
  private:
   bool overlap_ = true, all_in_ = false, exact_ = true, verbose_ = true, announced_ = false, border_gap_ = true;
   int vstyle_ = 0;
+  enum class Orient { Template, Random, Constant } orient_ = Orient::Template;  // LIGGGHTS' default: template
+  std::array<double, 4> quat_{1, 0, 0, 0};  // orientation constant
+  std::vector<std::array<double, 4>> q_;    // per placed grain: its rotation (clumps)
   double v_[3] = {0, 0, 0}, dv_[3] = {0, 0, 0}, w_[3] = {0, 0, 0};
   std::string dist_id_, region_id_;
   double slo_[3], shi_[3];  // where positions are drawn: region bounds within the box
@@ -74,9 +81,12 @@ class FixInsert : public Fix {
   bool in_region(const double* x, double r);
   bool near_box_face(const double* x, double r) const;
   void random_position(double r, double* x);
+  std::array<double, 4> orientation();
   std::size_t place(const std::vector<FixParticledistributionDiscrete::Grain>& grains, double filled,
                     std::vector<double>& pos);
   void insert();
+  void insert_clump(const FixParticledistributionDiscrete::Grain& G, const double* x, const std::array<double, 4>& q,
+                    const double* v);
 };
 
 }  // namespace sable

@@ -51,17 +51,11 @@ class FixInsertPack : public FixInsert {
   }
 
   // The grains missing from the target, counting every atom whose centre is in
-  // the region, whatever its group.
+  // the region, whatever its group (a clump once, by its centre of mass).
   long wanted(double& filled) override {
-    const Atoms& at = sim.atoms;
     long np = 0;
     double vol = 0, mass = 0;
-    for (std::size_t i = 0; i < at.n; ++i)
-      if (region_->match(&at.x[3 * i])) {
-        ++np;
-        vol += grain_volume(at.radius[i]);
-        mass += at.rmass[i];
-      }
+    region_content(np, vol, mass);
     if (vol_frac_ > 0) {
       filled = vol / (vol_frac_ * region_volume_);
       return static_cast<long>((vol_frac_ * region_volume_ - vol) / dist_->volume_expect + rng_.uniform());

@@ -21,7 +21,7 @@ FixParticledistributionDiscrete::FixParticledistributionDiscrete(Simulation& s, 
   for (long t = 0; t < nt; ++t) {
     const std::size_t i = 6 + 2 * t;
     auto* tp = dynamic_cast<FixParticletemplateSphere*>(s.find_fix(a[i]));
-    if (!tp) a.fail(i, "the ID of a fix particletemplate/sphere defined earlier");
+    if (!tp) a.fail(i, "the ID of a fix particletemplate/sphere defined earlier (or of a particletemplate/multisphere)");
     if (std::find(templates.begin(), templates.end(), tp) != templates.end())
       a.fail(i, "a template not already listed (LIGGGHTS forbids using a template twice)");
     // LIGGGHTS aborts when the expected volume is below volume_limit (round-off risk).

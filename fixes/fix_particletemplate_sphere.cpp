@@ -45,7 +45,11 @@ static Pdf parse_pdf(const Args& a, std::size_t& i, const char* what, bool numbe
   return p;
 }
 
-FixParticletemplateSphere::FixParticletemplateSphere(Simulation& s, const Args& a) : Fix(s, a) {
+FixParticletemplateSphere::FixParticletemplateSphere(Simulation& s, const Args& a)
+    : FixParticletemplateSphere(s, a, nullptr) {}
+
+FixParticletemplateSphere::FixParticletemplateSphere(Simulation& s, const Args& a, const Keywords& extra)
+    : Fix(s, a) {
   seed = parse_prime_seed(a, 4);
   bool have_radius = false, have_density = false;
   for (std::size_t i = 5; i < a.size();) {
@@ -56,6 +60,9 @@ FixParticletemplateSphere::FixParticletemplateSphere(Simulation& s, const Args& 
         a.fail(i + 1, "an atom type between 1 and " + std::to_string(s.atoms.ntypes));
       atom_type = static_cast<int>(t);
       i += 2;
+    } else if (extra && extra(a, i)) {
+    } else if (k == "radius" && extra) {
+      a.fail(i, "no 'radius' (a multisphere template takes its spheres from 'spheres', as LIGGGHTS)");
     } else if (k == "radius") {
       ++i;
       radius = parse_pdf(a, i, "radius", true);
@@ -72,12 +79,14 @@ FixParticletemplateSphere::FixParticletemplateSphere(Simulation& s, const Args& 
       if (a.yes_no(i + 1, "yes or no")) a.fail(i + 1, "'no' (relative radii are not supported)");
       i += 2;
     } else {
-      a.fail(i, "a particletemplate/sphere keyword: atom_type, density, radius, volume_limit, relative");
+      a.fail(i, extra ? "a particletemplate/multisphere keyword: atom_type, density, volume_limit, nspheres, ntry, "
+                        "spheres, type, mass, inertia_tensor, use_volume, use_density, fflag, tflag"
+                      : "a particletemplate/sphere keyword: atom_type, density, radius, volume_limit, relative");
     }
   }
   // LIGGGHTS defaults are radius 1 and density 1, but it requires both to be given.
   if (!have_density) a.fail(a.size(), "'density constant RHO' (LIGGGHTS requires a density)");
-  if (!have_radius) a.fail(a.size(), "'radius constant R' (LIGGGHTS requires a radius)");
+  if (!have_radius && !extra) a.fail(a.size(), "'radius constant R' (LIGGGHTS requires a radius)");
   rng_.reseed(static_cast<std::uint64_t>(seed));
 }
 

@@ -6,29 +6,37 @@
 // number MU SIGMA` (truncated at +-3 sigma) and `density uniform|gaussian A B`.
 // Random numbers and distributions: core/random.h.
 #include <cstdint>
+#include <functional>
 
 #include "core/fix.h"
 #include "core/random.h"
 
 namespace sable {
 
+struct ClumpShape;  // fixes/fix_particletemplate_multisphere.h
+
 class FixParticletemplateSphere : public Fix {
  public:
   FixParticletemplateSphere(Simulation& s, const Args& a);
   struct Grain {
-    double radius, density, mass;
+    double radius, density, mass;  // a clump: its bounding radius, density and mass
     int type;
+    const ClumpShape* clump = nullptr;  // set for a particletemplate/multisphere grain
   };
   long seed = 0;
   int atom_type = 1;
   double volume_limit = 1e-12;
   Pdf radius, density;
   // Expected volume (area 4/3 pi r^3; in 2D pi r^2, sable's disc extension) and mass.
-  double volume_expect() const;
-  double mass_expect() const;
-  Grain draw();  // next grain from this template's own stream
+  virtual double volume_expect() const;
+  virtual double mass_expect() const;
+  virtual Grain draw();  // next grain from this template's own stream
 
- private:
+ protected:
+  // For particletemplate/multisphere: `extra` consumes its own keywords at a[i]
+  // (advancing i; false if a[i] is none); `radius` is then refused.
+  using Keywords = std::function<bool(const Args&, std::size_t&)>;
+  FixParticletemplateSphere(Simulation& s, const Args& a, const Keywords& extra);
   Rng rng_;
 };
 

@@ -22,84 +22,15 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-
 #include "core/restart.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/variable.h"
+#include "fixes/rigid_body_set.h"
 
 namespace sable {
 
-namespace {
-
-using V3 = std::array<double, 3>;
-using Q4 = std::array<double, 4>;  // w, x, y, z
-
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// Columns of the rotation matrix of unit quaternion q: the body axes in the world frame.
-void axes(const Q4& q, V3& ex, V3& ey, V3& ez) {
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  ex = {w * w + x * x - y * y - z * z, 2 * (x * y + w * z), 2 * (x * z - w * y)};
-  ey = {2 * (x * y - w * z), w * w - x * x + y * y - z * z, 2 * (y * z + w * x)};
-  ez = {2 * (x * z + w * y), 2 * (y * z - w * x), w * w - x * x - y * y + z * z};
-}
-
-void normalize(Q4& q) {
-  const double s = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (double& c : q) c *= s;
-}
-
-// Angular velocity from angular momentum m, body axes and inverse principal moments
-// (0 for a zero moment: no spin about that axis).
-V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv) {
-  const double a = dot(m, ex) * inv[0], b = dot(m, ey) * inv[1], c = dot(m, ez) * inv[2];
-  return {a * ex[0] + b * ey[0] + c * ez[0], a * ex[1] + b * ey[1] + c * ez[1], a * ex[2] + b * ey[2] + c * ez[2]};
-}
-
-// dq/dt = 1/2 (0, w) q, as the product (0, w) q.
-Q4 spin(const V3& w, const Q4& q) {
-  return {-(w[0] * q[1] + w[1] * q[2] + w[2] * q[3]), q[0] * w[0] + w[1] * q[3] - w[2] * q[2],
-          q[0] * w[1] + w[2] * q[1] - w[0] * q[3], q[0] * w[2] + w[0] * q[2] - w[1] * q[1]};
-}
-
-Q4 step_q(const Q4& q, const Q4& wq, double h) {
-  Q4 r;
-  for (int c = 0; c < 4; ++c) r[c] = q[c] + h * wq[c];
-  normalize(r);
-  return r;
-}
-
-// One orientation step of dt = 2 dtq by Richardson extrapolation (LAMMPS' fix rigid):
-// a full step and two half steps (omega recomputed from m at the midpoint), combined as 2 half - full.
-void richardson(Q4& q, const V3& m, V3& w, const V3& inv, double dtq) {
-  const Q4 wq = spin(w, q);
-  const Q4 full = step_q(q, wq, dtq);
-  Q4 half = step_q(q, wq, 0.5 * dtq);
-  V3 ex, ey, ez;
-  axes(half, ex, ey, ez);
-  w = omega_of(m, ex, ey, ez, inv);
-  half = step_q(half, spin(w, half), 0.5 * dtq);
-  for (int c = 0; c < 4; ++c) q[c] = 2.0 * half[c] - full[c];
-  normalize(q);
-}
-
-struct Body {
-  double mass = 0;
-  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{}, inv_moments{};  // xcm unwrapped
-  double inv_mass = 0;
-  Q4 q{1, 0, 0, 0};
-  V3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};  // the body axes, axes(q), kept with q
-  V3 force{}, torque{};  // sums over the members, before the flags
-  std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
-  int members = 0;
-};
-
-}  // namespace
+using namespace rigid;
 
 class FixRigid : public Fix {
  public:
@@ -118,42 +49,19 @@ class FixRigid : public Fix {
     pair_col_ = sim.atoms.add_column("rigid:pair_exclusion", 1);
     sim.atoms.pair_exclusion = pair_col_;
     refresh_state();
-    place_members(false);
+    set_.place_members(false);
     refresh_contact_mass(true);
   }
   void pre_force() override { refresh_contact_mass(false); }
 
-  void initial_integrate() override {
-    const double dtf = 0.5 * sim.dt;
-    for (Body& b : bodies_) {
-      for (int k = 0; k < 3; ++k) {
-        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
-        b.xcm[k] += sim.dt * b.vcm[k];
-        if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
-      }
-      if (rotates(b)) {
-        b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
-        richardson(b.q, b.angmom, b.omega, b.inv_moments, 0.5 * sim.dt);
-        axes(b.q, b.ex, b.ey, b.ez);
-      }
-    }
-    place_members(true);
-  }
+  void initial_integrate() override { set_.initial_integrate(sim.dt); }
 
   void final_integrate() override {
-    sum_forces();
-    const double dtf = 0.5 * sim.dt;
-    for (Body& b : bodies_) {
-      for (int k = 0; k < 3; ++k) {
-        if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
-        if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
-      }
-      if (rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
-    }
-    place_members(false);
+    set_.sum_forces();
+    set_.final_integrate(sim.dt);
   }
 
-  void setup() override { sum_forces(); }
+  void setup() override { set_.sum_forces(); }
 
   int body_of(std::size_t i) const override {
     return col_ < 0 || i >= sim.atoms.n ? -1 : static_cast<int>(sim.atoms.column(col_)[kStride * i]) - 1;
@@ -210,12 +118,13 @@ class FixRigid : public Fix {
     std::size_t at;
   };
   std::vector<FlagSpec> flag_specs_;
-  std::vector<Body> bodies_;
-  int col_ = -1;       // per atom: body index + 1 (0: none), offset in the body frame (3), in the world frame (3)
+  BodySet set_{sim};  // the bodies and their per-atom column (fixes/rigid_body_set.h)
+  std::vector<Body>& bodies_ = set_.bodies;
+  int& col_ = set_.col;
   int mass_col_ = -1;  // per atom: the mass contacts see
   int pair_col_ = -1;  // per atom: a key shared by the grains of one body, which never pair
   std::size_t last_n_ = 0;
-  static constexpr int kStride = 7;
+  static constexpr int kStride = BodySet::kStride;
 
   // A member also moved by a per-atom integrator (nve/sphere) would be integrated twice.
   void check_integrators() const {
@@ -236,12 +145,7 @@ class FixRigid : public Fix {
     }
   }
 
-  bool turns_grains() const override {
-    return std::any_of(bodies_.begin(), bodies_.end(), [](const Body& b) { return rotates(b); });
-  }
-  static bool rotates(const Body& b) {
-    return b.tflag[0] || b.tflag[1] || b.tflag[2] || b.angmom[0] != 0 || b.angmom[1] != 0 || b.angmom[2] != 0;
-  }
+  bool turns_grains() const override { return set_.any_rotates(); }
 
   void parse(const Args& a) {
     const std::string& bs = a.word(4, "a body style (single, group, custom; molecule)");
@@ -416,23 +320,6 @@ class FixRigid : public Fix {
     }
   }
 
-  // Principal moments (a negligible one set to zero: no spin about that axis) and
-  // the orientation quaternion of the right-handed principal axes.
-  static void principal_axes(Body& b, const Eigen::Matrix3d& inertia) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertia);
-    Eigen::Matrix3d R = eig.eigenvectors();
-    if (R.determinant() < 0) R.col(2) = -R.col(2);
-    const double imax = eig.eigenvalues().maxCoeff();
-    for (int k = 0; k < 3; ++k) {
-      b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
-      b.inv_moments[k] = b.moments[k] > 0 ? 1.0 / b.moments[k] : 0.0;
-    }
-    const Eigen::Quaterniond q(R);
-    b.q = {q.w(), q.x(), q.y(), q.z()};
-    normalize(b.q);
-    axes(b.q, b.ex, b.ey, b.ez);
-  }
-
   V3 offset(std::size_t i, const Body& b) const {
     double u[3];
     sim.domain.unmap(&sim.atoms.x[3 * i], &sim.atoms.image[3 * i], u);
@@ -476,7 +363,7 @@ class FixRigid : public Fix {
       if (k < 0) continue;
       ++count[k];
       double x[3], v[3];
-      expected(i, k, x, v);
+      set_.expected(i, k, x, v);
       for (int e = 0; e < 3; ++e)
         if (x[e] != at.x[3 * i + e] || v[e] != at.v[3 * i + e] || bodies_[k].omega[e] != at.omega[3 * i + e])
           moved[k] = 1;
@@ -488,69 +375,6 @@ class FixRigid : public Fix {
     if (std::find(moved.begin(), moved.end(), 1) == moved.end()) return;
     measure_static(moved);
     measure_dynamic();
-  }
-
-  // Where place_members would put grain i of body k, and its velocity.
-  void expected(std::size_t i, int k, double* x, double* v) const {
-    const Body& b = bodies_[k];
-    const double* o = &sim.atoms.column(col_)[kStride * i];
-    const V3 d{o[4], o[5], o[6]};
-    const V3 wd = cross(b.omega, d);
-    int image[3] = {0, 0, 0};
-    for (int e = 0; e < 3; ++e) {
-      x[e] = b.xcm[e] + d[e];
-      v[e] = b.vcm[e] + wd[e];
-    }
-    sim.domain.remap(x, image);
-  }
-
-  // Members from their body: the offset turned to the body's orientation (kept
-  // as it is when the body cannot turn), the position wrapped into the box,
-  // v = vcm + w x d, and each sphere's spin the body's.
-  void place_members(bool positions) {
-    Atoms& at = sim.atoms;
-    auto& c = at.column(col_);
-    const Domain& dom = sim.domain;
-    const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
-    for (std::size_t i = 0; i < at.n; ++i) {
-      const int k = static_cast<int>(c[kStride * i]) - 1;
-      if (k < 0) continue;
-      const Body& b = bodies_[k];
-      double* o = &c[kStride * i];
-      if (positions && rotates(b))
-        for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * b.ex[e] + o[2] * b.ey[e] + o[3] * b.ez[e];
-      const V3 d{o[4], o[5], o[6]};
-      const V3 wd = cross(b.omega, d);
-      for (int e = 0; e < 3; ++e) {
-        if (positions) {
-          at.image[3 * i + e] = 0;
-          at.x[3 * i + e] = b.xcm[e] + d[e];
-        }
-        at.v[3 * i + e] = b.vcm[e] + wd[e];
-        at.omega[3 * i + e] = b.omega[e];
-      }
-      if (positions && wrap) dom.remap(&at.x[3 * i], &at.image[3 * i]);
-    }
-  }
-
-  // Force and torque on each body about its centre: the members' forces, their
-  // moments d x f, and the members' own torques (serial, in atom order: the same bits for any thread count).
-  void sum_forces() {
-    Atoms& at = sim.atoms;
-    const auto& c = at.column(col_);
-    for (Body& b : bodies_) b.force = b.torque = V3{0, 0, 0};
-    for (std::size_t i = 0; i < at.n; ++i) {
-      const int k = static_cast<int>(c[kStride * i]) - 1;
-      if (k < 0) continue;
-      Body& b = bodies_[k];
-      const V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
-      const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
-      const V3 t = cross(d, f);
-      for (int e = 0; e < 3; ++e) {
-        b.force[e] += f[e];
-        b.torque[e] += t[e] + at.torque[3 * i + e];
-      }
-    }
   }
 
   // The mass contacts see: the body's for members, the grain's own otherwise

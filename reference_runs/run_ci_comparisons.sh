@@ -12,7 +12,7 @@ if command -v liggghts >/dev/null; then ref=liggghts; else
   echo "liggghts not found (apt-get install liggghts); comparing against the stored references"
 fi
 status=0
-for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor move_wiggle aveforce_lid rigid_tumble rigid_lid cohesion_sjkr cohesion_sjkr2 hooke_hysteresis; do
+for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor move_wiggle aveforce_lid rigid_tumble rigid_lid cohesion_sjkr cohesion_sjkr2 hooke_hysteresis multisphere_pour; do
   "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?

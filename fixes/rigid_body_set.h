@@ -1,0 +1,89 @@
+#pragma once
+// Rigid bodies of member grains, shared by fix rigid / rigid/small (bodies
+// from groups or IDs, mass and inertia from the member spheres) and fix
+// multisphere (LIGGGHTS clumps inserted from templates, mass and inertia from
+// the template): the body state, LAMMPS' NVE integration with Richardson
+// iteration for the orientation, placing the members from their body, and
+// summing member forces into body force and torque.
+//
+// Per atom, one extra column of kStride doubles: body index + 1 (0: in no
+// body), the offset from the centre of mass in the body frame (3) and in the
+// world frame (3).
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace sable {
+
+class Simulation;
+
+namespace rigid {
+
+using V3 = std::array<double, 3>;
+using Q4 = std::array<double, 4>;  // w, x, y, z
+
+inline V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Columns of the rotation matrix of unit quaternion q: the body axes in the world frame.
+void axes(const Q4& q, V3& ex, V3& ey, V3& ez);
+void normalize(Q4& q);
+// Angular velocity from angular momentum m, body axes and inverse principal moments
+// (0 for a zero moment: no spin about that axis).
+V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv);
+
+struct Body {
+  double mass = 0;
+  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{}, inv_moments{};  // xcm unwrapped
+  double inv_mass = 0;
+  Q4 q{1, 0, 0, 0};
+  V3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};  // the body axes, axes(q), kept with q
+  V3 force{}, torque{};  // sums over the members, before the flags
+  std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
+  int members = 0;
+};
+
+// Principal moments (one below 1e-7 of the largest set to zero: no spin about
+// that axis, as LAMMPS) and the orientation quaternion of the right-handed principal axes.
+void principal_axes(Body& b, const Eigen::Matrix3d& inertia);
+
+class BodySet {
+ public:
+  static constexpr int kStride = 7;
+  std::vector<Body> bodies;
+  int col = -1;  // the per-atom column
+
+  explicit BodySet(Simulation& s) : sim_(s) {}
+  int body_of_atom(std::size_t i) const;  // -1: in no body
+  static bool rotates(const Body& b) {
+    return b.tflag[0] || b.tflag[1] || b.tflag[2] || b.angmom[0] != 0 || b.angmom[1] != 0 || b.angmom[2] != 0;
+  }
+  bool any_rotates() const;
+
+  // First half of the NVE step (half kick, drift, orientation), then the members placed.
+  void initial_integrate(double dt);
+  // Second half kick from the summed force and torque, then the members' velocities.
+  void final_integrate(double dt);
+  // Members from their body: the offset turned to the body's orientation (kept
+  // as it is when the body cannot turn), the position wrapped into the box,
+  // v = vcm + w x d, and each sphere's spin the body's.
+  void place_members(bool positions);
+  // Force and torque on each body about its centre: the members' forces, their
+  // moments d x f, and the members' own torques (serial, in atom order: the
+  // same bits for any thread count).
+  void sum_forces();
+  // Where place_members would put grain i of body k, and its velocity.
+  void expected(std::size_t i, int k, double* x, double* v) const;
+
+ private:
+  Simulation& sim_;
+};
+
+}  // namespace rigid
+}  // namespace sable
