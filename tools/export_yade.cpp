@@ -470,7 +470,7 @@ void YadeExporter::fixes() {
         integrated[i] = 1;
       });
     } else {
-      a.fail_line("export-yade: fix style '" + f.style + "' is not translated to YADE");
+      f.args.fail_line("export-yade: fix style '" + f.style + "' is not translated to YADE");
     }
   }
   for (std::size_t i = 0; i < at.n; ++i)

@@ -22,7 +22,7 @@ using sable::test::Deck;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kE = 2e6, kRho = 2500;
+constexpr double kE = 1e7, kRho = 2500;
 
 std::string num(double v) {
   char b[64];

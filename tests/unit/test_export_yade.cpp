@@ -82,7 +82,7 @@ TEST(ExportYade, UntranslatableExpressionInPrintIsRefused) {
 
 TEST(ExportYade, ScriptHoldsGrainsLawRunAndObservables) {
   TempDir tmp;
-  const std::string s = exported(tmp, kHead + "thermo_style custom step v_q\nvariable q equal vz[2]\nthermo 5\nrun 10\n"
+  const std::string s = exported(tmp, kHead + "variable q equal vz[2]\nthermo_style custom step v_q\nthermo 5\nrun 10\n"
                                               "variable i loop 2\nlabel l\nvariable w equal omegax[$i]*2^2\n"
                                               "print \"OBSERVABLE w_$i ${w}\"\nnext i\njump SELF l\n");
   ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
