@@ -170,6 +170,7 @@ void Input::one(const std::string& line, const DeckLocation& where) {
     if (a == "label" && b == jump_label_) jump_label_.clear();
     return;
   }
+  if (intercept && intercept(line, where)) return;
   std::vector<std::string> words = parse(line, where);
   if (words.empty()) return;
   if (echo_screen) sim_.print(line);

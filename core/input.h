@@ -3,6 +3,7 @@
 // quotes, ${name}/$x substitution, immediate $(expr), then dispatches the
 // command. Flow commands (include, label, jump, next, if, print, variable,
 // log, echo) live here; every other command is a registered style/command.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ class Input {
   std::vector<std::string> parse(const std::string& line, const DeckLocation& where);
   const DeckLocation& where() const { return where_; }
   bool echo_screen = false;
+  // Sees each command line before substitution; returning true consumes it
+  // (sable --export-yade translates `run` and `print` instead of executing them).
+  std::function<bool(const std::string& line, const DeckLocation& where)> intercept;
 
  private:
   Simulation& sim_;

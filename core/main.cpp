@@ -1,4 +1,5 @@
 // sable -in deck [-var NAME VALUE ...] [-log FILE|none] [-echo none|screen] [-screen none]
+// sable --export-yade deck [-var NAME VALUE ...] -o script.py   (tools/export_yade.h)
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -8,14 +9,17 @@
 #include "core/input.h"
 #include "core/simulation.h"
 #include "core/variable.h"
+#include "tools/export_yade.h"
 
 int main(int argc, char** argv) {
   using namespace sable;
   Simulation sim;
   Input input(sim);
-  std::string deck, log = "log.sable";
+  std::string deck, log = "log.sable", yade_script;
+  bool export_yade_mode = false;
   auto usage = [] {
-    std::fprintf(stderr, "usage: sable -in deck [-var NAME VALUE ...] [-log FILE|none] [-echo none|screen] [-screen none]\n");
+    std::fprintf(stderr, "usage: sable -in deck [-var NAME VALUE ...] [-log FILE|none] [-echo none|screen] [-screen none]\n"
+                         "       sable --export-yade deck [-var NAME VALUE ...] -o script.py\n");
     return 2;
   };
   try {
@@ -26,6 +30,10 @@ int main(int argc, char** argv) {
         return argv[++i];
       };
       if (a == "-in" || a == "-i") deck = value("a deck file");
+      else if (a == "--export-yade") {
+        deck = value("a deck file");
+        export_yade_mode = true;
+      } else if (a == "-o") yade_script = value("a script file name");
       else if (a == "-log" || a == "-l") log = value("a log file name or none");
       else if (a == "-echo" || a == "-e") input.echo_screen = (value("none or screen") == "screen");
       else if (a == "-screen" || a == "-sc") {
@@ -43,6 +51,12 @@ int main(int argc, char** argv) {
       }
     }
     if (deck.empty()) return usage();
+    if (export_yade_mode) {
+      if (yade_script.empty()) fail("command line: --export-yade needs -o script.py");
+      sim.open_log("none");
+      export_yade(sim, input, deck, yade_script);
+      return 0;
+    }
     sim.open_log(log);
     input.file(deck);
   } catch (const std::exception& e) {

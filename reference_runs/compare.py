@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Run one deck unchanged in several DEM codes and compare what it declares.
 
-    /usr/bin/python3 reference_runs/compare.py DECK [--codes sable,liggghts]
+    /usr/bin/python3 reference_runs/compare.py DECK [--codes sable,liggghts[,yade]]
         [--out DIR] [--var NAME VALUE ...] [--sable PATH] [--update-reference]
 
 The conventions (OBSERVABLE lines, thermo series, #@ directives) and the
@@ -123,23 +123,48 @@ def command(code, args):
     return (['stdbuf', '-o0', '-e0'] if shutil.which('stdbuf') else []) + [exe]
 
 
-def run_once(code, deck, rundir, variables, h, args):
-    os.makedirs(rundir, exist_ok=True)
-    # deckdir: the deck's folder, for files next to it (STL meshes): both codes open names from the run folder.
-    cmd = command(code, args) + ['-in', os.path.abspath(deck), '-log', 'none', '-var', 'engine', code,
-                                 '-var', 'deckdir', os.path.dirname(os.path.abspath(deck))]
-    for k, v in variables.items():
-        cmd += ['-var', k, v]
-    print(f'[{code}] ' + ' '.join(cmd) + f'   (in {show(rundir)})', flush=True)
+def execute(cmd, rundir, args, env=None):
+    """(screen text, exit status) of one command run in rundir."""
     try:
         p = subprocess.run(cmd, cwd=rundir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           text=True, errors='replace', timeout=args.timeout)
-        text, rc = p.stdout, p.returncode
+                           text=True, errors='replace', timeout=args.timeout, env=env)
+        return p.stdout, p.returncode
     except subprocess.TimeoutExpired as e:
         out = e.stdout.decode(errors='replace') if isinstance(e.stdout, bytes) else e.stdout or ''
-        text, rc = out + f'\n(timed out after {args.timeout} s)', -1
+        return out + f'\n(timed out after {args.timeout} s)', -1
     except OSError as e:
-        text, rc = str(e), -1
+        return str(e), -1
+
+
+def deck_vars(code, deck, variables):
+    # deckdir: the deck's folder, for files next to it (STL meshes): every code opens names from the run folder.
+    out = ['-var', 'engine', code, '-var', 'deckdir', os.path.dirname(os.path.abspath(deck))]
+    for k, v in variables.items():
+        out += ['-var', k, v]
+    return out
+
+
+def run_yade(deck, rundir, variables, args):
+    """sable --export-yade writes script.py from the deck; YADE runs it (one thread, no GUI)."""
+    cmd = [args.sable, '--export-yade', os.path.abspath(deck)] + deck_vars('yade', deck, variables) + ['-o', 'script.py']
+    print('[yade] ' + ' '.join(cmd) + f'   (in {show(rundir)})', flush=True)
+    text, rc = execute(cmd, rundir, args)
+    if rc != 0:
+        return 'sable --export-yade failed:\n' + text, rc
+    cmd = [shutil.which('yade'), '-j1', '-n', '-x', 'script.py']
+    print('[yade] ' + ' '.join(cmd), flush=True)
+    env = {**os.environ, 'OMP_NUM_THREADS': '1'}
+    return execute(cmd, rundir, args, env)
+
+
+def run_once(code, deck, rundir, variables, h, args):
+    os.makedirs(rundir, exist_ok=True)
+    if code == 'yade':
+        text, rc = run_yade(deck, rundir, variables, args)
+    else:
+        cmd = command(code, args) + ['-in', os.path.abspath(deck), '-log', 'none'] + deck_vars(code, deck, variables)
+        print(f'[{code}] ' + ' '.join(cmd) + f'   (in {show(rundir)})', flush=True)
+        text, rc = execute(cmd, rundir, args)
     open(os.path.join(rundir, 'screen.txt'), 'w').write(text)
     obs, series = parse_screen(text)
     for name, dump in h['coord']:
@@ -155,7 +180,7 @@ def run_code(code, deck, outdir, variables, h, args):
     rec = {'code': code, 'deck': os.path.basename(deck), 'vars': variables,
            'date': datetime.date.today().isoformat(), 'errors': []}
     seeds = h['seeds'] if h['seeds'] and h['seeds'][0] not in variables else None
-    if seeds and code != 'sable':
+    if seeds and code == 'liggghts':
         runs = [(os.path.join(outdir, f'{seeds[0]}_{s}'), {**variables, seeds[0]: s}) for s in seeds[1]]
     else:
         runs = [(outdir, {**variables, seeds[0]: seeds[1][0]} if seeds else variables)]
@@ -176,28 +201,31 @@ def run_code(code, deck, outdir, variables, h, args):
     return rec
 
 
-def load_stored(deckname, variables):
-    path = os.path.join(STORED, deckname, 'liggghts', 'results.json')
+PACKAGE = {'liggghts': 'liggghts', 'yade': 'yade'}
+
+
+def load_stored(deckname, variables, code='liggghts'):
+    path = os.path.join(STORED, deckname, code, 'results.json')
     if not os.path.exists(path):
-        sys.exit(f'no stored LIGGGHTS reference for {deckname} ({show(path)}); '
-                 'install LIGGGHTS (apt-get install liggghts) and rerun with --update-reference')
+        sys.exit(f'no stored {code} reference for {deckname} ({show(path)}); '
+                 f'install it (apt-get install {PACKAGE[code]}) and rerun with --update-reference')
     rec = json.load(open(path))
     if rec.get('vars', {}) != variables:
         sys.exit(f'the stored reference {show(path)} was made with -var {rec.get("vars")}, '
-                 f'not {variables}; run LIGGGHTS itself for other values')
-    rec['code'] = 'liggghts-stored'
+                 f'not {variables}; run {code} itself for other values')
+    rec['code'] = code + '-stored'
     return rec
 
 
-def store(rec, deckname):
-    d = os.path.join(STORED, deckname, 'liggghts')
+def store(rec, deckname, code='liggghts'):
+    d = os.path.join(STORED, deckname, code)
     os.makedirs(d, exist_ok=True)
     rec_tail = rec['log_tail']
     rec = {k: v for k, v in rec.items() if k != 'log_tail'}
     with open(os.path.join(d, 'results.json'), 'w') as f:
         json.dump(rec, f, indent=1, allow_nan=True)
     open(os.path.join(d, 'log_tail.txt'), 'w').write(rec_tail + '\n')
-    print(f'stored the LIGGGHTS reference in {show(d)}')
+    print(f'stored the {code} reference in {show(d)}')
 
 
 # ---------------------------------------------------------------- comparison
@@ -312,13 +340,13 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('deck')
     p.add_argument('--codes', default='sable,liggghts',
-                   help='comma-separated: sable, liggghts, liggghts-stored; the last is the reference')
+                   help='comma-separated: sable, liggghts, liggghts-stored, yade, yade-stored; the last is the reference')
     p.add_argument('--out', default=os.path.join(REPO, 'build-compare'), help='output folder')
     p.add_argument('--var', nargs=2, action='append', default=[], metavar=('NAME', 'VALUE'))
     p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'), help='sable binary')
     p.add_argument('--timeout', type=float, default=1800, help='seconds per run')
     p.add_argument('--update-reference', action='store_true',
-                   help='store the LIGGGHTS results under reference_runs/reference/')
+                   help='store the LIGGGHTS and YADE results under reference_runs/reference/')
     args = p.parse_args()
     args.sable = os.path.abspath(args.sable)
     deck = args.deck
@@ -328,26 +356,27 @@ def main():
     outdir = os.path.join(args.out, deckname)
     notes, recs = [], []
     for code in args.codes.split(','):
-        if code == 'liggghts' and not shutil.which('liggghts'):
-            print('liggghts is not on PATH: install it with `apt-get install liggghts` (Debian/Ubuntu); '
+        if code in PACKAGE and not shutil.which(code):
+            print(f'{code} is not on PATH: install it with `apt-get install {PACKAGE[code]}` (Debian/Ubuntu); '
                   'using the stored reference results instead', flush=True)
-            code = 'liggghts-stored'
-        if code == 'liggghts-stored':
-            recs.append(load_stored(deckname, variables))
-            notes.append(f'liggghts-stored: results stored in reference_runs/reference/{deckname}/liggghts/ '
-                         f'(LIGGGHTS run of {recs[-1].get("date", "?")}), not run now')
+            code += '-stored'
+        if code.endswith('-stored') and code[:-7] in PACKAGE:
+            recs.append(load_stored(deckname, variables, code[:-7]))
+            notes.append(f'{code}: results stored in reference_runs/reference/{deckname}/{code[:-7]}/ '
+                         f'({code[:-7]} run of {recs[-1].get("date", "?")}), not run now')
             continue
-        if code not in ('sable', 'liggghts'):
-            sys.exit(f'unknown code {code}: use sable, liggghts or liggghts-stored')
-        if code == 'sable' and not os.access(args.sable, os.X_OK):
+        if code not in ('sable', 'liggghts', 'yade'):
+            sys.exit(f'unknown code {code}: use sable, liggghts, liggghts-stored, yade or yade-stored')
+        if code in ('sable', 'yade') and not os.access(args.sable, os.X_OK):
             sys.exit(f'no sable binary at {args.sable}: build it (cmake) or pass --sable PATH')
         recs.append(run_code(code, deck, os.path.join(outdir, code), variables, h, args))
-        exe = args.sable if code == 'sable' else shutil.which('liggghts')
-        notes.append(f'{code}: ran `{exe}` now (output in {show(os.path.join(outdir, code))})')
-        if code == 'liggghts' and args.update_reference:
+        exe = args.sable if code == 'sable' else shutil.which(code)
+        notes.append(f'{code}: ran `{exe}` now (output in {show(os.path.join(outdir, code))})'
+                     + (' on the script written by sable --export-yade' if code == 'yade' else ''))
+        if code in PACKAGE and args.update_reference:
             if recs[-1]['errors']:
-                sys.exit('LIGGGHTS failed, reference not stored: ' + '; '.join(recs[-1]['errors']))
-            store(recs[-1], deckname)
+                sys.exit(f'{code} failed, reference not stored: ' + '; '.join(recs[-1]['errors']))
+            store(recs[-1], deckname, code)
     if len(recs) < 2:  # one code: just ran it (e.g. to store a reference)
         sys.exit(1 if recs[0]['errors'] else 0)
     sys.exit(1 if report(deck, h, recs, outdir, notes) else 0)

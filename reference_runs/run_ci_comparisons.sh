@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # CI hook: the collision, incline, mesh-wall and group-motion comparisons, sable against real LIGGGHTS
 # when `liggghts` is on PATH, else against the stored LIGGGHTS results in
-# reference_runs/reference/. Exits non-zero if any observable fails.
+# reference_runs/reference/; then the yade_* decks against YADE or its stored
+# results. Exits non-zero if any observable fails.
 # Usage: bash reference_runs/run_ci_comparisons.sh [SABLE_BINARY]  (default build/sable)
 set -u
 cd "$(dirname "$0")/.."
@@ -14,6 +15,19 @@ fi
 status=0
 for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor move_wiggle aveforce_lid rigid_tumble rigid_lid cohesion_sjkr cohesion_sjkr2 hooke_hysteresis multisphere_pour; do
   "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
+    --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
+  rc=$?
+  echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) (build-compare/$deck/comparison.md)"
+  [ $rc = 0 ] || { status=1; grep -E "FAIL|failed|^no |Error" "/tmp/compare_$deck.$$.txt" | head -n 30; }
+  rm -f "/tmp/compare_$deck.$$.txt"
+done
+# YADE comparisons (sable --export-yade): against YADE where installed, else its stored results.
+if command -v yade >/dev/null; then yref=yade; else
+  yref=yade-stored
+  echo "yade not found (apt-get install yade); comparing against the stored YADE results"
+fi
+for deck in yade_collisions_hertz yade_linear_2d yade_wall yade_lid_2d; do
+  "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$yref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
   echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) (build-compare/$deck/comparison.md)"

@@ -1,0 +1,592 @@
+// sable --export-yade (tools/export_yade.h). The translator sits beside the
+// engine: it reads the styles' deck words (Fix::args, Pair::args), never
+// their internals, and maps each supported style onto YADE's own classes.
+#include "tools/export_yade.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/args.h"
+#include "core/atoms.h"
+#include "core/error.h"
+#include "core/global_property.h"
+#include "core/input.h"
+#include "core/simulation.h"
+#include "core/variable.h"
+
+namespace sable {
+namespace {
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+std::string first_word(const std::string& line) {
+  std::istringstream ss(line);
+  std::string w;
+  ss >> w;
+  return w.empty() || w[0] == '#' ? "" : w;
+}
+
+// Python string literal.
+std::string quoted(const std::string& s) {
+  std::string o = "'";
+  for (char c : s) {
+    if (c == '\\' || c == '\'') o += '\\';
+    o += c;
+  }
+  return o + "'";
+}
+
+class YadeExporter {
+ public:
+  YadeExporter(Simulation& sim, Input& in) : sim_(sim), in_(in) {}
+  bool intercept(const std::string& line, const DeckLocation& where);
+  std::string script() const { return head() + py_.str() + "print('Loop time: done')\n"; }
+
+ private:
+  Simulation& sim_;
+  Input& in_;
+  std::ostringstream py_;
+  bool scene_done_ = false;
+  std::map<std::string, std::string> formulas_;  // equal-style variables, as defined
+  std::vector<std::string> thermo_cols_{"step"};
+  long thermo_every_ = 0;
+  std::map<std::string, int> wall_of_fix_;  // fix ID -> index in the script's walls list
+  struct Wall {
+    const Fix* fix;
+    long type;
+    int axis;
+    double pos;
+    int material = -1;  // YADE material id
+  };
+  std::vector<Wall> walls_;
+  std::string model_;                       // hertz or linear/kneib
+  int grain_type_ = 1;
+  bool limit_force_ = false;                // YADE's Mindlin law never lets the normal force pull                      // the one grain type a Hertz wall is matched to
+
+  std::string head() const;
+  void record(const Args& a);
+  void cmd_run(const Args& a);
+  void cmd_print(const std::string& line, const DeckLocation& where);
+  std::string substitute(const std::string& line, const Args& at, std::vector<std::string>& exprs);
+  void scene(const Args& run);
+  void pair_model();
+  void materials();
+  void wall_materials(const Args& pair);
+  void walls();
+  void bodies();
+  void fixes();
+  void fix_wall(const Fix& f);
+  void engines();
+  std::string translate(const std::string& expr, const Args& at, int depth = 0) const;
+  std::string term(const std::string& name, const std::string& index, const Args& at, int depth) const;
+  double type_value(const std::string& prop, int t, const Args& at) const;
+  double pair_value(const std::string& prop, int i, int j, const Args& at) const;
+  std::uint32_t group_bits(const Fix& f) const { return f.groupbit; }
+  // Per atom (by index): fixed (frozen), moved (prescribed velocity), its blockedDOFs.
+  std::vector<char> fixed_;
+  std::vector<std::string> blocked_;
+  std::vector<std::string> forces_, moves_;  // python lines run each step / at set-up
+  double gravity_[3] = {0, 0, 0};
+  bool rotation_ = false;
+};
+
+// ------------------------------------------------------------------ deck flow
+bool YadeExporter::intercept(const std::string& line, const DeckLocation& where) {
+  const std::string c = first_word(line);
+  if (c == "print") {
+    cmd_print(line, where);
+    return true;
+  }
+  if (c.empty() || c == "label" || c == "jump" || c == "next" || c == "if" || c == "include" || c == "log" ||
+      c == "echo")
+    return false;
+  Args a(in_.parse(line, where), where);
+  if (a.size() == 0) return false;
+  if (c == "run") {
+    cmd_run(a);
+    return true;
+  }
+  record(a);
+  return false;
+}
+
+// Remembers what run and print need later; after the scene is written, only
+// output and flow commands may follow (the scene is translated once).
+void YadeExporter::record(const Args& a) {
+  const std::string& c = a.command();
+  if (c == "variable" && a.size() >= 4 && a[2] == "equal") formulas_[a[1]] = a.joined(3);
+  if (c == "variable" && a.size() >= 3 && a[2] != "equal") formulas_.erase(a[1]);
+  if (c == "thermo_style") {
+    if (a.size() < 3 || a[1] != "custom") a.fail(1, "thermo_style custom (export-yade translates custom columns only)");
+    thermo_cols_.assign(a.words().begin() + 2, a.words().end());
+  }
+  if (c == "thermo") thermo_every_ = a.integer(1, "a thermo interval");
+  static const std::set<std::string> after_ok{"variable", "thermo_style", "thermo", "thermo_modify"};
+  if (scene_done_ && !after_ok.count(c))
+    a.fail_line("export-yade: '" + c + "' after the first run changes the scene, which is translated once; not translated to YADE");
+}
+
+void YadeExporter::cmd_run(const Args& a) {
+  const long n = a.integer(1, "a number of steps");
+  for (std::size_t i = 2; i < a.size(); i += 2)
+    if (a[i] != "pre" && a[i] != "post") a.fail(i, "pre or post (export-yade translates `run N` only)");
+  if (!scene_done_) scene(a);
+  scene_done_ = true;
+  std::vector<std::string> cols;
+  for (const auto& c : thermo_cols_) cols.push_back("lambda: " + translate(c, a));
+  py_ << "\n# " << a.where().file << ":" << a.where().line << ": run " << n << "\n";
+  py_ << "_thermo_cols = [" ;
+  for (const auto& c : cols) py_ << c << ", ";
+  py_ << "]\n_run(" << n << ", " << thermo_every_ << ", " << quoted(a.where().file) << ")\n";
+}
+
+// print "TEXT": equal-style variables become Python evaluated after YADE's run.
+void YadeExporter::cmd_print(const std::string& line, const DeckLocation& where) {
+  const Args at({line}, where);
+  std::vector<std::string> exprs;
+  const std::string subst = substitute(line, at, exprs);
+  const Args a(in_.parse(subst, where), where);
+  for (std::size_t i = 2; i < a.size(); i += 2)
+    if (a[i] != "screen" || a.word(i + 1, "yes") != "yes") a.fail(i, "no file/append/screen no (export-yade prints to the screen only)");
+  const std::string& text = a.word(1, "the text to print");
+  py_ << "print(''";
+  std::size_t from = 0;
+  for (std::size_t k; (k = text.find('\x01', from)) != std::string::npos;) {
+    const std::size_t e = text.find('\x01', k + 1);
+    py_ << " + " << quoted(text.substr(from, k - from)) << " + _fmt(" << exprs[std::stoi(text.substr(k + 1, e - k - 1))] << ")";
+    from = e + 1;
+  }
+  py_ << " + " << quoted(text.substr(from)) << ")\n";
+}
+
+// ${name} and $x: equal-style variables become placeholders \x01k\x01 for
+// exprs[k], other variables their value now; $(expr) is translated.
+std::string YadeExporter::substitute(const std::string& line, const Args& at, std::vector<std::string>& exprs) {
+  std::string out;
+  auto hold = [&](const std::string& py) {
+    out += "\x01" + std::to_string(exprs.size()) + "\x01";
+    exprs.push_back(py);
+  };
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    if (line[i] != '$' || i + 1 >= line.size()) {
+      out += line[i];
+      continue;
+    }
+    std::string name;
+    if (line[i + 1] == '{' || line[i + 1] == '(') {
+      const char close = line[i + 1] == '{' ? '}' : ')';
+      const std::size_t e = line.find(close, i + 2);
+      if (e == std::string::npos) at.fail(0, std::string("a closing '") + close + "'");
+      name = line.substr(i + 2, e - i - 2);
+      if (close == ')') {
+        hold(translate(name, at));
+        i = e;
+        continue;
+      }
+      i = e;
+    } else {
+      name = line.substr(i + 1, 1);
+      ++i;
+    }
+    if (formulas_.count(name)) hold(translate("v_" + name, at));
+    else out += sim_.variables->string_value(name, at);
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ expressions
+// A LAMMPS equal-style formula as a Python expression evaluated in YADE.
+std::string YadeExporter::translate(const std::string& e, const Args& at, int depth) const {
+  if (depth > 20) at.fail_line("export-yade: variables refer to each other in a loop");
+  std::string out;
+  std::size_t i = 0;
+  while (i < e.size()) {
+    const char c = e[i];
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+      std::size_t k = i;
+      while (k < e.size() && (std::isalnum(static_cast<unsigned char>(e[k])) || e[k] == '.' ||
+                              ((e[k] == '-' || e[k] == '+') && (e[k - 1] == 'e' || e[k - 1] == 'E'))))
+        ++k;
+      out += e.substr(i, k - i);
+      i = k;
+    } else if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+      std::size_t k = i;
+      while (k < e.size() && (std::isalnum(static_cast<unsigned char>(e[k])) || e[k] == '_' || e[k] == '/')) ++k;
+      const std::string name = e.substr(i, k - i);
+      std::string index;
+      if (k < e.size() && e[k] == '[') {
+        const std::size_t close = e.find(']', k);
+        if (close == std::string::npos) at.fail_line("export-yade: no ']' in '" + e + "'");
+        index = e.substr(k + 1, close - k - 1);
+        k = close + 1;
+      }
+      out += term(name, index, at, depth);
+      i = k;
+    } else if (e.compare(i, 2, "&&") == 0 || e.compare(i, 2, "||") == 0) {
+      out += e[i] == '&' ? " and " : " or ";
+      i += 2;
+    } else if (c == '^') {
+      out += "**";
+      ++i;
+    } else if (std::string("+-*/(),<>=!").find(c) != std::string::npos) {
+      out += c;
+      ++i;
+    } else {
+      at.fail_line(std::string("export-yade: cannot translate '") + c + "' in '" + e + "'");
+    }
+  }
+  return out;
+}
+
+std::string YadeExporter::term(const std::string& name, const std::string& index, const Args& at, int depth) const {
+  static const std::map<std::string, std::string> per_atom{
+      {"x", "state.pos[0]"},    {"y", "state.pos[1]"},    {"z", "state.pos[2]"},    {"vx", "state.vel[0]"},
+      {"vy", "state.vel[1]"},   {"vz", "state.vel[2]"},   {"omegax", "state.angVel[0]"},
+      {"omegay", "state.angVel[1]"}, {"omegaz", "state.angVel[2]"}, {"mass", "state.mass"},
+      {"radius", "shape.radius"}};
+  static const std::map<std::string, std::string> funcs{
+      {"sqrt", "math.sqrt"}, {"exp", "math.exp"}, {"ln", "math.log"}, {"log", "math.log10"}, {"abs", "abs"},
+      {"sin", "math.sin"},   {"cos", "math.cos"}, {"tan", "math.tan"}, {"atan2", "math.atan2"},
+      {"atan", "math.atan"}, {"asin", "math.asin"}, {"acos", "math.acos"}, {"floor", "math.floor"},
+      {"ceil", "math.ceil"}, {"min", "min"},       {"max", "max"},      {"PI", "math.pi"}};
+  auto atom = [&] { return "_b(" + std::to_string(std::stol(index)) + ")."; };
+  if (!index.empty() && per_atom.count(name)) return atom() + per_atom.at(name);
+  if (!index.empty() && (name == "fx" || name == "fy" || name == "fz"))
+    return "O.forces.f(_bid(" + std::to_string(std::stol(index)) + "))[" + std::to_string(name[1] - 'x') + "]";
+  if (index.empty() && funcs.count(name)) return funcs.at(name);
+  if (name == "step") return "_step[0]";
+  if (name == "time") return "(_step[0] * O.dt)";
+  if (name == "dt") return "O.dt";
+  if (name == "atoms") return std::to_string(sim_.atoms.n);
+  if (name == "ke") return "_ke()";
+  if (name.rfind("v_", 0) == 0 && index.empty()) {
+    const std::string v = name.substr(2);
+    if (auto it = formulas_.find(v); it != formulas_.end()) return "(" + translate(it->second, at, depth + 1) + ")";
+    double value = 0;
+    if (sim_.variables->numeric(v, value)) return num(value);
+  }
+  if (name.rfind("f_", 0) == 0) {
+    const auto it = wall_of_fix_.find(name.substr(2));
+    const long k = index.empty() ? 0 : std::stol(index);
+    if (it != wall_of_fix_.end() && k >= 1 && k <= 3)
+      return "O.forces.f(_walls[" + std::to_string(it->second) + "])[" + std::to_string(k - 1) + "]";
+  }
+  at.fail_line("export-yade: cannot translate '" + name + (index.empty() ? "" : "[" + index + "]") +
+               "' to YADE (atom values x y z vx vy vz omegax omegay omegaz fx fy fz mass radius [id], "
+               "step, time, dt, atoms, ke, v_ of equal-style variables, f_ of a primitive wall's force [1-3])");
+}
+
+// ------------------------------------------------------------------ the scene
+double YadeExporter::type_value(const std::string& prop, int t, const Args& at) const {
+  const GlobalProperty* p = GlobalProperty::find(sim_, prop);
+  if (!p || static_cast<int>(p->values.size()) < t) at.fail_line("export-yade needs fix property/global " + prop + " peratomtype");
+  return p->values[t - 1];
+}
+
+double YadeExporter::pair_value(const std::string& prop, int i, int j, const Args& at) const {
+  const GlobalProperty* p = GlobalProperty::find(sim_, prop);
+  const int n = sim_.atoms.ntypes;
+  if (!p) at.fail_line("export-yade needs fix property/global " + prop);
+  if (p->values.size() == 1) return p->values[0];
+  if (static_cast<int>(p->values.size()) < n * n) at.fail_line("export-yade needs " + prop + " peratomtypepair");
+  return p->values[(i - 1) * n + (j - 1)];
+}
+
+void YadeExporter::scene(const Args& run) {
+  if (!sim_.pair) run.fail_line("export-yade needs a pair_style before the first run");
+  if (sim_.domain.wraps(0) || sim_.domain.wraps(1) || sim_.domain.wraps(2))
+    run.fail_line("export-yade: periodic boundaries are not translated (only f f f)");
+  for (const auto& d : sim_.dumps) d->args.fail_line("export-yade: dumps are not translated to YADE");
+  pair_model();
+  fixes();
+  materials();
+  walls();
+  bodies();
+  engines();
+}
+
+// pair_style gran model hertz|linear/kneib tangential history, nothing else.
+void YadeExporter::pair_model() {
+  const Args& a = sim_.pair->args;
+  if (a.size() < 4 || a[1] != "gran" || a[2] != "model") a.fail(1, "gran model ... (export-yade)");
+  model_ = a[3];
+  if (model_ != "hertz" && model_ != "linear/kneib") a.fail(3, "hertz or linear/kneib (the laws export-yade maps onto YADE)");
+  bool history = false;
+  for (std::size_t i = 4; i + 1 < a.size(); i += 2) {
+    if (a[i] == "tangential" && a[i + 1] == "history") history = true;
+    else if ((a[i] == "rolling_friction" || a[i] == "cohesion") && a[i + 1] == "off") continue;
+    else if (a[i] == "damping" && a[i + 1] == "liggghts") continue;
+    else if (a[i] == "limitForce" && (model_ == "hertz" || a[i + 1] == "off")) limit_force_ = a[i + 1] == "on";
+    else if (a[i] != "tangential") a.fail(i, "tangential history (export-yade translates no other keyword)");
+  }
+  if (!history) a.fail_line("export-yade needs tangential history (YADE's laws keep the shear spring)");
+}
+
+// One YADE material per atom type; the per-pair values go to MatchMakers.
+void YadeExporter::materials() {
+  const Args& a = sim_.pair->args;
+  const int n = sim_.atoms.ntypes;
+  auto beta = [&](int i, int j) {
+    const double l = std::log(pair_value("coefficientRestitution", i, j, a));
+    return -l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+  };
+  py_ << "_mats = []\n";
+  std::ostringstream fric, bn;
+  for (int i = 1; i <= n; ++i) {
+    const double E = type_value("youngsModulus", i, a), nu = type_value("poissonsRatio", i, a);
+    const double mu = pair_value("coefficientFriction", i, i, a);
+    if (model_ == "hertz")
+      py_ << "_mats.append(O.materials.append(FrictMat(young=" << num(E) << ", poisson=" << num(nu)
+          << ", frictionAngle=math.atan(" << num(mu) << "), density=1000)))\n";
+    else
+      py_ << "_mats.append(O.materials.append(FrictViscoMat(young=" << num(E) << ", poisson=" << num(nu)
+          << ", frictionAngle=math.atan(" << num(mu) << "), betan=" << num(beta(i, i)) << ", density=1000)))\n";
+    for (int j = i; j <= n; ++j) {
+      fric << "(" << i - 1 << ", " << j - 1 << ", math.atan(" << num(pair_value("coefficientFriction", i, j, a)) << ")), ";
+      // LIGGGHTS' Hertz dashpot 2 sqrt(5/6) |beta| sqrt(m* S) is YADE's 2 betan sqrt(m* kn) with betan = sqrt(5/6) |beta|.
+      bn << "(" << i - 1 << ", " << j - 1 << ", " << num(std::sqrt(5.0 / 6.0) * beta(i, j)) << "), ";
+      if (model_ != "hertz" && std::fabs(beta(i, j) - 0.5 * (beta(i, i) + beta(j, j))) > 1e-12)
+        a.fail_line("export-yade: linear/kneib maps onto FrictViscoMat's per-material betan; coefficientRestitution "
+                    "between types " + std::to_string(i) + " and " + std::to_string(j) + " is not their mean");
+    }
+  }
+  if (model_ == "hertz") wall_materials(a);
+  for (const Wall& w : walls_)
+    if (w.material >= 0) {
+      const int t = grain_type_;
+      fric << "(" << t - 1 << ", " << w.material << ", math.atan(" << num(pair_value("coefficientFriction", t, w.type, a)) << ")), ";
+      bn << "(" << t - 1 << ", " << w.material << ", " << num(std::sqrt(5.0 / 6.0) * beta(t, w.type)) << "), ";
+    }
+  py_ << "_fric = MatchMaker(matches=[" << fric.str() << "])\n";
+  if (model_ == "hertz")
+    py_ << "_betan = MatchMaker(matches=[" << bn.str() << "])\n"
+        << "_ip2 = Ip2_FrictMat_FrictMat_MindlinPhys(betan=_betan, betas=_betan, frictAngle=_fric)\n"
+        << "_law2 = Law2_ScGeom_MindlinPhys_Mindlin()"
+        << (limit_force_ ? "\n" : "  # clips the damped normal force at 0: sable's limitForce on, not set in the deck\n");
+  else
+    py_ << "_ip2 = Ip2_FrictViscoMat_FrictViscoMat_FrictViscoPhys(frictAngle=_fric)\n"
+        << "_law2 = Law2_ScGeom_FrictViscoPhys_CundallStrackVisco()\n";
+}
+
+// YADE's Hertz wall contact takes R = r/2 (Ig2_Wall_Sphere_ScGeom gives the
+// wall the grain's radius), LIGGGHTS' R = r. A wall material of its own,
+// (E_b, nu_b), restores LIGGGHTS' kn = 4/3 Y* sqrt(r dn) and kt = 8 G* sqrt(r dn)
+// for the grains' type: YADE's E* = E_a E_b / ((1 - nu_a^2) E_b + (1 - nu_b^2) E_a)
+// must be sqrt(2) Y*, and its G / (2 - nu) (G, nu: means of the two) 2 sqrt(2) G*.
+void YadeExporter::wall_materials(const Args& pair) {
+  if (walls_.empty()) return;
+  std::set<int> types(sim_.atoms.type.begin(), sim_.atoms.type.begin() + sim_.atoms.n);
+  if (types.size() != 1)
+    walls_[0].fix->args.fail_line("export-yade: a Hertz wall is matched to one grain type (YADE's wall radius convention), the deck has " +
+                                  std::to_string(types.size()));
+  const int a = grain_type_ = *types.begin();
+  const double Ea = type_value("youngsModulus", a, pair), na = type_value("poissonsRatio", a, pair);
+  const double Ga = Ea / (2 * (1 + na));
+  int next_id = sim_.atoms.ntypes;
+  for (Wall& w : walls_) {
+    const double Ew = type_value("youngsModulus", w.type, pair), nw = type_value("poissonsRatio", w.type, pair);
+    const double Y = 1 / ((1 - na * na) / Ea + (1 - nw * nw) / Ew);
+    const double G = 1 / (2 * (2 - na) * (1 + na) / Ea + 2 * (2 - nw) * (1 + nw) / Ew);
+    const double q = 1 / (std::sqrt(2.0) * Y) - (1 - na * na) / Ea;  // (1 - nu_b^2) / E_b
+    auto excess = [&](double nb) { return 0.5 * (Ga + (1 - nb) / (2 * q)) / (2 - 0.5 * (na + nb)) - 2 * std::sqrt(2.0) * G; };
+    double lo = -0.99, hi = 0.99;
+    if (q <= 0 || excess(lo) * excess(hi) > 0)
+      w.fix->args.fail_line("export-yade: no YADE wall material reproduces this Hertz wall's stiffness");
+    for (int it = 0; it < 200; ++it) ((excess(lo) > 0) == (excess(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
+    const double nb = 0.5 * (lo + hi), Eb = (1 - nb * nb) / q;
+    const double mu = pair_value("coefficientFriction", a, w.type, pair);
+    py_ << "O.materials.append(FrictMat(young=" << num(Eb) << ", poisson=" << num(nb) << ", frictionAngle=math.atan("
+        << num(mu) << "), density=1000))  # wall " << w.fix->id << ": R = r/2 in YADE, see export_yade.cpp\n";
+    w.material = next_id++;
+  }
+}
+
+void YadeExporter::fixes() {
+  const Atoms& at = sim_.atoms;
+  fixed_.assign(at.n, 0);
+  blocked_.assign(at.n, "");
+  std::vector<char> integrated(at.n, 0);
+  for (const auto& fp : sim_.fixes) {
+    const Fix& f = *fp;
+    const Args a = f.args.tail(1);  // ID group style ...
+    auto members = [&](auto fn) {
+      for (std::size_t i = 0; i < at.n; ++i)
+        if (at.mask[i] & f.groupbit) fn(i);
+    };
+    if (f.style == "property/global" || f.style == "check/timestep/gran" || f.style == "enforce2d") continue;
+    if (f.style == "nve/sphere") {
+      for (std::size_t k = 3; k < a.size(); ++k)
+        if (a[k] != "disc") a.fail(k, "nothing (export-yade translates nve/sphere [disc])");
+      rotation_ = true;
+      members([&](std::size_t i) { integrated[i] = 1; });
+    } else if (f.style == "gravity") {
+      const double g = a.num(3, "the acceleration");
+      if (a.word(4, "vector") != "vector") a.fail(4, "vector (export-yade)");
+      double d[3], norm = 0;
+      for (int k = 0; k < 3; ++k) {
+        d[k] = a.num(5 + k, "a direction component");
+        norm += d[k] * d[k];
+      }
+      for (int k = 0; k < 3; ++k) gravity_[k] += g * d[k] / std::sqrt(norm);
+      if (f.groupbit != 1u) a.fail(1, "all (YADE's gravity acts on every body)");
+    } else if (f.style == "wall/gran") {
+      fix_wall(f);
+    } else if (f.style == "freeze") {
+      members([&](std::size_t i) { fixed_[i] = 1; });
+    } else if (f.style == "addforce") {
+      double F[3];
+      for (int k = 0; k < 3; ++k) F[k] = a.num(3 + k, "a constant force component (export-yade)");
+      members([&](std::size_t i) {
+        forces_.push_back("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + num(F[0]) + ", " +
+                          num(F[1]) + ", " + num(F[2]) + "))");
+      });
+    } else if (f.style == "move") {
+      if (a.word(3, "linear") != "linear") a.fail(3, "linear (export-yade translates fix move linear)");
+      members([&](std::size_t i) {
+        std::string vel = "Vector3(";
+        for (int k = 0; k < 3; ++k) {
+          const bool null = a.word(4 + k, "a velocity or NULL") == "NULL";
+          if (!null) blocked_[i] += "xyz"[k];
+          vel += (null ? num(at.v[3 * i + k]) : num(a.num(4 + k, "a velocity or NULL"))) + (k < 2 ? ", " : ")");
+        }
+        blocked_[i] += "XYZ";
+        moves_.push_back("_b(" + std::to_string(at.id[i]) + ").state.vel = " + vel);
+        moves_.push_back("_b(" + std::to_string(at.id[i]) + ").state.angVel = Vector3(0, 0, 0)");
+        integrated[i] = 1;
+      });
+    } else {
+      f.args.fail_line("export-yade: fix style '" + f.style + "' is not translated to YADE");
+    }
+  }
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (!integrated[i] && !fixed_[i])
+      fail("export-yade: atom " + std::to_string(at.id[i]) + " is neither integrated (fix nve/sphere, move) nor frozen");
+}
+
+// fix ID group wall/gran model M tangential history primitive type T xplane|yplane|zplane POS
+void YadeExporter::fix_wall(const Fix& f) {
+  const Args a = f.args.tail(1);
+  if (a.word(4, "a model") != model_) a.fail(4, "the pair style's model (" + model_ + ")");
+  std::size_t k = 5;
+  while (k < a.size() && a[k] != "primitive") {
+    if (a[k] == "mesh") a.fail(k, "primitive (export-yade does not translate mesh walls yet)");
+    k += 2;
+  }
+  if (k + 4 >= a.size() || a[k + 1] != "type") a.fail(k, "primitive type T xplane|yplane|zplane POS");
+  const long type = a.integer(k + 2, "a wall atom type");
+  const std::string& plane = a[k + 3];
+  if (plane != "xplane" && plane != "yplane" && plane != "zplane") a.fail(k + 3, "xplane, yplane or zplane (export-yade)");
+  if (k + 5 < a.size()) a.fail(k + 5, "nothing after the plane position (export-yade)");
+  wall_of_fix_[f.id] = static_cast<int>(walls_.size());
+  walls_.push_back({&f, type, plane[0] - 'x', a.num(k + 4, "a position")});
+}
+
+void YadeExporter::walls() {
+  py_ << "_walls = []\n";
+  for (const Wall& w : walls_)
+    py_ << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis
+        << ", sense=0, material=" << (w.material >= 0 ? std::to_string(w.material) : "_mats[" + std::to_string(w.type - 1) + "]")
+        << ")))  # fix " << w.fix->id << "\n";
+}
+
+// The grains, by atom id, with sable's own mass and moment of inertia.
+void YadeExporter::bodies() {
+  const Atoms& at = sim_.atoms;
+  std::vector<std::size_t> order(at.n);
+  for (std::size_t i = 0; i < at.n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto p, auto q) { return at.id[p] < at.id[q]; });
+  const bool two_d = sim_.domain.dimension == 2;
+  py_ << "# id, type, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, blockedDOFs\n_grains = [\n";
+  for (std::size_t i : order) {
+    std::string dofs = fixed_[i] ? "xyzXYZ" : blocked_[i];
+    if (!fixed_[i] && two_d) dofs += std::string(dofs.find('z') == std::string::npos ? "z" : "") + "XY";
+    if (!fixed_[i] && !rotation_) dofs += "XYZ";
+    std::string uniq;
+    for (char c : std::string("xyzXYZ"))
+      if (dofs.find(c) != std::string::npos) uniq += c;
+    py_ << " (" << at.id[i] << ", " << at.type[i];
+    for (int k = 0; k < 3; ++k) py_ << ", " << num(at.x[3 * i + k]);
+    py_ << ", " << num(at.radius[i]) << ", " << num(at.rmass[i]) << ", " << num(at.inertia(i));
+    for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] ? 0.0 : at.v[3 * i + k]);
+    for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
+    py_ << ", " << (fixed_[i] ? "True" : "False") << ", '" << uniq << "'),\n";
+  }
+  py_ << "]\n_aid = {}\n"
+         "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
+         "    b = utils.sphere((x, y, z), r, material=_mats[t - 1], fixed=fixed)\n"
+         "    b.state.mass, b.state.inertia = m, Vector3(I, I, I)\n"
+         "    b.state.vel, b.state.angVel = Vector3(vx, vy, vz), Vector3(wx, wy, wz)\n"
+         "    b.state.blockedDOFs = dofs\n"
+         "    _aid[i] = O.bodies.append(b)\n";
+  for (const auto& m : moves_) py_ << m << "\n";
+}
+
+void YadeExporter::engines() {
+  py_ << "O.dt = " << num(sim_.dt) << "\n";
+  py_ << "def _add_forces():\n    pass\n";
+  for (const auto& f : forces_) py_ << "    " << f << "\n";
+  py_ << "O.engines = [\n"
+         "    ForceResetter(),\n"
+         "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),\n"
+         "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()], [_ip2], [_law2]),\n";
+  if (!forces_.empty()) py_ << "    PyRunner(command='_add_forces()', iterPeriod=1),\n";
+  py_ << "    NewtonIntegrator(damping=0, gravity=Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", "
+      << num(gravity_[2]) << ")),\n"
+      << "    PyRunner(command='_thermo_tick()', iterPeriod=1),\n]\n";
+}
+
+// Helpers the script needs before the scene: body lookup, number format, run with thermo rows.
+std::string YadeExporter::head() const {
+  std::string cols;
+  for (const auto& c : thermo_cols_) cols += (cols.empty() ? "" : " ") + (c == "step" ? std::string("Step") : c);
+  return "# YADE 2023 script written by sable --export-yade (tools/export_yade.cpp); run: yade -j1 -n -x THIS.py\n"
+         "import math\nfrom yade import utils\n"
+         "_step = [0]\n_thermo = {'every': 0, 'cols': []}\n"
+         "def _bid(i):\n    return _aid[i]\n"
+         "def _b(i):\n    return O.bodies[_aid[i]]\n"
+         "def _fmt(v):\n    return '%.15g' % v\n"
+         "def _ke():\n"
+         "    return sum(0.5 * b.state.mass * b.state.vel.squaredNorm() for b in O.bodies if isinstance(b.shape, Sphere))\n"
+         "def _row():\n    print(' '.join('%.10g' % c() for c in _thermo['cols']), flush=True)\n"
+         "def _thermo_tick():\n"
+         "    _step[0] = O.iter + 1  # this engine runs after NewtonIntegrator, before O.iter counts the step\n"
+         "    if _thermo['every'] and (_step[0] % _thermo['every'] == 0 or _step[0] == _thermo['last']):\n"
+         "        _row()\n"
+         "def _run(n, every, deck):\n"
+         "    _thermo.update(every=every, cols=_thermo_cols, last=O.iter + n)\n"
+         "    print(" + quoted(cols) + ", flush=True)\n"
+         "    _row()\n"
+         "    O.run(n, True)\n"
+         "    _step[0] = O.iter\n"
+         "    print('Loop time of run %d steps (YADE)' % n, flush=True)\n";
+}
+
+}  // namespace
+
+void export_yade(Simulation& sim, Input& input, const std::string& deck, const std::string& out) {
+  YadeExporter ex(sim, input);
+  input.intercept = [&](const std::string& line, const DeckLocation& where) { return ex.intercept(line, where); };
+  input.file(deck);
+  input.intercept = nullptr;
+  std::ofstream os(out);
+  if (!os) fail("export-yade: cannot write " + out);
+  os << ex.script();
+  if (!os) fail("export-yade: writing " + out + " failed");
+}
+
+}  // namespace sable
