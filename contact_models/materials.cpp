@@ -107,6 +107,27 @@ const double* Materials::type_vector(const std::string& name, const std::string&
   return stored.data();
 }
 
+// Friction, rolling friction and given stiffnesses or damping below zero have no
+// physical meaning and would make contacts push grains together or gain energy.
+static void check_not_negative(Simulation& sim_, int ntypes_, const std::string& name, const std::vector<double>& t) {
+  static const char* names[] = {"coefficientFriction", "coefficientRollingFriction", "coefficientRollingViscousDamping",
+                                "kn", "kt", "gamman", "gammat", "gamman_abs", "gammat_abs", "dampingNormal",
+                                "dampingTangential", "cohesionEnergyDensity"};
+  bool listed = false;
+  for (const char* n : names) listed = listed || name == n;
+  if (!listed) return;
+  const bool stiffness = name == "kn" || name == "kt";
+  const GlobalProperty* f = GlobalProperty::find(sim_, name);
+  const int s = ntypes_ + 1;
+  for (int i = 1; i <= ntypes_; ++i)
+    for (int j = 1; j <= ntypes_; ++j) {
+      const double v = t[i * s + j];
+      if (stiffness ? !(v > 0) : !(v >= 0))
+        f->line->fail_line(name + (stiffness ? " > 0" : " >= 0") + " required; types " + std::to_string(i) + "," +
+                           std::to_string(j) + " have " + fmt(v));
+    }
+}
+
 const double* Materials::pair_table(const std::string& name, const std::string& who, const Args& line) {
   if (auto it = tables_.find(name); it != tables_.end()) return it->second.data();
   const int s = stride();
@@ -137,6 +158,7 @@ const double* Materials::pair_table(const std::string& name, const std::string& 
     });
   } else {
     t = raw_pair(name, who, line);
+    check_not_negative(sim_, ntypes_, name, t);
     if (name == "coefficientRestitution") {
       const GlobalProperty* f = GlobalProperty::find(sim_, name);
       each([&](int i, int j) {
