@@ -95,7 +95,7 @@ def attempt(sable, delay):
 
 
 def main():
-    sable = sys.argv[1]
+    sable = os.path.abspath(sys.argv[1])
     for delay in (0.3, 0.17, 0.71):
         if attempt(sable, delay):
             return 0

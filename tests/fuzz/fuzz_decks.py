@@ -271,6 +271,7 @@ def main():
     ap.add_argument("--keep", default=None, help="with --only: keep the run folder here")
     ap.add_argument("--print", action="store_true", help="with --only: print the mutant deck")
     args = ap.parse_args()
+    args.sable = os.path.abspath(args.sable)
     if not os.access(args.sable, os.X_OK):
         sys.exit("no sable binary at %s" % args.sable)
     seeds = load_seeds()
