@@ -196,14 +196,16 @@ void check_grain_sizes(Simulation& sim) {
   std::size_t big = 0;
   for (std::size_t i = 0; i < a.n; ++i)
     if (a.radius[i] > rmax) rmax = a.radius[i], big = i;
+  if (!sim.pair) return;  // grains that do not touch may be any size (LIGGGHTS' point-like decks)
   for (int k = 0; k < d.dimension; ++k)
     if (2 * rmax > d.length(k)) {
       char buf[320];
       std::snprintf(buf, sizeof buf,
-                    "run: atom %ld has diameter %g, larger than the box along %c (%g); set the diameters "
-                    "(set ... diameter, or the particle template) before the run",
+                    "atom %ld has diameter %g, larger than the box along %c (%g): were the diameters set "
+                    "(set ... diameter, or the particle template) before the run?",
                     a.id[big], 2 * rmax, 'x' + k, d.length(k));
-      fail(buf);
+      sim.warn(buf);
+      break;
     }
   // Only when the cutoff spans the box on every axis is the search truly all-pairs.
   const double cut = 2 * rmax + sim.neighbor.skin;
