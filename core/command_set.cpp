@@ -145,7 +145,7 @@ void cmd_set(Simulation& sim, const Args& a) {
       const bool diam = key == "diameter";
       each([&](std::size_t i) {
         const double x = v.at(i);
-        if (diam ? x < 0 : !(x > 0)) a.fail(k + 1, diam ? "a diameter >= 0" : "a density > 0");
+        if (!(x > 0) || !std::isfinite(x)) a.fail(k + 1, diam ? "a finite diameter > 0" : "a finite density > 0");
         const double r = diam ? 0.5 * x : at.radius[i], rho = diam ? at.density[i] : x;
         if (diam)
           at.radius[i] = r;

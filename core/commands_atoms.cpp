@@ -1,5 +1,9 @@
 // Commands that create atoms: lattice, create_atoms.
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "core/simulation.h"
@@ -47,6 +51,15 @@ void cmd_lattice(Simulation& sim, const Args& a) {
   }
 }
 
+// Per-atom arrays (Atoms, neighbour bins and lists, contact history) take roughly this
+// much; only used to refuse a create_atoms that cannot fit, so a generous round number.
+constexpr double kBytesPerAtom = 1000.0;
+
+static double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 8e9;
+}
+
 void create_on_lattice(Simulation& sim, const Args& a, int type, const Region* region) {
   const Lattice& L = sim.lattice;
   if (L.style == "none") a.fail(1, "a lattice defined before 'create_atoms ... box|region' (use the lattice command)");
@@ -59,6 +72,19 @@ void create_on_lattice(Simulation& sim, const Args& a, int type, const Region* r
       lo[k] = std::max(lo[k], region->lo[k]);
       hi[k] = std::min(hi[k], region->hi[k]);
     }
+  }
+  // Count the sites first (in doubles: a tiny lattice constant overflows a long) so that a
+  // deck asking for more atoms than memory holds stops here with the count, not in bad_alloc.
+  double sites = static_cast<double>(L.basis.size());
+  for (int k = 0; k < d.dimension; ++k) sites *= std::max(1.0, std::ceil(hi[k] / L.a[k]) - std::floor(lo[k] / L.a[k]) + 3);
+  const double bytes = sites * kBytesPerAtom, avail = physical_memory_bytes();
+  if (bytes > 0.5 * avail) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "create_atoms would make up to %.3g atoms (about %.3g GB of memory) but this machine has %.3g GB: "
+                  "use a larger lattice constant or a smaller region",
+                  sites, bytes / 1e9, avail / 1e9);
+    a.fail_line(buf);
   }
   long n0[3], n1[3];
   for (int k = 0; k < 3; ++k) {

@@ -126,8 +126,16 @@ void cmd_neigh_modify(Simulation& sim, const Args& a) {
   Neighbor& n = sim.neighbor;
   for (std::size_t i = 1; i < a.size(); ++i) {
     const std::string& k = a[i];
-    if (k == "delay") n.delay = static_cast<int>(a.integer(++i, "the delay in steps"));
-    else if (k == "every") n.every = static_cast<int>(a.integer(++i, "the check period in steps"));
+    if (k == "delay") {
+      const long d = a.integer(++i, "the delay in steps");
+      if (d < 0 || d > 1000000000) a.fail(i, "a delay of 0 or more steps");
+      n.delay = static_cast<int>(d);
+    }
+    else if (k == "every") {
+      const long e = a.integer(++i, "the check period in steps");
+      if (e < 1 || e > 1000000000) a.fail(i, "a check period of 1 or more steps");
+      n.every = static_cast<int>(e);
+    }
     else if (k == "check") n.check = a.yes_no(++i, "yes or no");
     else if (k == "once" || k == "include" || k == "page" || k == "one" || k == "binsize") ++i;
     else if (k == "exclude") i = a.size();

@@ -1,6 +1,7 @@
 // Recursive-descent parser for LAMMPS formulas; semantics documented in expression.h.
 #include "core/expression.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -97,6 +98,7 @@ struct ExprNode {
   double value = 0.0;
   int fn = 0;                      // Func: index into kFns; Ref: vector index (0 = scalar)
   int fn2 = 0;                     // Ref: array column (0 = not an array element)
+  int height = 1;                  // levels below and including this node (recursion bound)
   char kind = 0;                   // Ref: 'c' or 'f'
   std::string name;                // full token as written (v_a, c_t[2], x, xcm(all,x)): messages, local lookup
   std::string id;                  // bare name passed to the context (a, t, x, xcm)
@@ -109,9 +111,17 @@ namespace {
 
 using NodeP = std::unique_ptr<ExprNode>;
 
+// Parsing, evaluating and freeing a tree recurse once per level: a deeper formula
+// (100 000 parentheses, or a chain of 100 000 '+') would overflow the stack.
+constexpr int kMaxFormulaDepth = 500;
+
 NodeP make(Op op, std::vector<NodeP> kids = {}) {
   auto n = std::make_unique<ExprNode>();
   n->op = op;
+  for (const NodeP& k : kids) n->height = std::max(n->height, k->height + 1);
+  if (n->height > kMaxFormulaDepth)
+    throw ExpressionError("formula nested too deeply (more than " + std::to_string(kMaxFormulaDepth) +
+                          " levels of parentheses, operators or function calls)");
   n->kids = std::move(kids);
   return n;
 }
@@ -132,6 +142,7 @@ class Parser {
   const std::string& s_;
   bool boolean_;
   std::size_t p_ = 0;
+  int depth_ = 0;  // unary() calls under way: every nesting passes through it
 
   std::size_t skip() {
     while (p_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[p_]))) ++p_;
@@ -185,6 +196,11 @@ class Parser {
 
   // Unary operators bind tighter than ^ (LAMMPS precedence 8 vs 7): -2^2 == 4.
   NodeP unary() {
+    struct Depth {
+      int& d;
+      ~Depth() { --d; }
+    } guard{++depth_};
+    if (depth_ > kMaxFormulaDepth) fail("formula nested too deeply", "at most " + std::to_string(kMaxFormulaDepth) + " levels of parentheses");
     if (eat("-")) { std::vector<NodeP> k; k.push_back(unary()); return make(Op::Neg, std::move(k)); }
     if (eat("!")) { std::vector<NodeP> k; k.push_back(unary()); return make(Op::Not, std::move(k)); }
     if (eat("+")) return unary();

@@ -27,7 +27,6 @@ H5Series::H5Series(const std::string& path) : path_(path) {
 }
 
 H5Series::~H5Series() {
-  for (auto& s : series_) H5Dclose(s.dset);
   if (file_ >= 0) H5Fclose(file_);
 }
 
@@ -72,17 +71,21 @@ int H5Series::series(const std::string& name, const std::vector<std::size_t>& ro
   const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data());
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
-  s.dset =
+  const hid_t dset =
       H5Dcreate2(file_, name.c_str(), integer ? H5T_STD_I64LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   H5Pclose(dcpl);
   H5Sclose(space);
-  if (s.dset < 0) h5fail(path_, "create dataset '" + name + "'");
+  if (dset < 0) h5fail(path_, "create dataset '" + name + "'");
+  H5Dclose(dset);
+  s.name = name;
   series_.push_back(s);
   return static_cast<int>(series_.size()) - 1;
 }
 
+// Closed between appends, so that a killed run leaves a file marked consistent.
 void H5Series::start() {
-  if (H5Fstart_swmr_write(file_) < 0) h5fail(path_, "start SWMR writing");
+  if (H5Fclose(file_) < 0) h5fail(path_, "be closed after its layout was written");
+  file_ = -1;
 }
 
 void H5Series::append_raw(int k, const void* row) {
@@ -94,14 +97,22 @@ void H5Series::append_raw(int k, const void* row) {
     count.push_back(d);
   }
   const int rank = static_cast<int>(dims.size());
-  bool ok = H5Dset_extent(s.dset, dims.data()) >= 0;
-  const hid_t fspace = H5Dget_space(s.dset);
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
+  const hid_t file = H5Fopen(path_.c_str(), H5F_ACC_RDWR | H5F_ACC_SWMR_WRITE, fapl);
+  H5Pclose(fapl);
+  if (file < 0) h5fail(path_, "be opened to append a record (was it moved or opened elsewhere?)");
+  const hid_t dset = H5Dopen2(file, s.name.c_str(), H5P_DEFAULT);
+  bool ok = dset >= 0 && H5Dset_extent(dset, dims.data()) >= 0;
+  const hid_t fspace = H5Dget_space(dset);
   const hid_t mspace = H5Screate_simple(rank, count.data(), nullptr);
   ok = ok && H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) >= 0;
-  ok = ok && H5Dwrite(s.dset, s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, row) >= 0;
-  ok = ok && H5Dflush(s.dset) >= 0;  // on disk now: a killed run keeps this row
+  ok = ok && H5Dwrite(dset, s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, row) >= 0;
+  ok = ok && H5Dflush(dset) >= 0;  // on disk now: a killed run keeps this row
   H5Sclose(mspace);
   H5Sclose(fspace);
+  if (dset >= 0) H5Dclose(dset);
+  ok = H5Fclose(file) >= 0 && ok;
   if (!ok) h5fail(path_, "append to a dataset (disk full?)");
   ++s.rows;
 }

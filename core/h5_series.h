@@ -6,12 +6,12 @@
 
 namespace sable {
 
-// An HDF5 file of growing datasets (rows appended during the run), written in
-// SWMR mode: every append extends, writes and flushes, in an order that keeps
-// the file on disk readable at any instant. A cleanly closed file opens
-// normally; the file of a killed run opens with H5F_ACC_SWMR_READ (h5py:
-// File(name, 'r', swmr=True)). Append the step dataset last: its length is the
-// number of complete records.
+// An HDF5 file of growing datasets (rows appended during the run). The file is
+// open only while a row is written: each append opens it in SWMR-write mode,
+// extends, writes, flushes and closes it. So the file of a killed run opens
+// normally (h5py: File(name, 'r')) unless the kill fell inside an append, and
+// then still opens with H5F_ACC_SWMR_READ (h5py: File(name, 'r', swmr=True)).
+// Append the step dataset last: its length is the number of complete records.
 class H5Series {
  public:
   explicit H5Series(const std::string& path);  // creates (truncates) the file
@@ -29,7 +29,7 @@ class H5Series {
 
  private:
   struct Series {
-    std::int64_t dset;
+    std::string name;
     std::vector<unsigned long long> shape;  // row shape
     bool integer;
     unsigned long long rows = 0;

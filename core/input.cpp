@@ -1,11 +1,14 @@
 #include "core/input.h"
 
+#include <cctype>
 #include <cmath>
+#include <new>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/expression.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
@@ -120,6 +123,8 @@ std::string Input::substitute(const std::string& line, const DeckLocation& where
       if (colon != std::string::npos && colon + 1 < expr.size() && expr[colon + 1] == '%') {
         fmt = expr.substr(colon + 1);
         expr = expr.substr(0, colon);
+        const std::string bad = number_format_problem(fmt, false);
+        if (!bad.empty()) here.fail_line("the format '" + fmt + "' in '$(" + expr + ":" + fmt + ")' needs " + bad);
       }
       out += format_number(sim_.variables->evaluate(expr, here), fmt);
       i = k;
@@ -170,11 +175,39 @@ void Input::one(const std::string& line, const DeckLocation& where) {
     if (a == "label" && b == jump_label_) jump_label_.clear();
     return;
   }
-  if (intercept && intercept(line, where)) return;
-  std::vector<std::string> words = parse(line, where);
-  if (words.empty()) return;
-  if (echo_screen) sim_.print(line);
-  execute(Args(std::move(words), where));
+  try {
+    if (intercept && intercept(line, where)) return;
+    std::vector<std::string> words = parse(line, where);
+    if (words.empty()) return;
+    if (echo_screen) sim_.print(line);
+    execute(Args(std::move(words), where));
+  } catch (const std::exception& e) {
+    rethrow_located(e, line, where);
+  }
+}
+
+// Every error leaves here naming the deck file and line: messages that already name a
+// place (Args::fail, a run's "during ... at FILE:LINE", an included file) pass unchanged;
+// others get this line's location, and no raw std::bad_alloc reaches the user.
+void Input::rethrow_located(const std::exception& e, const std::string& line, const DeckLocation& where) {
+  const std::string msg = e.what();
+  auto located = [&] {
+    if (msg.find(where.file + ":" + std::to_string(where.line)) != std::string::npos) return true;
+    const std::size_t c = msg.find(':');  // "FILE:LINE: ..." from a nested (included) deck
+    std::size_t d = c + 1;
+    while (c != std::string::npos && d < msg.size() && std::isdigit(static_cast<unsigned char>(msg[d]))) ++d;
+    return c != std::string::npos && c > 0 && d > c + 1 && d < msg.size() && msg[d] == ':' &&
+           msg.find_first_of(" \n") > c;
+  };
+  const std::string here = where.file + ":" + std::to_string(where.line) + ": '" + line.substr(0, 200) + "': ";
+  if (dynamic_cast<const std::bad_alloc*>(&e))
+    throw SableError(here + "out of memory (the command asks for more memory than this machine has: "
+                            "check counts, box size and loop lengths)");
+  if (dynamic_cast<const SableError*>(&e) || dynamic_cast<const ExpressionError*>(&e)) {
+    if (located()) throw;
+    throw SableError(here + msg);
+  }
+  throw SableError(here + "internal error (" + msg + "); please report it with this deck");
 }
 
 void Input::execute(const Args& a) {
@@ -186,6 +219,7 @@ void Input::execute(const Args& a) {
   if (c == "print") return cmd_print(a);
   if (c == "variable") return sim_.variables->define(a);
   if (c == "next") {
+    a.need(2, "the name of a loop or index variable");
     // When a variable is exhausted, LAMMPS deletes it and skips the next jump.
     for (std::size_t i = 1; i < a.size(); ++i)
       if (!sim_.variables->next(a[i], a)) skip_jump_ = true;
@@ -208,6 +242,8 @@ void Input::execute(const Args& a) {
 
 void Input::cmd_include(const Args& a) {
   const std::string& path = a.word(1, "a file name to include");
+  if (stack_.size() >= kMaxIncludeDepth)
+    a.fail(1, "at most " + std::to_string(kMaxIncludeDepth) + " nested includes (does '" + path + "' include itself?)");
   std::ifstream test(path);
   if (!test) a.fail(1, "a readable file to include");
   stack_.push_back({path, read_lines(path), 0});
@@ -222,6 +258,14 @@ void Input::cmd_jump(const Args& a) {
   }
   const std::string& target = a.word(1, "SELF or a deck file name");
   if (stack_.empty()) a.fail_line("jump works only inside a deck file");
+  // A jump loop in which no variable, step or atom count changes can never end.
+  const std::string state = a.where().file + ":" + std::to_string(a.where().line) + "|" + std::to_string(sim_.step) +
+                            "|" + std::to_string(sim_.atoms.n) + "|" + sim_.variables->fingerprint();
+  same_jumps_ = state == last_jump_ ? same_jumps_ + 1 : 0;
+  last_jump_ = state;
+  if (same_jumps_ >= kMaxIdleJumps)
+    a.fail_line("endless loop: jumped " + std::to_string(kMaxIdleJumps) +
+                " times with no variable, step or atom count changing (missing 'next'?)");
   Frame& f = stack_.back();
   if (target == "SELF" || target == f.path) {
     f.next = 0;

@@ -3,6 +3,7 @@
 // quotes, ${name}/$x substitution, immediate $(expr), then dispatches the
 // command. Flow commands (include, label, jump, next, if, print, variable,
 // log, echo) live here; every other command is a registered style/command.
+#include <exception>
 #include <functional>
 #include <string>
 #include <vector>
@@ -46,6 +47,11 @@ class Input {
   void cmd_if(const Args& a);
   void cmd_print(const Args& a);
   void cmd_include(const Args& a);
+  [[noreturn]] void rethrow_located(const std::exception& e, const std::string& line, const DeckLocation& where);
+  static constexpr std::size_t kMaxIncludeDepth = 32;  // deeper is a file including itself
+  static constexpr int kMaxIdleJumps = 10000;
+  std::string last_jump_;  // state at the previous jump (see cmd_jump)
+  int same_jumps_ = 0;
 };
 
 }  // namespace sable

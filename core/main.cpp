@@ -65,6 +65,9 @@ int main(int argc, char** argv) {
     if (sim.logfile) std::fprintf(sim.logfile, "ERROR: %s\n", e.what());
     if (sim.screen && sim.screen != stdout) std::fprintf(sim.screen, "ERROR: %s\n", e.what());
     return 1;
+  } catch (...) {  // nothing leaves sable as an uncaught exception (that would abort with a core dump)
+    std::fprintf(stderr, "ERROR: internal error (an exception of unknown type); please report it with this deck\n");
+    return 1;
   }
   return 0;
 }

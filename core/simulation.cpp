@@ -130,6 +130,98 @@ static bool all_finite(const Atoms& a, bool positions) {
   return true;
 }
 
+namespace {
+// The deepest overlap among the pairs of the current neighbour list, relative to the
+// smaller radius, and the fastest grain; atoms with a non-finite state are skipped.
+struct Extremes {
+  double overlap = 0, rel = 0, speed = 0;
+  long i = -1, j = -1, fastest = -1;
+  std::size_t deep = 0;  // pairs overlapping by more than kDeepOverlap of the smaller radius
+};
+constexpr double kDeepOverlap = 0.1;
+
+bool finite3(const double* x) { return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]); }
+
+Extremes extremes(const Simulation& sim) {
+  const Atoms& a = sim.atoms;
+  const NeighborList& l = sim.neighbor.list;
+  Extremes e;
+  const bool listed = sim.pair && l.first.size() == a.n + 1;
+  for (std::size_t i = 0; i < a.n; ++i) {
+    const double* xi = &a.x[3 * i];
+    if (!finite3(xi) || !finite3(&a.v[3 * i])) continue;
+    const double* v = &a.v[3 * i];
+    const double sp = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (sp > e.speed) e.speed = sp, e.fastest = a.id[i];
+    if (!listed) continue;
+    for (int k = l.first[i]; k < l.first[i + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(l.j[k]);
+      if (j >= a.n || !finite3(&a.x[3 * j])) continue;
+      double d2 = 0;
+      for (int c = 0; c < 3; ++c) {
+        const double dx = a.x[3 * j + c] + l.shift_vec[l.shift[k]][c] - xi[c];
+        d2 += dx * dx;
+      }
+      const double ov = a.radius[i] + a.radius[j] - std::sqrt(d2);
+      const double rmin = std::min(a.radius[i], a.radius[j]);
+      if (ov <= 0 || !(rmin > 0)) continue;
+      if (ov / rmin > kDeepOverlap) ++e.deep;
+      if (ov / rmin > e.rel) e.rel = ov / rmin, e.overlap = ov, e.i = a.id[i], e.j = a.id[j];
+    }
+  }
+  return e;
+}
+
+std::string describe(const Extremes& e) {
+  char buf[256];
+  std::string s;
+  if (e.i >= 0) {
+    std::snprintf(buf, sizeof buf, "largest overlap: atoms %ld and %ld by %g (%.0f%% of the smaller radius)", e.i, e.j,
+                  e.overlap, 100 * e.rel);
+    s = buf;
+  }
+  if (e.fastest >= 0) {
+    std::snprintf(buf, sizeof buf, "%sfastest grain: atom %ld at %g", s.empty() ? "" : "; ", e.fastest, e.speed);
+    s += buf;
+  }
+  return s;
+}
+
+// A deck that runs before `set diameter` leaves LIGGGHTS' 1 m grains: say so instead of
+// crawling through an all-pairs neighbour search, or of missing every contact.
+void check_grain_sizes(Simulation& sim) {
+  const Atoms& a = sim.atoms;
+  const Domain& d = sim.domain;
+  double rmax = 0;
+  std::size_t big = 0;
+  for (std::size_t i = 0; i < a.n; ++i)
+    if (a.radius[i] > rmax) rmax = a.radius[i], big = i;
+  if (!sim.pair) return;  // grains that do not touch may be any size (LIGGGHTS' point-like decks)
+  for (int k = 0; k < d.dimension; ++k)
+    if (2 * rmax > d.length(k)) {
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "atom %ld has diameter %g, larger than the box along %c (%g): were the diameters set "
+                    "(set ... diameter, or the particle template) before the run?",
+                    a.id[big], 2 * rmax, 'x' + k, d.length(k));
+      sim.warn(buf);
+      break;
+    }
+  // Only when the cutoff spans the box on every axis is the search truly all-pairs.
+  const double cut = 2 * rmax + sim.neighbor.skin;
+  bool spans = a.n > 1;
+  for (int k = 0; k < d.dimension; ++k) spans = spans && cut >= d.length(k);
+  if (spans) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "neighbour cutoff %g (largest diameter %g + skin %g) is as large as the box on every axis: "
+                  "every grain is searched against every other",
+                  cut, 2 * rmax, sim.neighbor.skin);
+    sim.warn(buf);
+  }
+}
+}  // namespace
+
 // Velocities are checked after a step (unless the rebuild check scanned the
 // positions, see run()); a position only turns non-finite through a velocity
 // that was, or by overflow, which the rebuild check catches: it treats a NaN
@@ -150,7 +242,8 @@ void Simulation::check_atoms(bool positions) {
                   "step %ld: atom %ld has a non-finite state (x = %g %g %g, v = %g %g %g, f = %g %g %g); "
                   "usually the time step is too large for the stiffness or two grains overlap deeply",
                   step, a.id[i], x[0], x[1], x[2], v[0], v[1], v[2], f[0], f[1], f[2]);
-    fail(buf);
+    const std::string seen = describe(extremes(*this));
+    fail(std::string(buf) + (seen.empty() ? "" : " (" + seen + ")"));
   }
 }
 
@@ -190,7 +283,8 @@ static void handle_lost(Simulation& sim) {
                         "step %ld: atom %ld left the box through the fixed boundary on axis %c (%c = %g, box %g .. %g); "
                         "lost atoms (use 'thermo_modify lost ignore' to delete such atoms instead)",
                         sim.step, a.id[i], 'x' + k, 'x' + k, xk, d.lo[k], d.hi[k]);
-          fail(buf);
+          const std::string seen = describe(extremes(sim));
+          fail(std::string(buf) + (seen.empty() ? "" : " (" + seen + ")"));
         }
         lost[i] = 1;
         any = true;
@@ -307,8 +401,13 @@ void Simulation::setup() {
   if (pair) pair->init();
   claim_restart_leftovers();
   handle_lost(*this);
+  check_grain_sizes(*this);
+  const bool first_build = neighbor.builds == 0;
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
   check_atoms(true);
+  if (const Extremes e = first_build ? extremes(*this) : Extremes{}; e.deep > 0)
+    warn(std::to_string(e.deep) + " pair(s) of grains overlap by more than " + std::to_string(int(100 * kDeepOverlap)) +
+         "% of the smaller radius at setup; " + describe(e).substr(0, describe(e).find(';')));
   stability_check();
   choose_kinematics();
   force_and_history();

@@ -4,6 +4,7 @@
 #include <ctime>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/variable.h"
@@ -138,8 +139,12 @@ void Thermo::modify(const Args& a) {
     } else if (k == "norm") {
       norm_ = a.yes_no(i + 1, "yes or no");
     } else if (k == "format") {
-      if (val == "float") float_fmt_ = a.word(i + 2, "a printf format");
-      else if (val == "int") int_fmt_ = a.word(i + 2, "a printf format");
+      if (val == "float" || val == "int") {
+        const std::string& fmt = a.word(i + 2, "a printf format");
+        const std::string bad = number_format_problem(fmt, val == "int");
+        if (!bad.empty()) a.fail(i + 2, "a printf format with " + bad);
+        (val == "float" ? float_fmt_ : int_fmt_) = fmt;
+      }
       ++i;
     } else if (k == "flush" || k == "line" || k == "every") {
       // accepted for LIGGGHTS compatibility; output is flushed every line anyway

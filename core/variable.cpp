@@ -172,7 +172,11 @@ Variables::Variables(Simulation& sim) : sim_(sim) {}
 Variables::~Variables() = default;
 
 void Variables::define_index(const std::string& name, const std::vector<std::string>& values) {
-  vars_[name] = Var{"index", values, 0, nullptr};
+  Var v;
+  v.style = "index";
+  v.values = values;
+  v.where.file = "command line -var";
+  vars_[name] = std::move(v);
 }
 
 void Variables::define(const Args& a) {
@@ -190,24 +194,28 @@ void Variables::define(const Args& a) {
     for (std::size_t i = 3; i < a.size(); ++i) v.values.push_back(a[i]);
   } else if (style == "loop") {
     if (vars_.count(name)) return;
+    // LAMMPS: loop N (1..N, N >= 1) or loop N1 N2 (N1 <= N2, N2 >= 0); values are made
+    // one at a time, so a loop of 1e9 values costs nothing until it is stepped through.
     long lo = 1, hi = a.integer(3, "the loop count N (or N1 N2)");
-    bool pad = false;
     std::size_t k = 4;
     if (a.size() > 4 && a[4] != "pad") {
       lo = hi;
       hi = a.integer(4, "the loop end N2");
+      if (hi < lo) a.fail(4, "a loop end N2 >= N1 = " + std::to_string(lo) + " (the loop would be empty)");
       k = 5;
+    } else if (hi < 1) {
+      a.fail(3, "a loop count N >= 1 (the loop would be empty)");
     }
+    if (hi < 0) a.fail(k - 1, "a loop end >= 0");
+    if (static_cast<double>(hi) - static_cast<double>(lo) >= 1e15) a.fail(k - 1, "a loop of fewer than 1e15 values");
     if (a.size() > k) {
       if (a[k] != "pad") a.fail(k, "'pad' or nothing");
-      pad = true;
+      if (lo < 0) a.fail(k, "no 'pad' with a negative loop start (" + std::to_string(lo) + ")");
+      v.pad = static_cast<int>(std::to_string(hi).size());
     }
-    const int width = static_cast<int>(std::to_string(hi).size());
-    for (long i = lo; i <= hi; ++i) {
-      std::string s = std::to_string(i);
-      if (pad) s = std::string(width - s.size(), '0') + s;
-      v.values.push_back(s);
-    }
+    if (a.size() > k + 1) a.fail(k + 1, "nothing after 'pad'");
+    v.first = lo;
+    v.count = hi - lo + 1;
   } else if (style == "string") {
     a.need(4, "the string value");
     v.values.push_back(a.joined(3));
@@ -219,9 +227,11 @@ void Variables::define(const Args& a) {
     } catch (const ExpressionError& e) {
       a.fail(3, std::string("a valid formula: ") + e.what());
     }
+    check_names(a, *v.expr, style == "atom");
   } else {
     a.fail(2, "a variable style: index, loop, string, equal, atom or delete");
   }
+  v.where = a.where();
   vars_[name] = std::move(v);
 }
 
@@ -230,7 +240,7 @@ bool Variables::next(const std::string& name, const Args& where) {
   if (it == vars_.end()) where.fail(1, "a defined variable for 'next' ('" + name + "' is not defined)");
   Var& v = it->second;
   if (v.style != "index" && v.style != "loop") where.fail(1, "an index or loop variable for 'next'");
-  if (++v.which >= v.values.size()) {
+  if (++v.which >= size(v)) {
     vars_.erase(it);
     return false;
   }
@@ -251,7 +261,7 @@ std::string Variables::string_value(const std::string& name, const Args& where) 
   if (it == vars_.end()) where.fail_line("variable '" + name + "' is not defined (use 'variable " + name + " ...' first)");
   Var& v = it->second;
   if (v.style == "atom") where.fail_line("atom-style variable '" + name + "' cannot be used as ${" + name + "}");
-  if (v.style != "equal") return v.values[v.which];
+  if (v.style != "equal") return current(v);
   if (++depth_ > 50) {
     depth_ = 0;
     where.fail_line("variable '" + name + "' refers to itself");
@@ -276,20 +286,26 @@ bool Variables::numeric(const std::string& name, double& out) {
   Var& v = it->second;
   if (v.style == "atom") return false;
   if (v.style == "equal") {
-    if (++depth_ > 50) {
-      depth_ = 0;
-      throw ExpressionError("variable '" + name + "' refers to itself");
-    }
-    Args none;
-    SimContext ctx(sim_, none);
     struct Guard {
       int& d;
       ~Guard() { --d; }
-    } g{depth_};
-    out = v.expr->eval(ctx);
+    } g{++depth_};
+    if (depth_ > 50) throw ExpressionError("variable '" + name + "' refers to itself");
+    Args none;
+    SimContext ctx(sim_, none);
+    if (depth_ > 1) {
+      out = v.expr->eval(ctx);
+      return true;
+    }
+    try {  // the outermost variable names where it was defined (it is evaluated at output time)
+      out = v.expr->eval(ctx);
+    } catch (const ExpressionError& e) {
+      throw ExpressionError(std::string(e.what()) + " (variable '" + name + "' defined at " + v.where.file + ":" +
+                            std::to_string(v.where.line) + ")");
+    }
     return true;
   }
-  const std::string& s = v.values[v.which];
+  const std::string s = current(v);
   char* end = nullptr;
   out = std::strtod(s.c_str(), &end);
   if (!end || *end) throw ExpressionError("variable '" + name + "' = '" + s + "' is not a number");
@@ -314,11 +330,78 @@ bool Variables::atom_values(const std::string& name, std::vector<double>& out) {
     std::fill(out.begin(), out.end(), val);
     return true;
   }
+  // Atom-style variables that refer to each other would recurse without end.
+  struct Guard {
+    int& d;
+    ~Guard() { --d; }
+  } g{++depth_};
+  if (depth_ > 50)
+    throw ExpressionError("atom-style variable '" + name + "' refers to itself (directly or through other variables)");
   for (std::size_t i = 0; i < sim_.atoms.n; ++i) {
     ctx.atom = i;
     out[i] = v.expr->eval_atom(ctx, i);
   }
   return true;
+}
+
+std::string Variables::current(const Var& v) {
+  if (v.style != "loop") return v.values[v.which];
+  std::string s = std::to_string(v.first + static_cast<long>(v.which));
+  if (static_cast<int>(s.size()) < v.pad) s = std::string(v.pad - s.size(), '0') + s;
+  return s;
+}
+
+std::string Variables::fingerprint() const {
+  std::string f;
+  for (const auto& [name, v] : vars_)
+    if (!v.expr) f += name + '\x1f' + current(v) + '\x1e';
+  return f;
+}
+
+// Evaluates a new formula once with stand-ins for every reference, so that a misspelt
+// thermo keyword or per-atom name fails at its own line. c_, f_ and v_ references and
+// groups are not checked: a deck may define them after the variable (LIGGGHTS evaluates
+// equal-style variables only when they are used).
+namespace {
+struct NameCheck : ExprContext {
+  Simulation& sim;
+  std::string unknown;
+  explicit NameCheck(Simulation& s) : sim(s) {}
+  bool thermo_keyword(const std::string& n, double& out) override {
+    if (!sim.thermo->keyword(n, out) && unknown.empty()) unknown = n;
+    out = 1.0;
+    return true;
+  }
+  bool variable(const std::string&, double& out) override { return (out = 1.0, true); }
+  bool compute_or_fix(char, const std::string&, int, int, double& out) override { return (out = 1.0, true); }
+  bool atom_value_by_id(const std::string&, long, double& out) override { return (out = 1.0, true); }
+  bool group_function(const std::string&, const std::vector<std::string>&, double& out) override {
+    return (out = 1.0, true);
+  }
+  bool atom_value_local(const std::string& n, std::size_t, double& out) override {
+    static Atoms one = [] {
+      Atoms a;
+      a.resize(1);
+      return a;
+    }();
+    if (n.rfind("v_", 0) == 0 || n.rfind("c_", 0) == 0 || n.rfind("f_", 0) == 0) return false;
+    return SimContext::atom_field(one, n, 0, out);
+  }
+};
+}  // namespace
+
+void Variables::check_names(const Args& a, const Expression& e, bool atom_style) {
+  NameCheck check(sim_);
+  try {
+    if (atom_style) e.eval_atom(check, 0);
+    else e.eval(check);
+  } catch (const ExpressionError&) {
+    // stand-in values can divide by zero and the like; only unknown names matter here
+  }
+  if (!check.unknown.empty())
+    a.fail(3, "a formula whose names are known: '" + check.unknown + "' is not a thermo keyword" +
+                  (atom_style ? " nor a per-atom value (x, vx, fx, omegax, radius, mass, type, id, ...)" : "") +
+                  " (references to computes, fixes and variables are written c_ID, f_ID, v_name)");
 }
 
 }  // namespace sable

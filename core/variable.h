@@ -34,6 +34,8 @@ class Variables {
   }
   // Evaluate a formula now; errors name the deck line.
   double evaluate(const std::string& expr, const Args& where);
+  // Loop, index and string variables' values, and (for `jump` loops) whether any changed.
+  std::string fingerprint() const;
 
  private:
   struct Var {
@@ -41,7 +43,13 @@ class Variables {
     std::vector<std::string> values;
     std::size_t which = 0;
     std::shared_ptr<Expression> expr;  // equal/atom
+    long first = 0, count = 0;         // loop: values first .. first+count-1, made when asked
+    int pad = 0;                       // loop: zero-padded width (0 = no padding)
+    DeckLocation where;                // definition, named when evaluating it fails later
   };
+  static std::string current(const Var& v);
+  static std::size_t size(const Var& v) { return v.style == "loop" ? static_cast<std::size_t>(v.count) : v.values.size(); }
+  void check_names(const Args& a, const Expression& e, bool atom_style);
   Simulation& sim_;
   std::map<std::string, Var> vars_;
   int depth_ = 0;  // recursion guard for self-referencing formulas

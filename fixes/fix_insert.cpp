@@ -322,6 +322,14 @@ void FixInsert::setup_geometry() {
     if (k < dim() && !(shi_[k] > slo_[k]))
       args.fail_line("the insertion region '" + R.id + "' does not overlap the box");
   }
+  // A grain wider than the region (all_in) or than the box can never be placed.
+  for (int k = 0; k < dim(); ++k) {
+    const double room = all_in_ ? shi_[k] - slo_[k] : d.hi[k] - d.lo[k], diam = 2 * dist_->max_radius;
+    if (diam > room)
+      args.fail_line("the largest template grain (diameter " + std::to_string(diam) + ") is wider than " +
+                     (all_in_ ? "region '" + R.id + "'" : std::string("the box")) + " along " +
+                     std::string(1, char('x' + k)) + " (" + std::to_string(room) + "): it can never be inserted");
+  }
   if (dim() == 2 && (R.lo[2] > 0 || R.hi[2] < 0) && R.interior)
     args.fail_line("in 2D grains are inserted at z = 0, but region '" + R.id + "' does not contain z = 0");
   if (R.style == "block")

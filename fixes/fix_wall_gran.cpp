@@ -38,6 +38,8 @@ FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
         shape_ = Shape::Plane;
         axis_ = axis_of(w.substr(0, 1));
         pos0_ = a.num(i + 4, "the plane position");
+        if (axis_ == 2 && s.domain.dimension == 2)
+          a.fail(i + 3, "xplane or yplane: grains of a 2D deck lie in one z plane, a zplane wall never meets them");
         i += 5;
       } else if (w.size() == 9 && w.substr(1) == "cylinder" && axis_of(w.substr(0, 1)) >= 0) {
         shape_ = Shape::Cylinder;
@@ -46,6 +48,8 @@ FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
         if (!(radius_ > 0)) a.fail(i + 4, "a radius > 0");
         c1_ = a.num(i + 5, "the first axis coordinate");
         c2_ = a.num(i + 6, "the second axis coordinate");
+        if (axis_ != 2 && s.domain.dimension == 2)
+          a.fail(i + 3, "zcylinder: in a 2D deck a cylinder must stand along z");
         i += 7;
       } else {
         a.fail(i + 3, "a primitive: xplane, yplane, zplane, xcylinder, ycylinder, zcylinder");

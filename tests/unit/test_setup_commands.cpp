@@ -160,7 +160,7 @@ TEST(SetCommand, ErrorsNameTheWordAndWhatWasExpected) {
             std::string::npos);
   EXPECT_NE(error_of(d, "set group nogroup vx 1").find("expected an existing group ID"), std::string::npos);
   EXPECT_NE(error_of(d, "set region noregion vx 1").find("expected an existing region ID"), std::string::npos);
-  EXPECT_NE(error_of(d, "set atom 1 diameter -1").find("a diameter >= 0"), std::string::npos);
+  EXPECT_NE(error_of(d, "set atom 1 diameter -1").find("a finite diameter > 0"), std::string::npos);
   EXPECT_NE(error_of(d, "set atom 1 type 3").find("an atom type between 1 and 2"), std::string::npos);
   EXPECT_NE(error_of(d, "set type 1*5 vx 0").find("within 1..2"), std::string::npos);
   EXPECT_NE(error_of(d, "set atom 1 vx fast").find("(a number)"), std::string::npos);
