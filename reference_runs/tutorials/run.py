@@ -1,0 +1,234 @@
+#!/usr/bin/python3
+"""Run LIGGGHTS-PUBLIC's tutorial decks unchanged in sable and LIGGGHTS, over seeds.
+
+    /usr/bin/python3 reference_runs/tutorials/run.py [--out DIR] [--only NAME ...]
+        [--codes sable,liggghts] [--seeds N] [-j N] [--timeout S] [--sable PATH] [--list]
+
+Each tutorial (Debian liggghts-doc: TUTORIALS below) is copied with its data
+folder into OUT/<name>/<code>_s<seed>/ and run there as written, except for:
+  - the insertion seed (`insert/... seed N`): run 0 keeps the deck's own (that
+    run is the deck exactly as shipped), the others take primes from SEEDS
+    that the deck does not use already (LIGGGHTS refuses a seed shared with
+    a template or distribution);
+  - a few lines appended to the deck's end that print the observables
+    (OBSERVABLE lines as in compare.py): atoms, centre of mass, highest grain,
+    kinetic energy at the end; the run-averaged kinetic energy comes from the
+    deck's own thermo table (mean of the `ke` column).
+Decks that chain (a restart written by the one before) run in one folder in
+order. Per tutorial and code the table gives: runs unchanged (yes/no and the
+first error), then per observable the mean ± standard deviation over seeds,
+the difference of the means in combined standard errors
+SE = sqrt(sd_s^2/n_s + sd_l^2/n_l), and pass when |difference| <= K SE (K 2:
+with K 1 two codes with the same physics would fail about a third of the
+time) or both codes give the same value to 1e-9 (deterministic counts).
+Writes OUT/tutorials.md and OUT/tutorials.json. Runs whose result.json exists
+are reused: a cut campaign resumes.
+"""
+import argparse, concurrent.futures, json, math, os, re, shutil, subprocess, sys, time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.dirname(HERE))
+import compare  # noqa: E402  (parse_screen: OBSERVABLE lines and thermo tables)
+
+SOURCE = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public'
+SEEDS = [49979687, 67867967, 86028121, 104395301, 122949823]
+# name: (folder, decks run in order in one folder). The SPH decks are left out (issue 24).
+TUTORIALS = {
+    'chute_wear': ('chute_wear', ['in.chute_wear']),
+    'cohesion': ('cohesion', ['in.cohesion']),
+    'noCohesion': ('cohesion', ['in.noCohesion']),
+    'newModels': ('contactModels', ['in.newModels']),
+    'oldModels': ('contactModels', ['in.oldModels']),
+    'conveyor': ('conveyor', ['in.conveyor']),
+    'heatTransfer_1': ('heatTransfer_1', ['in.heatGran']),
+    'heatTransfer_2': ('heatTransfer_2', ['in.heatGran']),
+    'hydrogel_default': ('hydrogel_multicontact', ['in.hydrogel_default']),
+    'hydrogel_multicontact': ('hydrogel_multicontact', ['in.hydrogel_multicontact']),
+    'hysteresis': ('hysteresis', ['in.hysteresis']),
+    'noHysteresis': ('hysteresis', ['in.noHysteresis']),
+    'insert_stream': ('insert_stream', ['in.insert_stream']),
+    'insert_stream_reset_timestep': ('insert_stream', ['in.insert_stream', 'in.insert_stream_reset_timestep']),
+    'meshGran': ('meshGran', ['in.meshGran']),
+    'mesh_tet': ('mesh_tet', ['in.mesh_tet']),
+    'movingMeshGran': ('movingMeshGran', ['in.movingMeshGran']),
+    'multisphere': ('multisphere_stone_restitution', ['in.multisphere']),
+    'packing': ('packing', ['in.packing']),
+    'superquadric': ('superquadric', ['in.particle_particle']),
+    'parscale_init_run': ('ParScale/fluidizedBedTempParScale', ['in.liggghts_init', 'in.liggghts_run']),
+    'parscale_heatTransferBed': ('ParScale/heatTransferBed_paScal', ['in.liggghts']),
+}
+OBSERVE = """
+# --- appended by reference_runs/tutorials/run.py: observables only ---
+variable tut_atoms equal count(all)
+variable tut_xcm equal xcm(all,x)
+variable tut_ycm equal xcm(all,y)
+variable tut_zcm equal xcm(all,z)
+variable tut_zmax equal bound(all,zmax)
+variable tut_ke equal ke
+print "OBSERVABLE atoms ${tut_atoms}"
+print "OBSERVABLE xcm ${tut_xcm}"
+print "OBSERVABLE ycm ${tut_ycm}"
+print "OBSERVABLE zcm ${tut_zcm}"
+print "OBSERVABLE zmax ${tut_zmax}"
+print "OBSERVABLE ke_end ${tut_ke}"
+"""
+SEED_RE = re.compile(r'(insert/\S+\s+seed\s+)(\d+)')
+
+
+def seeds_of(name, n):
+    """The deck's own insertion seed (None when it inserts nothing), then n - 1 unused primes."""
+    folder, decks = TUTORIALS[name]
+    text = ''.join(open(os.path.join(SOURCE, folder, d)).read() for d in decks)
+    own = [int(m.group(2)) for m in SEED_RE.finditer(text)]
+    if not own:
+        return [None]
+    return [own[0]] + [s for s in SEEDS if str(s) not in text][:n - 1]
+
+
+def prepare(name, code, seed, out):
+    """Copy the tutorial folder, set the insertion seed, append the observables."""
+    folder, decks = TUTORIALS[name]
+    run = os.path.join(out, name, f'{code}_s{seed}')
+    if os.path.exists(run):
+        shutil.rmtree(run)
+    shutil.copytree(os.path.join(SOURCE, folder), run, ignore=shutil.ignore_patterns('post'))
+    os.makedirs(os.path.join(run, 'post'), exist_ok=True)
+    for k, deck in enumerate(decks):
+        text = open(os.path.join(run, deck)).read()
+        if seed is not None:
+            text = SEED_RE.sub(lambda m: m.group(1) + str(seed), text)
+        if k == len(decks) - 1:
+            text = text.rstrip('\n') + '\n' + OBSERVE
+        open(os.path.join(run, deck), 'w').write(text)
+    return run, decks
+
+
+def command(code, args, deck):
+    if code == 'sable':
+        return [args.sable, '-in', deck]
+    return ['stdbuf', '-o0', '-e0', 'liggghts', '-in', deck]
+
+
+def run_one(name, code, seed, args):
+    """Run the tutorial's decks in order; return the result record (also result.json)."""
+    path = os.path.join(args.out, name, f'{code}_s{seed}', 'result.json')
+    if os.path.exists(path):
+        return json.load(open(path))
+    run, decks = prepare(name, code, seed, args.out)
+    rec = {'tutorial': name, 'code': code, 'seed': seed, 'ok': True, 'error': None, 'wall_s': 0.0}
+    text = ''
+    env = {**os.environ, 'OMP_NUM_THREADS': str(args.threads)}
+    for deck in decks:
+        t0 = time.time()
+        try:
+            p = subprocess.run(command(code, args, deck), cwd=run, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True, errors='replace',
+                               timeout=args.timeout, env=env)
+            out, rc = p.stdout, p.returncode
+        except subprocess.TimeoutExpired as e:
+            out = e.stdout.decode(errors='replace') if isinstance(e.stdout, bytes) else e.stdout or ''
+            out, rc = out + f'\n(timed out after {args.timeout} s)', -1
+        rec['wall_s'] += time.time() - t0
+        text += out
+        if rc != 0 or 'ERROR' in out:
+            rec['ok'] = False
+            errs = [l for l in out.splitlines() if 'ERROR' in l]
+            last = out.strip().splitlines()[-1] if out.strip() else ''
+            rec['error'] = (errs[0] if errs else f'{deck}: exit status {rc}: {last}')[:300]
+            break
+    open(os.path.join(run, 'screen.txt'), 'w').write(text)
+    obs, series = compare.parse_screen(text)
+    if 'ke' in series and rec['ok']:
+        obs['ke_mean'] = float(np.mean(series['ke'][1]))
+    rec['observables'] = obs
+    print(f'[{name} {code} s{seed}] {"ok" if rec["ok"] else "FAILED: " + rec["error"]} '
+          f'({rec["wall_s"]:.0f} s)', flush=True)
+    json.dump(rec, open(path, 'w'), indent=1, allow_nan=True)
+    return rec
+
+
+def stats(values):
+    v = np.array([x for x in values if x is not None and not math.isnan(x)], float)
+    if len(v) == 0:
+        return math.nan, math.nan, 0
+    return float(v.mean()), float(v.std(ddof=1)) if len(v) > 1 else 0.0, len(v)
+
+
+def table(results, codes, k):
+    """Markdown: one block per tutorial; returns (lines, summary)."""
+    lines, summary = [], {}
+    for name in TUTORIALS:
+        recs = {c: [r for r in results if r['tutorial'] == name and r['code'] == c] for c in codes}
+        if not any(recs.values()):
+            continue
+        runs = {c: (all(r['ok'] for r in recs[c]) if recs[c] else None) for c in codes}
+        lines.append(f'## {name}')
+        for c in codes:
+            bad = [r for r in recs[c] if not r['ok']]
+            state = 'not run' if runs[c] is None else 'runs' if runs[c] else f'fails: `{bad[0]["error"]}`'
+            wall = np.mean([r['wall_s'] for r in recs[c]]) if recs[c] else 0
+            lines.append(f'- {c}: {state} ({len(recs[c])} seeds, {wall:.0f} s per run)')
+        verdicts = []
+        if len(codes) == 2 and all(runs.values()):
+            a, b = codes
+            lines += ['', f'| observable | {a} | {b} | diff / SE | result |', '|---|---|---|---|---|']
+            names = sorted({n for r in recs[a] + recs[b] for n in r['observables']})
+            for n in names:
+                ma, sa, na = stats([r['observables'].get(n) for r in recs[a]])
+                mb, sb, nb = stats([r['observables'].get(n) for r in recs[b]])
+                se = math.sqrt(sa ** 2 / max(na, 1) + sb ** 2 / max(nb, 1))
+                d = abs(ma - mb)
+                ok = d <= k * se or d <= 1e-9 * max(abs(ma), abs(mb))
+                verdicts.append(ok)
+                z = d / se if se > 0 else (0.0 if ok else math.inf)
+                lines.append(f'| {n} | {ma:.6g} ± {sa:.2g} | {mb:.6g} ± {sb:.2g} | {z:.2f} | '
+                             f'{"pass" if ok else "FAIL"} |')
+        summary[name] = {'runs': runs, 'agree': all(verdicts) if verdicts else None}
+        lines.append('')
+    return lines, summary
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('--out', default=os.path.join(REPO, 'build-tutorials'))
+    p.add_argument('--only', nargs='+', default=None, choices=list(TUTORIALS), metavar='NAME')
+    p.add_argument('--codes', default='sable,liggghts')
+    p.add_argument('--seeds', type=int, default=3)
+    p.add_argument('-j', type=int, default=1, help='runs at once')
+    p.add_argument('--threads', type=int, default=1, help='OMP_NUM_THREADS for sable')
+    p.add_argument('--timeout', type=float, default=3600)
+    p.add_argument('--sigma', type=float, default=2.0, help='K in |difference| <= K SE')
+    p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
+    p.add_argument('--list', action='store_true', help='list the tutorials and stop')
+    args = p.parse_args()
+    if args.list:
+        for n, (f, d) in TUTORIALS.items():
+            print(f'{n:30s} {f}/{" + ".join(d)}')
+        return 0
+    if not os.path.isdir(SOURCE):
+        sys.exit(f'{SOURCE} is missing: apt-get install liggghts-doc')
+    codes = args.codes.split(',')
+    args.out, args.sable = os.path.abspath(args.out), os.path.abspath(args.sable)
+    jobs = [(n, c, s) for n in (args.only or TUTORIALS) for c in codes for s in seeds_of(n, args.seeds)]
+    with concurrent.futures.ThreadPoolExecutor(args.j) as pool:
+        results = list(pool.map(lambda job: run_one(*job, args), jobs))
+    lines, summary = table(results, codes, args.sigma)
+    both = [n for n, s in summary.items() if all(s['runs'].values())]
+    agree = [n for n in both if summary[n]['agree']]
+    sable_ok = [n for n, s in summary.items() if s['runs'].get('sable')]
+    head = [f'# LIGGGHTS-PUBLIC tutorials in {", ".join(codes)}', '',
+            f'{len(summary)} tutorials; sable runs {len(sable_ok)} unchanged; '
+            f'{len(both)} run in every code, of which {len(agree)} agree (|diff| <= {args.sigma:g} SE).', '']
+    open(os.path.join(args.out, 'tutorials.md'), 'w').write('\n'.join(head + lines) + '\n')
+    json.dump({'summary': summary, 'runs': results}, open(os.path.join(args.out, 'tutorials.json'), 'w'),
+              indent=1, allow_nan=True)
+    print('\n'.join(head).strip())
+    print(f'table: {os.path.join(args.out, "tutorials.md")}')
+    return 0 if len(agree) == len(both) else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())
