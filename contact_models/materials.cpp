@@ -107,6 +107,53 @@ const double* Materials::type_vector(const std::string& name, const std::string&
   return stored.data();
 }
 
+const double* Materials::pair_table(const std::string& name, const std::string& who, const Args& line) {
+  if (auto it = tables_.find(name); it != tables_.end()) return it->second.data();
+  const int s = stride();
+  std::vector<double> t(s * s, 0.0);
+  auto each = [&](auto fn) {
+    for (int i = 1; i <= ntypes_; ++i)
+      for (int j = 1; j <= ntypes_; ++j) t[i * s + j] = fn(i, j);
+  };
+  // Derived tables: formulas of LIGGGHTS 3.8 global_properties.cpp (createYeff, createGeff, createBetaEff, ...).
+  if (name == "Yeff") {
+    const double* Y = type_vector("youngsModulus", who, line);
+    const double* nu = type_vector("poissonsRatio", who, line);
+    each([&](int i, int j) { return 1.0 / ((1.0 - nu[i] * nu[i]) / Y[i] + (1.0 - nu[j] * nu[j]) / Y[j]); });
+  } else if (name == "Geff") {
+    const double* Y = type_vector("youngsModulus", who, line);
+    const double* nu = type_vector("poissonsRatio", who, line);
+    each([&](int i, int j) {
+      return 1.0 / (2.0 * (2.0 - nu[i]) * (1.0 + nu[i]) / Y[i] + 2.0 * (2.0 - nu[j]) * (1.0 + nu[j]) / Y[j]);
+    });
+  } else if (name == "coeffRestLog") {
+    const double* e = pair_table("coefficientRestitution", who, line);
+    each([&](int i, int j) { return std::log(e[i * s + j]); });
+  } else if (name == "betaeff") {
+    const double* le = pair_table("coeffRestLog", who, line);
+    each([&](int i, int j) {
+      const double l = le[i * s + j];
+      return l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+    });
+  } else {
+    t = raw_pair(name, who, line);
+    check_range(name, t);
+    if (name == "coefficientRestitution") {
+      const GlobalProperty* f = GlobalProperty::find(sim_, name);
+      each([&](int i, int j) {
+        const double e = t[i * s + j];
+        if (!(e > 0.05 && e <= 1.0))
+          f->line->fail_line("0.05 < coefficientRestitution <= 1 required (as in LIGGGHTS); types " + std::to_string(i) +
+                            "," + std::to_string(j) + " have " + fmt(e));
+        return e;
+      });
+    }
+  }
+  auto& stored = tables_[name];
+  stored = std::move(t);
+  return stored.data();
+}
+
 // Ranges outside which a law's formula breaks down (LIGGGHTS does not check
 // these; a zero denominator or a negative pull would pass silently there).
 void Materials::check_range(const std::string& name, const std::vector<double>& t) const {
