@@ -4,55 +4,140 @@
 #include <algorithm>
 
 #include "core/simulation.h"
+#include "core/threads.h"
 
 namespace sable::rigid {
 
 namespace {
 
-// dq/dt = 1/2 (0, w) q, as the product (0, w) q.
-Q4 spin(const V3& w, const Q4& q) {
-  return {-(w[0] * q[1] + w[1] * q[2] + w[2] * q[3]), q[0] * w[0] + w[1] * q[3] - w[2] * q[2],
-          q[0] * w[1] + w[2] * q[1] - w[0] * q[3], q[0] * w[2] + w[0] * q[2] - w[1] * q[1]};
+// The small pieces of the orientation step on plain arrays, always inlined: the
+// lane loops below are compiled for several vector widths, and GCC inlines a
+// function (std::array's operator[] included) into a target-specific one only
+// when it is always_inline.
+#define SABLE_INLINE [[gnu::always_inline]] inline
+
+SABLE_INLINE void axes_in(const double* q, double* ex, double* ey, double* ez) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  ex[0] = w * w + x * x - y * y - z * z, ex[1] = 2 * (x * y + w * z), ex[2] = 2 * (x * z - w * y);
+  ey[0] = 2 * (x * y - w * z), ey[1] = w * w - x * x + y * y - z * z, ey[2] = 2 * (y * z + w * x);
+  ez[0] = 2 * (x * z + w * y), ez[1] = 2 * (y * z - w * x), ez[2] = w * w - x * x - y * y + z * z;
 }
 
-Q4 step_q(const Q4& q, const Q4& wq, double h) {
-  Q4 r;
+SABLE_INLINE void normalize_in(double* q) {
+  const double s = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (int c = 0; c < 4; ++c) q[c] *= s;
+}
+
+SABLE_INLINE void omega_in(const double* m, const double* ex, const double* ey, const double* ez, const double* inv,
+                           double* w) {
+  const double a = (m[0] * ex[0] + m[1] * ex[1] + m[2] * ex[2]) * inv[0];
+  const double b = (m[0] * ey[0] + m[1] * ey[1] + m[2] * ey[2]) * inv[1];
+  const double c = (m[0] * ez[0] + m[1] * ez[1] + m[2] * ez[2]) * inv[2];
+  for (int k = 0; k < 3; ++k) w[k] = a * ex[k] + b * ey[k] + c * ez[k];
+}
+
+// dq/dt = 1/2 (0, w) q, as the product (0, w) q.
+SABLE_INLINE void spin(const double* w, const double* q, double* out) {
+  out[0] = -(w[0] * q[1] + w[1] * q[2] + w[2] * q[3]);
+  out[1] = q[0] * w[0] + w[1] * q[3] - w[2] * q[2];
+  out[2] = q[0] * w[1] + w[2] * q[1] - w[0] * q[3];
+  out[3] = q[0] * w[2] + w[0] * q[2] - w[1] * q[1];
+}
+
+SABLE_INLINE void step_q(const double* q, const double* wq, double h, double* r) {
   for (int c = 0; c < 4; ++c) r[c] = q[c] + h * wq[c];
-  normalize(r);
-  return r;
+  normalize_in(r);
 }
 
 // One orientation step of dt = 2 dtq by Richardson extrapolation (LAMMPS' fix rigid):
 // a full step and two half steps (omega recomputed from m at the midpoint), combined as 2 half - full.
-void richardson(Q4& q, const V3& m, V3& w, const V3& inv, double dtq) {
-  const Q4 wq = spin(w, q);
-  const Q4 full = step_q(q, wq, dtq);
-  Q4 half = step_q(q, wq, 0.5 * dtq);
-  V3 ex, ey, ez;
-  axes(half, ex, ey, ez);
-  w = omega_of(m, ex, ey, ez, inv);
-  half = step_q(half, spin(w, half), 0.5 * dtq);
-  for (int c = 0; c < 4; ++c) q[c] = 2.0 * half[c] - full[c];
-  normalize(q);
+SABLE_INLINE void richardson(double* q, const double* m, double* w, const double* inv, double dtq) {
+  double wq[4], full[4], half[4], half2[4], ex[3], ey[3], ez[3];
+  spin(w, q, wq);
+  step_q(q, wq, dtq, full);
+  step_q(q, wq, 0.5 * dtq, half);
+  axes_in(half, ex, ey, ez);
+  omega_in(m, ex, ey, ez, inv, w);
+  spin(w, half, wq);
+  step_q(half, wq, 0.5 * dtq, half2);
+  for (int c = 0; c < 4; ++c) q[c] = 2.0 * half2[c] - full[c];
+  normalize_in(q);
 }
+
+// The orientation step of rigid_body_set.h's initial_integrate for a batch of
+// bodies, one array per component: the same operations as body by body, in a
+// loop over the lanes that the compiler vectorises (the square roots and
+// divisions of the normalisations then overlap; no FMA: the same bits).
+constexpr int kLanes = 8;
+struct Lanes {
+  double q[4][kLanes], m[3][kLanes], inv[3][kLanes], w[3][kLanes], e[9][kLanes];
+};
+
+SABLE_INLINE void turn_lane(Lanes& L, int l, double dtq) {
+  double q[4], m[3], inv[3], w[3], e[9];
+  for (int c = 0; c < 4; ++c) q[c] = L.q[c][l];
+  for (int c = 0; c < 3; ++c) m[c] = L.m[c][l], inv[c] = L.inv[c][l];
+  for (int c = 0; c < 9; ++c) e[c] = L.e[c][l];
+  omega_in(m, e, e + 3, e + 6, inv, w);
+  richardson(q, m, w, inv, dtq);
+  axes_in(q, e, e + 3, e + 6);
+  for (int c = 0; c < 4; ++c) L.q[c][l] = q[c];
+  for (int c = 0; c < 3; ++c) L.w[c][l] = w[c];
+  for (int c = 0; c < 9; ++c) L.e[c][l] = e[c];
+}
+
+[[gnu::flatten]] void turn_lanes(Lanes& L, double dtq) {
+  for (int l = 0; l < kLanes; ++l) turn_lane(L, l, dtq);
+}
+[[gnu::target("avx2"), gnu::flatten]] void turn_lanes_avx2(Lanes& L, double dtq) {
+  for (int l = 0; l < kLanes; ++l) turn_lane(L, l, dtq);
+}
+[[gnu::target("avx512f,avx512dq"), gnu::flatten]] void turn_lanes_avx512(Lanes& L, double dtq) {
+  for (int l = 0; l < kLanes; ++l) turn_lane(L, l, dtq);
+}
+
+// Turns the bodies listed in idx (at most kLanes; the empty lanes hold a body at rest).
+void turn_bodies(std::vector<Body>& bodies, const int* idx, int n, double dtq) {
+  Lanes L{};
+  for (int l = 0; l < kLanes; ++l) L.q[0][l] = 1.0;
+  for (int l = 0; l < n; ++l) {
+    const Body& b = bodies[idx[l]];
+    for (int c = 0; c < 4; ++c) L.q[c][l] = b.q[c];
+    for (int c = 0; c < 3; ++c) {
+      L.m[c][l] = b.angmom[c];
+      L.inv[c][l] = b.inv_moments[c];
+      L.e[c][l] = b.ex[c];
+      L.e[3 + c][l] = b.ey[c];
+      L.e[6 + c][l] = b.ez[c];
+    }
+  }
+  switch (simd_level()) {
+    case Simd::AVX512: turn_lanes_avx512(L, dtq); break;
+    case Simd::AVX2: turn_lanes_avx2(L, dtq); break;
+    default: turn_lanes(L, dtq);
+  }
+  for (int l = 0; l < n; ++l) {
+    Body& b = bodies[idx[l]];
+    for (int c = 0; c < 4; ++c) b.q[c] = L.q[c][l];
+    for (int c = 0; c < 3; ++c) {
+      b.omega[c] = L.w[c][l];
+      b.ex[c] = L.e[c][l];
+      b.ey[c] = L.e[3 + c][l];
+      b.ez[c] = L.e[6 + c][l];
+    }
+  }
+}
+
+#undef SABLE_INLINE
 
 }  // namespace
 
-void axes(const Q4& q, V3& ex, V3& ey, V3& ez) {
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  ex = {w * w + x * x - y * y - z * z, 2 * (x * y + w * z), 2 * (x * z - w * y)};
-  ey = {2 * (x * y - w * z), w * w - x * x + y * y - z * z, 2 * (y * z + w * x)};
-  ez = {2 * (x * z + w * y), 2 * (y * z - w * x), w * w - x * x - y * y + z * z};
-}
-
-void normalize(Q4& q) {
-  const double s = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (double& c : q) c *= s;
-}
-
+void axes(const Q4& q, V3& ex, V3& ey, V3& ez) { axes_in(q.data(), ex.data(), ey.data(), ez.data()); }
+void normalize(Q4& q) { normalize_in(q.data()); }
 V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv) {
-  const double a = dot(m, ex) * inv[0], b = dot(m, ey) * inv[1], c = dot(m, ez) * inv[2];
-  return {a * ex[0] + b * ey[0] + c * ez[0], a * ex[1] + b * ey[1] + c * ez[1], a * ex[2] + b * ey[2] + c * ez[2]};
+  V3 w;
+  omega_in(m.data(), ex.data(), ey.data(), ez.data(), inv.data(), w.data());
+  return w;
 }
 
 void principal_axes(Body& b, const Eigen::Matrix3d& inertia) {
@@ -84,12 +169,14 @@ void BodySet::initial_integrate(double dt) {
       b.xcm[k] += dt * b.vcm[k];
       if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
     }
-    if (rotates(b)) {
-      b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
-      richardson(b.q, b.angmom, b.omega, b.inv_moments, 0.5 * dt);
-      axes(b.q, b.ex, b.ey, b.ez);
-    }
   }
+  int idx[kLanes], n = 0;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    if (!rotates(bodies[k])) continue;
+    idx[n++] = static_cast<int>(k);
+    if (n == kLanes) turn_bodies(bodies, idx, n, 0.5 * dt), n = 0;
+  }
+  if (n > 0) turn_bodies(bodies, idx, n, 0.5 * dt);
   place_members(true);
 }
 
@@ -118,29 +205,52 @@ void BodySet::expected(std::size_t i, int k, double* x, double* v) const {
   sim_.domain.remap(x, image);
 }
 
+namespace {
+// Bodies are met in the atoms' (spatial) order: fetch the body of the atom kAhead
+// places on while this one is placed (its first three lines: the fields read).
+constexpr std::size_t kAhead = 8;
+void prefetch_body(const std::vector<Body>& bodies, const std::vector<double>& c, std::size_t i, std::size_t n) {
+  if (i + kAhead >= n) return;
+  const int k = static_cast<int>(c[BodySet::kStride * (i + kAhead)]) - 1;
+  if (k < 0) return;
+  const char* p = reinterpret_cast<const char*>(&bodies[k]);
+  __builtin_prefetch(p);
+  __builtin_prefetch(p + 64);
+  __builtin_prefetch(p + 128);
+}
+}  // namespace
+
 void BodySet::place_members(bool positions) {
   Atoms& at = sim_.atoms;
   auto& c = at.column(col);
   const Domain& dom = sim_.domain;
   const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
+  if (positions) {
+    turning_.resize(bodies.size());
+    for (std::size_t k = 0; k < bodies.size(); ++k) turning_[k] = rotates(bodies[k]);
+  }
   for (std::size_t i = 0; i < at.n; ++i) {
+    prefetch_body(bodies, c, i, at.n);
     const int k = static_cast<int>(c[kStride * i]) - 1;
     if (k < 0) continue;
     const Body& b = bodies[k];
     double* o = &c[kStride * i];
-    if (positions && rotates(b))
+    if (positions && turning_[k])
       for (int e = 0; e < 3; ++e) o[4 + e] = o[1] * b.ex[e] + o[2] * b.ey[e] + o[3] * b.ez[e];
     const V3 d{o[4], o[5], o[6]};
     const V3 wd = cross(b.omega, d);
+    double* x = &at.x[3 * i];
+    bool inside = true;
     for (int e = 0; e < 3; ++e) {
       if (positions) {
         at.image[3 * i + e] = 0;
-        at.x[3 * i + e] = b.xcm[e] + d[e];
+        x[e] = b.xcm[e] + d[e];
+        inside = inside && x[e] >= dom.lo[e] && x[e] < dom.hi[e];
       }
       at.v[3 * i + e] = b.vcm[e] + wd[e];
       at.omega[3 * i + e] = b.omega[e];
     }
-    if (positions && wrap) dom.remap(&at.x[3 * i], &at.image[3 * i]);
+    if (positions && wrap && !inside) dom.remap(x, &at.image[3 * i]);
   }
 }
 
@@ -149,6 +259,7 @@ void BodySet::sum_forces() {
   const auto& c = at.column(col);
   for (Body& b : bodies) b.force = b.torque = V3{0, 0, 0};
   for (std::size_t i = 0; i < at.n; ++i) {
+    prefetch_body(bodies, c, i, at.n);
     const int k = static_cast<int>(c[kStride * i]) - 1;
     if (k < 0) continue;
     Body& b = bodies[k];

@@ -38,13 +38,15 @@ void normalize(Q4& q);
 // (0 for a zero moment: no spin about that axis).
 V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv);
 
-struct Body {
-  double mass = 0;
-  V3 xcm{}, vcm{}, angmom{}, omega{}, moments{}, inv_moments{};  // xcm unwrapped
-  double inv_mass = 0;
-  Q4 q{1, 0, 0, 0};
+// The fields the per-atom passes read come first, in as few cache lines as they fit
+// (place_members: xcm .. ez; sum_forces: force, torque).
+struct alignas(64) Body {
+  V3 xcm{}, vcm{}, omega{};                  // xcm unwrapped
   V3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};  // the body axes, axes(q), kept with q
-  V3 force{}, torque{};  // sums over the members, before the flags
+  V3 force{}, torque{};                      // sums over the members, before the flags
+  double mass = 0, inv_mass = 0;
+  V3 angmom{}, moments{}, inv_moments{};
+  Q4 q{1, 0, 0, 0};
   std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
   int members = 0;
 };
@@ -83,6 +85,7 @@ class BodySet {
 
  private:
   Simulation& sim_;
+  std::vector<char> turning_;  // rotates(body), taken once per placing pass
 };
 
 }  // namespace rigid
