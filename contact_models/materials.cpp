@@ -95,9 +95,11 @@ const double* Materials::type_vector(const std::string& name, const std::string&
   // LIGGGHTS' sanity checks (global_properties.cpp), so a deck LIGGGHTS refuses is refused here too.
   const GlobalProperty* f = GlobalProperty::find(sim_, name);
   for (int i = 1; i <= ntypes_; ++i) {
-    if (name == "youngsModulus" && sim_.units == "si" && t[i] < 5e6)
-      f->line->fail_line("youngsModulus >= 5e6 required for SI units (as in LIGGGHTS); type " + std::to_string(i) +
-                        " has " + fmt(t[i]));
+    if (name == "youngsModulus" && sim_.units == "si" && t[i] < 5e6 && !sim_.soft_particles)
+      f->line->fail_line("youngsModulus >= 5e6 required for SI units (as in LIGGGHTS); 'soft_particles yes' "
+                        "before it allows softer grains; type " + std::to_string(i) + " has " + fmt(t[i]));
+    if (name == "youngsModulus" && !(t[i] > 0))
+      f->line->fail_line("youngsModulus > 0 required; type " + std::to_string(i) + " has " + fmt(t[i]));
     if (name == "poissonsRatio" && (t[i] < 0.0 || t[i] > 0.5))
       f->line->fail_line("0 <= poissonsRatio <= 0.5 required (as in LIGGGHTS); type " + std::to_string(i) + " has " +
                         fmt(t[i]));

@@ -85,6 +85,12 @@ void cmd_newton(Simulation& sim, const Args& a) {
 
 void cmd_ignore(Simulation&, const Args&) {}  // communicate, processors: one process
 
+// soft_particles yes|no (LIGGGHTS): yes allows youngsModulus below 5e6 in SI units.
+void cmd_soft_particles(Simulation& sim, const Args& a) {
+  sim.soft_particles = a.yes_no(1, "yes or no");
+  if (a.size() > 2) a.fail(2, "nothing after yes/no");
+}
+
 void cmd_create_box(Simulation& sim, const Args& a) {
   if (sim.domain.box_exists) a.fail_line("the box already exists");
   const long nt = a.integer(1, "the number of atom types");
@@ -293,6 +299,7 @@ SABLE_COMMAND("newton", cmd_newton);
 SABLE_COMMAND("communicate", cmd_ignore);
 SABLE_COMMAND("comm_modify", cmd_ignore);
 SABLE_COMMAND("processors", cmd_ignore);
+SABLE_COMMAND("soft_particles", cmd_soft_particles);
 SABLE_COMMAND("create_box", cmd_create_box);
 SABLE_COMMAND("region", cmd_region);
 SABLE_COMMAND("neighbor", cmd_neighbor);

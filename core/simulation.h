@@ -64,6 +64,7 @@ class Simulation {
   long run_first = 0, run_last = 0;  // bounds of the current/last run
   bool newton = false;
   std::string units = "si";
+  bool soft_particles = false;  // `soft_particles yes`: youngsModulus below LIGGGHTS' 5e6 allowed
   bool lost_ignore = false;
   double progress_every_s = 10.0;  // wall seconds between progress lines
 
