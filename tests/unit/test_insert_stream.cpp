@@ -57,12 +57,12 @@ std::string stream(const std::string& more) {
 
 }  // namespace
 
-// One grain: until its release step 1 + int(d / (|v_n| dt)) it sits at
-// x0 + v_n (s - 1) dt with v = v_n and no spin; at that step it takes vel,
-// then moves at vel (no force acts).
+// One grain (50 per s x 2000 steps x 1e-5 s = 1 per insertion): until its
+// release step 1 + int(d / (|v_n| dt)) it sits at x0 + v_n (s - 1) dt with
+// v = v_n and no spin; at that step it takes vel, then moves at vel (no force acts).
 TEST(InsertStream, FlightThenRelease) {
   Deck d;
-  d(box())(kGrains)(stream("nparticles 1 particlerate 10 extrude_length 0.02"));
+  d(box())(kGrains)(stream("nparticles 1 particlerate 50 extrude_length 0.02"));
   d("run 1");
   ASSERT_EQ(d->atoms.n, 1u);
   const double x0[3] = {d->atoms.x[0], d->atoms.x[1], d->atoms.x[2]};
