@@ -2,7 +2,7 @@
 // runs. As LIGGGHTS 3.8 does, the simulated time moves by (N - step) dt (not
 // below 0) and what waits for a step moves with the counter: mesh poses here;
 // insertion fixes see the jump at their next init (fixes/fix_insert.cpp).
-// Output periods stay multiples of N-independent periods (step % every).
+// Dumps and thermo go on writing at multiples of their periods (step % every).
 #include <algorithm>
 
 #include "core/mesh.h"
