@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/removed_styles.h"
+#include "core/shrink_wrap.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
 
@@ -73,9 +74,15 @@ void cmd_boundary(Simulation& sim, const Args& a) {
   if (sim.domain.box_exists) a.fail_line("boundary must come before create_box");
   for (int k = 0; k < 3; ++k) {
     const std::string& s = a.word(1 + k, "a boundary style per axis: p, f, m or s");
-    if (s == "p") sim.domain.periodic[k] = true;
-    else if (s == "f" || s == "m" || s == "s" || s == "fm" || s == "fs" || s == "mf" || s == "sf") sim.domain.periodic[k] = false;
-    else a.fail(1 + k, "p (periodic) or f (fixed) per axis");
+    sim.domain.periodic[k] = s == "p";
+    if (s == "p") continue;
+    // One letter for both faces or one per face (LAMMPS): f fixed, s shrink-wrapped, m shrink-wrapped with a minimum.
+    if (s.size() > 2 || s.find_first_not_of("fsm") != std::string::npos)
+      a.fail(1 + k, "p (periodic) or f (fixed) per axis, or s or m (shrink-wrapped), one letter per face allowed");
+    for (int side = 0; side < 2; ++side) {
+      const char c = s[std::min<std::size_t>(side, s.size() - 1)];
+      set_face_style(sim, k, side, c == 'f' ? FaceStyle::Fixed : c == 's' ? FaceStyle::Shrink : FaceStyle::ShrinkMin);
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/input.h"
+#include "core/shrink_wrap.h"
 #include "core/threads.h"
 #include "core/thermo.h"
 #include "core/variable.h"
@@ -19,6 +20,7 @@ Simulation::Simulation()
       t0_(std::chrono::steady_clock::now()) {}
 
 Simulation::~Simulation() {
+  forget_face_styles(*this);
   if (logfile) std::fclose(logfile);
 }
 
@@ -266,6 +268,7 @@ static bool any_outside(const Atoms& a, const Domain& d) {
 
 // Atoms beyond a fixed boundary are lost: stop (or delete them with thermo_modify lost ignore).
 static void handle_lost(Simulation& sim) {
+  shrink_wrap(sim);  // s and m faces follow the atoms first (LAMMPS resets such a box at each rebuild)
   Atoms& a = sim.atoms;
   const Domain& d = sim.domain;
   if (!any_outside(a, d)) return;

@@ -134,6 +134,7 @@ FixInsert::FixInsert(Simulation& s, const Args& a) : Fix(s, a) {
   vector_size = 2;         // f_ID[1] grains inserted so far, f_ID[2] their mass
   if (a.word(4, "'seed'") != "seed") a.fail(4, "'seed' (fix ID group " + style + " seed S ...)");
   seed_ = parse_prime_seed(a, 5);
+  step_seen_ = s.step;
 }
 
 int FixInsert::dim() const { return sim.domain.dimension; }
@@ -146,8 +147,9 @@ void FixInsert::parse(const Args& a) {
   for (std::size_t i = 6; i < a.size();)
     if (!shared_keyword(a, i) && !own_keyword(a, i)) a.fail(i, "an " + style + " keyword: " + keyword_list());
   if (!dist_) a.fail(a.size(), "'distributiontemplate ID' (which grains to insert)");
-  if (!region_) a.fail(a.size(), "'region ID' (where to insert)");
-  if (!every_given_) a.fail(a.size(), once_allowed_ ? "'insert_every N' or 'insert_every once'" : "'insert_every N'");
+  if (uses_region() && !region_) a.fail(a.size(), "'region ID' (where to insert)");
+  if (uses_region() && !every_given_)
+    a.fail(a.size(), once_allowed_ ? "'insert_every N' or 'insert_every once'" : "'insert_every N'");
   check_own(a);
   if (!sim.domain.box_exists) a.fail(0, "a box first (create_box before fix " + style + ")");
   if (dist_->max_type > sim.atoms.ntypes)
@@ -164,12 +166,13 @@ void FixInsert::parse(const Args& a) {
   if (next_step_ < 0) next_step_ = sim.step + 1;
   rng_.reseed(seed_);
   pos_rng_.reseed(seed_ + 12);  // positions: their own stream (LIGGGHTS: region generator, seed + 12)
-  setup_geometry();
+  if (uses_region()) setup_geometry();
 }
 
 // The general (fix insert) and region keywords; false when a[i] is none of them.
 bool FixInsert::shared_keyword(const Args& a, std::size_t& i) {
   const std::string& k = a[i];
+  if (!uses_region() && (k == "region" || k == "check_dist_from_subdomain_border")) return false;
   auto yes_no = [&](bool& flag) {
     flag = a.yes_no(i + 1, "yes or no");
     i += 2;
@@ -254,11 +257,17 @@ bool FixInsert::shared_keyword(const Args& a, std::size_t& i) {
 
 // The region and fixes this fix points to must still be the ones it was given.
 void FixInsert::init() {
-  if (sim.find_region(region_id_) != region_) args.fail_line("region '" + region_id_ + "' was deleted or redefined");
+  if (uses_region() && sim.find_region(region_id_) != region_)
+    args.fail_line("region '" + region_id_ + "' was deleted or redefined");
   if (sim.find_fix(dist_id_) != dist_) args.fail_line("fix '" + dist_id_ + "' was removed or redefined");
   for (std::size_t t = 0; t < dist_->templates.size(); ++t)
     if (sim.find_fix(dist_->template_ids[t]) != dist_->templates[t])
       args.fail_line("template fix '" + dist_->template_ids[t] + "' was removed or redefined");
+  if (const long delta = sim.step - step_seen_; delta != 0) {  // reset_timestep since
+    if (next_step_ >= 0) next_step_ += delta;
+    shift_steps(delta);
+  }
+  step_seen_ = sim.step;
   if (!announced_) {
     announce();
     if (dim() == 2) sim.print("INFO: 2D insertion of discs at z = 0 is a sable extension (LIGGGHTS 3.8 inserts in 3D only)");
@@ -276,6 +285,8 @@ void FixInsert::post_integrate() {
   next_step_ = following_step();
 }
 
+void FixInsert::post_run() { step_seen_ = sim.step; }
+
 double FixInsert::compute_vector(int i) {
   return i == 1 ? static_cast<double>(ninserted_) : i == 2 ? mass_inserted_ : 0.0;
 }
@@ -292,6 +303,7 @@ bool FixInsert::write_state(std::string& out) const {
   p.put(mass_inserted_);
   p.put(rng_);
   p.put(pos_rng_);
+  p.put<std::int64_t>(sim.step);  // the step the schedule above refers to
   out = p.bytes;
   return true;
 }
@@ -303,6 +315,7 @@ void FixInsert::read_state(const std::string& in) {
   mass_inserted_ = u.get<double>();
   rng_ = u.get<Rng>();
   pos_rng_ = u.get<Rng>();
+  step_seen_ = u.left() ? u.get<std::int64_t>() : sim.step;  // files from before it was stored
 }
 
 // Sampling box, region shape (for all_in) and region volume (area in 2D).
@@ -463,9 +476,23 @@ std::size_t FixInsert::place(const std::vector<FixParticledistributionDiscrete::
   pos.assign(3 * grains.size(), 0.0);
   q_.assign(grains.size(), {1, 0, 0, 0});
   std::size_t placed = 0;
-  if (!overlap_) {
+  if (!overlap_ && !keeps_off_faces_always()) {
     for (; placed < grains.size(); ++placed) {
       random_position(grains[placed].g.radius, &pos[3 * placed]);
+      if (grains[placed].g.clump) q_[placed] = orientation();
+    }
+    return placed;
+  }
+  if (!overlap_) {  // redraw near a face, one shared budget of M tries per grain (LIGGGHTS insert/stream)
+    const long maxtry = static_cast<long>(grains.size()) * maxattempt_;
+    long ntry = 0;
+    for (; placed < grains.size(); ++placed) {
+      const double r = grains[placed].g.radius;
+      do {
+        random_position(r, &pos[3 * placed]);
+        ++ntry;
+      } while (ntry < maxtry && near_box_face(&pos[3 * placed], r));
+      if (ntry >= maxtry) break;  // as LIGGGHTS: the draw that used up the budget is not kept
       if (grains[placed].g.clump) q_[placed] = orientation();
     }
     return placed;
@@ -551,15 +578,12 @@ void FixInsert::insert() {
   std::vector<double> pos;
   const std::size_t placed = place(grains, filled, pos);
   Atoms& at = sim.atoms;
+  const std::size_t first = at.n;
   double mass_now = 0;
   for (std::size_t p = 0; p < placed; ++p) {
     const auto& G = grains[p];
-    double v[3];
-    for (int k = 0; k < 3; ++k) {
-      v[k] = v_[k];
-      if (vstyle_ == 1) v[k] += dv_[k] * (2 * rng_.uniform() - 1);
-      if (vstyle_ == 2) v[k] += dv_[k] * rng_.gaussian();
-    }
+    double v[3], w[3];
+    start_motion(v, w);
     if (G.g.clump) {
       insert_clump(G, &pos[3 * p], q_[p], v);
     } else {
@@ -568,11 +592,12 @@ void FixInsert::insert() {
       at.mask[i] |= groupbit | G.groupbits;
       for (int k = 0; k < 3; ++k) {
         at.v[3 * i + k] = v[k];
-        at.omega[3 * i + k] = w_[k];
+        at.omega[3 * i + k] = w[k];
       }
     }
     mass_now += G.g.mass;
   }
+  inserted(first);
   ninserted_ += static_cast<long>(placed);
   mass_inserted_ += mass_now;
   char buf[320];
@@ -590,6 +615,19 @@ void FixInsert::insert() {
                   style.c_str(), id.c_str(), placed, grains.size(), sim.step, maxattempt_);
     sim.warn(buf);
   }
+}
+
+void FixInsert::draw_velocity(double* v) {
+  for (int k = 0; k < 3; ++k) {
+    v[k] = v_[k];
+    if (vstyle_ == 1) v[k] += dv_[k] * (2 * rng_.uniform() - 1);
+    if (vstyle_ == 2) v[k] += dv_[k] * rng_.gaussian();
+  }
+}
+
+void FixInsert::start_motion(double* v, double* w) {
+  draw_velocity(v);
+  for (int k = 0; k < 3; ++k) w[k] = w_[k];
 }
 
 // A clump's spheres as atoms carrying the body's mass (LIGGGHTS), handed to fix multisphere.

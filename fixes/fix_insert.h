@@ -6,8 +6,10 @@
 // region's sampling box, all_in distance and volume; overlap-free random
 // placement; adding the grains; the INFO lines; f_ID[1] (grains inserted) and
 // f_ID[2] (their mass); and the restart state. A style says how many grains
-// each insertion step wants and when it is done.
+// each insertion step wants and when it is done; a style that inserts
+// elsewhere than in a region (insert/stream) says where instead.
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@ class FixInsert : public Fix {
   FixInsert(Simulation& s, const Args& a);
   void init() override;
   void post_integrate() override;
+  void post_run() override;
   bool turns_grains() const override { return w_[0] != 0 || w_[1] != 0 || w_[2] != 0; }  // `omega`
   double compute_vector(int i) override;
   bool write_state(std::string& out) const override;
@@ -46,6 +49,23 @@ class FixInsert : public Fix {
   virtual long following_step() const { return insert_every_ > 0 ? next_step_ + insert_every_ : -1; }
   // INFO line(s) at the first run.
   virtual void announce();
+  // Styles that insert in a volume of their own (not a `region`) say false and
+  // override random_position(), setting slo_/shi_ (the box of the volume).
+  virtual bool uses_region() const { return true; }
+  // A uniformly random position of a grain of radius r in the insertion volume.
+  virtual void random_position(double r, double* x);
+  // Without overlapcheck too, positions within r of a box face are drawn again
+  // within the try budget (LIGGGHTS insert/stream; the region styles keep the first).
+  virtual bool keeps_off_faces_always() const { return false; }
+  // The velocity and spin a new grain starts with (default: `vel`, `omega`).
+  virtual void start_motion(double* v, double* w);
+  // The `vel` keyword's velocity, its fluctuation drawn from rng_.
+  void draw_velocity(double* v);
+  // The grains just added are atoms first..n-1 (in placement order).
+  virtual void inserted(std::size_t /*first*/) {}
+  // The step counter jumped by delta between runs (reset_timestep): move
+  // whatever the style keeps in steps (next_step_ is moved already).
+  virtual void shift_steps(long /*delta*/) {}
 
   int dim() const;
   double grain_volume(double r) const;
@@ -61,16 +81,21 @@ class FixInsert : public Fix {
   Rng rng_, pos_rng_;
   long ninserted_ = 0;
   double mass_inserted_ = 0;
+  bool overlap_ = true, all_in_ = false;
+  int vstyle_ = 0;  // vel constant, uniform, gaussian
+  double v_[3] = {0, 0, 0}, dv_[3] = {0, 0, 0}, w_[3] = {0, 0, 0};
+  double slo_[3], shi_[3];  // where positions are drawn: region bounds within the box
 
  private:
-  bool overlap_ = true, all_in_ = false, exact_ = true, verbose_ = true, announced_ = false, border_gap_ = true;
-  int vstyle_ = 0;
+  bool exact_ = true, verbose_ = true, announced_ = false, border_gap_ = true;
+  // sim.step when this fix last saw it (construction, end of a run, restart):
+  // a different step at the next init is a reset_timestep, which moves the
+  // insertion schedule with it (LIGGGHTS 3.8).
+  long step_seen_ = -1;
   enum class Orient { Template, Random, Constant } orient_ = Orient::Template;  // LIGGGHTS' default: template
   std::array<double, 4> quat_{1, 0, 0, 0};  // orientation constant
   std::vector<std::array<double, 4>> q_;    // per placed grain: its rotation (clumps)
-  double v_[3] = {0, 0, 0}, dv_[3] = {0, 0, 0}, w_[3] = {0, 0, 0};
   std::string dist_id_, region_id_;
-  double slo_[3], shi_[3];  // where positions are drawn: region bounds within the box
   enum Shape { Unknown, Block, Sphere, Cylinder } shape_ = Unknown;
   int axis_ = 2;
   bool warned_all_in_ = false;
@@ -80,13 +105,41 @@ class FixInsert : public Fix {
   double depth(const double* x) const;
   bool in_region(const double* x, double r);
   bool near_box_face(const double* x, double r) const;
-  void random_position(double r, double* x);
   std::array<double, 4> orientation();
   std::size_t place(const std::vector<FixParticledistributionDiscrete::Grain>& grains, double filled,
                     std::vector<double>& pos);
   void insert();
   void insert_clump(const FixParticledistributionDiscrete::Grain& G, const double* x, const std::array<double, 4>& q,
                     const double* v);
+};
+
+// The styles driven by a rate (insert/rate/region, insert/stream): `nparticles
+// N|INF` or `mass M|INF` (N = int(M / expected grain mass)), `particlerate R`
+// or `massrate MR` (R = MR / expected grain mass). Every insert_every_ steps
+// from the start step they ask for int(n + u) grains, n = R K dt, u uniform in
+// [0, 1), never more than what remains of N, and stop once N are in (LIGGGHTS
+// 3.8). Grains that found no place are not carried over.
+class FixInsertRated : public FixInsert {
+ public:
+  FixInsertRated(Simulation& s, const Args& a) : FixInsert(s, a) {}
+  void init() override;  // the counts follow dt, which the deck may change between runs
+
+ protected:
+  static constexpr long kUnlimited = std::numeric_limits<long>::max();
+  long ninsert_ = 0;  // grains to insert in all (kUnlimited for INF)
+  double mass_total_ = 0, particle_rate_ = 0, mass_rate_ = 0, per_step_ = 0;
+
+  // nparticles, mass, particlerate, massrate at a[i] (advancing i); false if none.
+  bool rate_keyword(const Args& a, std::size_t& i);
+  void check_rate(const Args& a) const;  // exactly one of each pair
+  // At init, before the counts: a style that derives insert_every_ does so here.
+  virtual void schedule() {}
+  long wanted(double& filled) override;
+  long following_step() const override { return ninserted_ >= ninsert_ ? -1 : next_step_ + insert_every_; }
+  void announce() override;
+
+ private:
+  int totals_ = 0, rates_ = 0;
 };
 
 }  // namespace sable

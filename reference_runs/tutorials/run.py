@@ -11,6 +11,7 @@ folder into OUT/<name>/<code>_s<seed>/ and run there as written, except for:
     that the deck does not use already (LIGGGHTS refuses a seed shared with
     a template or distribution);
   - a few lines appended to the deck's end that print the observables
+    (after a `run 0` when the deck's last run is followed by write_restart)
     (OBSERVABLE lines as in compare.py): atoms, centre of mass, highest grain,
     kinetic energy at the end; the run-averaged kinetic energy comes from the
     deck's own thermo table (mean of the `ke` column).
@@ -101,7 +102,10 @@ def prepare(name, code, seed, out):
         if seed is not None:
             text = SEED_RE.sub(lambda m: m.group(1) + str(seed), text)
         if k == len(decks) - 1:
-            text = text.rstrip('\n') + '\n' + OBSERVE
+            # After write_restart (its system init) LIGGGHTS refuses thermo keywords
+            # in variables until a run: `run 0` makes them current (no step; its thermo row repeats the last).
+            refresh = 'run 0\n' if 'write_restart' in text.split('\nrun')[-1] else ''
+            text = text.rstrip('\n') + '\n' + refresh + OBSERVE
         open(os.path.join(run, deck), 'w').write(text)
     return run, decks
 
@@ -112,11 +116,24 @@ def command(code, args, deck):
     return ['stdbuf', '-o0', '-e0', 'liggghts', '-in', deck]
 
 
+def observables(text, ok):
+    """The OBSERVABLE lines, and ke_mean: the mean of the thermo ke column."""
+    obs, series = compare.parse_screen(text)
+    ke = series.get('ke', series.get('kineng'))  # sable's thermo header says ke, LIGGGHTS' KinEng
+    if ke and ok:
+        obs['ke_mean'] = float(np.mean(ke[1]))
+    return obs
+
+
 def run_one(name, code, seed, args):
     """Run the tutorial's decks in order; return the result record (also result.json)."""
     path = os.path.join(args.out, name, f'{code}_s{seed}', 'result.json')
     if os.path.exists(path):
-        return json.load(open(path))
+        rec = json.load(open(path))
+        screen = os.path.join(os.path.dirname(path), 'screen.txt')
+        if rec['ok'] and 'ke_mean' not in rec['observables'] and os.path.exists(screen):
+            rec['observables'].update(observables(open(screen).read(), True))  # runs stored before KinEng was read
+        return rec
     run, decks = prepare(name, code, seed, args.out)
     rec = {'tutorial': name, 'code': code, 'seed': seed, 'ok': True, 'error': None, 'wall_s': 0.0}
     text = ''
@@ -140,10 +157,7 @@ def run_one(name, code, seed, args):
             rec['error'] = (errs[0] if errs else f'{deck}: exit status {rc}: {last}')[:300]
             break
     open(os.path.join(run, 'screen.txt'), 'w').write(text)
-    obs, series = compare.parse_screen(text)
-    if 'ke' in series and rec['ok']:
-        obs['ke_mean'] = float(np.mean(series['ke'][1]))
-    rec['observables'] = obs
+    rec['observables'] = observables(text, rec['ok'])
     print(f'[{name} {code} s{seed}] {"ok" if rec["ok"] else "FAILED: " + rec["error"]} '
           f'({rec["wall_s"]:.0f} s)', flush=True)
     json.dump(rec, open(path, 'w'), indent=1, allow_nan=True)
