@@ -1,10 +1,16 @@
-// dump ID group mesh/vtk N file [MESHID ...]
+// dump ID group mesh/vtk N file [output face] [ID-KEYWORDS ...] [MESHID ...]
 // The current triangles of the listed fix mesh/surface (all when none is
 // listed) as legacy ASCII VTK POLYDATA, one file per snapshot ('*' in the name
 // becomes the step; without '*' each snapshot overwrites the file), with cell
-// data: the mesh's index in the list and its material type. ParaView opens it.
-// The group is ignored.
+// data: the mesh's index in the list and its material type, and per LIGGGHTS'
+// dump identifiers: `id` (the triangle's index in its mesh), `stress` (normal
+// stress f.n/A along the triangle's normal and shear stress |f - (f.n)n|/A of
+// the grains' force f on it in the last force pass), `stresscomponents` (f/A),
+// `vel` (the wall velocity at its centroid), `area`. LIGGGHTS' `output face` is
+// what is written; other outputs and identifiers (wear, owner, aedges, acorners,
+// nneighs) are refused. The group is ignored.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/dump.h"
@@ -18,7 +24,32 @@ namespace sable {
 class DumpMeshVtk : public Dump {
  public:
   DumpMeshVtk(Simulation& s, const Args& a) : Dump(s, a) {
-    for (std::size_t i = 6; i < a.size(); ++i) {
+    std::size_t i = 6;
+    for (; i < a.size() && ids_.empty(); ++i) {
+      const std::string& w = a[i];
+      if (w == "output") {
+        if (a.word(i + 1, "face (the output sable writes)") != "face")
+          a.fail(i + 1, "face (sable writes cell data; interpolate and original are not supported)");
+        ++i;
+      } else if (w == "id") {
+        id_ = true;
+      } else if (w == "stress") {
+        stress_ = true;
+      } else if (w == "stresscomponents") {
+        components_ = true;
+      } else if (w == "vel") {
+        vel_ = true;
+      } else if (w == "area") {
+        area_ = true;
+      } else if (w == "wear" || w == "owner" || w == "aedges" || w == "acorners" || w == "nneighs") {
+        a.fail(i, "a dump identifier sable writes: id, stress, stresscomponents, vel, area ('" + w + "' is not supported)");
+      } else {
+        if (!dynamic_cast<MeshHolder*>(s.find_fix(w)))
+          a.fail(i, "a dump identifier (id, stress, stresscomponents, vel, area) or the ID of a fix mesh/surface");
+        ids_.push_back(w);
+      }
+    }
+    for (; i < a.size(); ++i) {
       if (!dynamic_cast<MeshHolder*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
       ids_.push_back(a[i]);
     }
@@ -58,12 +89,62 @@ class DumpMeshVtk : public Dump {
     std::fprintf(f, "SCALARS type int 1\nLOOKUP_TABLE default\n");
     for (MeshHolder* m : meshes_)
       for (std::size_t t = 0; t < m->mesh().ntri(); ++t) std::fprintf(f, "%d\n", m->wall_type());
+    write_fields(f);
     if (std::fclose(f) != 0) fail("dump mesh/vtk: writing '" + path + "' failed");
   }
 
  private:
   std::vector<std::string> ids_;
   std::vector<MeshHolder*> meshes_;
+  bool id_ = false, stress_ = false, components_ = false, vel_ = false, area_ = false;
+
+  // fn(mesh, triangle) -> the values of one cell, for every triangle of every mesh.
+  template <class Fn>
+  void cells(FILE* f, const char* head, Fn fn) {
+    std::fprintf(f, "%s", head);
+    for (MeshHolder* m : meshes_)
+      for (std::size_t t = 0; t < m->mesh().ntri(); ++t) fn(m->mesh(), static_cast<int>(t));
+  }
+  static Vec3d load(const TriMesh& m, int t) {
+    if (m.tri_force.size() != 3 * m.ntri()) return {0, 0, 0};
+    return {m.tri_force[3 * t], m.tri_force[3 * t + 1], m.tri_force[3 * t + 2]};
+  }
+  void write_fields(FILE* f) {
+    if (id_) cells(f, "SCALARS id int 1\nLOOKUP_TABLE default\n", [&](const TriMesh&, int t) { std::fprintf(f, "%d\n", t); });
+    if (area_)
+      cells(f, "SCALARS area double 1\nLOOKUP_TABLE default\n",
+            [&](const TriMesh& m, int t) { std::fprintf(f, "%.15g\n", m.area(t)); });
+    if (stress_) {
+      auto normal_part = [](const TriMesh& m, int t, const Vec3d& fo) {
+        const Vec3d n = m.dir_to_world({m.normal[3 * t], m.normal[3 * t + 1], m.normal[3 * t + 2]});
+        return fo[0] * n[0] + fo[1] * n[1] + fo[2] * n[2];
+      };
+      cells(f, "SCALARS normal_stress double 1\nLOOKUP_TABLE default\n", [&](const TriMesh& m, int t) {
+        std::fprintf(f, "%.15g\n", normal_part(m, t, load(m, t)) / m.area(t));
+      });
+      cells(f, "SCALARS shear_stress double 1\nLOOKUP_TABLE default\n", [&](const TriMesh& m, int t) {
+        const Vec3d fo = load(m, t);
+        const double fn = normal_part(m, t, fo), f2 = fo[0] * fo[0] + fo[1] * fo[1] + fo[2] * fo[2];
+        std::fprintf(f, "%.15g\n", std::sqrt(std::max(0.0, f2 - fn * fn)) / m.area(t));
+      });
+    }
+    if (components_)
+      cells(f, "VECTORS stress double\n", [&](const TriMesh& m, int t) {
+        const Vec3d fo = load(m, t);
+        const double a = m.area(t);
+        std::fprintf(f, "%.15g %.15g %.15g\n", fo[0] / a, fo[1] / a, fo[2] / a);
+      });
+    if (vel_)
+      cells(f, "VECTORS velocity double\n", [&](const TriMesh& m, int t) {
+        Vec3d c{0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+          const Vec3d p = m.to_world(m.corner(t, k));
+          for (int e = 0; e < 3; ++e) c[e] += p[e] / 3.0;
+        }
+        const Vec3d v = m.velocity(c, t);
+        std::fprintf(f, "%.15g %.15g %.15g\n", v[0], v[1], v[2]);
+      });
+  }
 };
 
 SABLE_DUMP("mesh/vtk", DumpMeshVtk);

@@ -395,9 +395,19 @@ Vec3d TriMesh::velocity(const Vec3d& pw, int t) const {
   return len > 1e-12 * speed ? add(v, mul(along, speed / len)) : v;  // a belt normal to the face: none
 }
 
-void TriMesh::clear_load() { force = torque = {0, 0, 0}; }
+void TriMesh::clear_load() {
+  force = torque = {0, 0, 0};
+  tri_force.assign(3 * ntri(), 0.0);
+}
 
-void TriMesh::add_load(const Vec3d& pw, const Vec3d& f) {
+double TriMesh::area(int t) const {
+  const Vec3d a = corner(t, 0), u = sub(corner(t, 1), a), v = sub(corner(t, 2), a), c = cross(u, v);
+  return 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+void TriMesh::add_load(const Vec3d& pw, const Vec3d& f, int t) {
+  if (tri_force.size() != 3 * ntri()) tri_force.assign(3 * ntri(), 0.0);
+  for (int k = 0; k < 3; ++k) tri_force[3 * static_cast<std::size_t>(t) + k] += f[k];
   force = add(force, f);
   torque = add(torque, cross(sub(pw, to_world(ref_body)), f));
 }

@@ -99,10 +99,12 @@ class TriMesh {
   Vec3d velocity(const Vec3d& pw, int t) const;
   Vec3d ref_body{0, 0, 0};                // reference point for torques, moves with the mesh
 
-  // ---- force and torque of the grains on the mesh (this pass)
+  // ---- force and torque of the grains on the mesh (this pass), and per triangle
   Vec3d force{0, 0, 0}, torque{0, 0, 0};
+  std::vector<double> tri_force;  // 3 per triangle (dump mesh/vtk stress, stresscomponents)
   void clear_load();
-  void add_load(const Vec3d& pw, const Vec3d& f);  // force f acting at world point pw
+  void add_load(const Vec3d& pw, const Vec3d& f, int t);  // force f on triangle t at world point pw
+  double area(int t) const;
 
  private:
   // Uniform bin grid over the body-frame box: triangles per cell (CSR).

@@ -475,7 +475,7 @@ void FixWallGranMesh::end(FixHook) {
       const Hit& h = pm.hits[k];
       const Vec3d on_mesh{0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]};
       for (int d = 0; d < 3; ++d) total[d] += on_mesh[d];
-      if (sim.atoms.mask[h.atom] & mesh_bits) mesh.add_load(h.pmesh, on_mesh);
+      if (sim.atoms.mask[h.atom] & mesh_bits) mesh.add_load(h.pmesh, on_mesh, h.tri);
       kept.tag[r] = h.tag;
       kept.tri[r] = h.tri;
       std::copy_n(pm.hist.begin() + k * hs, hs, kept.hist.begin() + r * hs);

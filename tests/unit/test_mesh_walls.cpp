@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <functional>
 #include <numbers>
 #include <string>
@@ -418,6 +419,61 @@ TEST(MeshWall, DumpMeshVtkWritesPolydata) {
   EXPECT_NE(text.find("POLYGONS 2 8\n3 0 1 2\n3 3 4 5\n"), std::string::npos) << text;
   EXPECT_NE(text.find("CELL_DATA 2\nSCALARS mesh int 1\nLOOKUP_TABLE default\n0\n0\nSCALARS type int 1"), std::string::npos)
       << text;
+}
+
+// dump mesh/vtk's LIGGGHTS identifiers: a grain resting on triangle 0 of a two-triangle
+// floor (h 5 mm, area 2 h^2 each) loads it with its weight: normal stress -m g / A along
+// the +z normal, no shear, stress components (0, 0, -m g / A); triangle 1 carries nothing
+// (0.1 %: residual oscillation, as GrainsOnFloorFeelTheirWeight).
+TEST(MeshWall, DumpMeshVtkStressOfARestingGrain) {
+  Deck d;
+  d(head());
+  d("fix plate all mesh/surface file " + stl("splate.stl", floor2(0.005)) + " type 1");
+  d(R"(create_atoms 1 single 0.003 -0.002 0.001 units box
+fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate
+fix g all gravity 9.81 vector 0 0 -1
+fix i all nve/sphere)");
+  grains(d);
+  const std::string out = ::testing::TempDir() + "mesh_stress_*.vtk";
+  d("dump v all mesh/vtk 20000 " + out + " output face id stress stresscomponents vel area plate\nrun 20000");
+  std::ifstream f(::testing::TempDir() + "mesh_stress_20000.vtk");
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  auto after = [&](const std::string& head, int n) {
+    std::vector<double> v;
+    const auto at = text.find(head);
+    if (at == std::string::npos) return v;
+    std::istringstream is(text.substr(at + head.size()));
+    for (double x; v.size() < static_cast<std::size_t>(n) && is >> x;) v.push_back(x);
+    return v;
+  };
+  const double A = 2 * 0.005 * 0.005, s = kM * 9.81 / A;
+  EXPECT_EQ(after("SCALARS id int 1\nLOOKUP_TABLE default\n", 2), (std::vector<double>{0, 1})) << text;
+  const auto area = after("SCALARS area double 1\nLOOKUP_TABLE default\n", 2);
+  ASSERT_EQ(area.size(), 2u) << text;
+  EXPECT_NEAR(area[0], A, 1e-15);
+  const auto sn = after("SCALARS normal_stress double 1\nLOOKUP_TABLE default\n", 2);
+  ASSERT_EQ(sn.size(), 2u) << text;
+  EXPECT_NEAR(sn[0], -s, 1e-3 * s);
+  EXPECT_EQ(sn[1], 0.0);
+  const auto st = after("SCALARS shear_stress double 1\nLOOKUP_TABLE default\n", 2);
+  ASSERT_EQ(st.size(), 2u) << text;
+  EXPECT_NEAR(st[0], 0.0, 1e-3 * s);
+  const auto sc = after("VECTORS stress double\n", 6);
+  ASSERT_EQ(sc.size(), 6u) << text;
+  EXPECT_NEAR(sc[2], -s, 1e-3 * s);
+  EXPECT_EQ(sc[5], 0.0);
+  const auto v = after("VECTORS velocity double\n", 6);
+  ASSERT_EQ(v.size(), 6u) << text;
+  for (double x : v) EXPECT_EQ(x, 0.0);
+}
+
+// Identifiers sable does not write are refused at the dump line.
+TEST(MeshWall, DumpMeshVtkRefusesWear) {
+  Deck d;
+  d(head());
+  d("fix plate all mesh/surface file " + stl("wplate.stl", floor2(0.005)) + " type 1");
+  EXPECT_NE(sable::test::error_of(d, "dump v all mesh/vtk 10 x.vtk wear plate\n").find("'wear' is not supported"),
+            std::string::npos);
 }
 
 // unfix of a move/mesh stops that motion; the mesh stays where it got to:

@@ -114,3 +114,14 @@ run 0
   EXPECT_EQ(with("soft_particles yes\n", "23.3e3"), "(no error)");
   EXPECT_NE(with("soft_particles yes\n", "0").find("youngsModulus > 0 required"), std::string::npos);
 }
+
+// compute_modify (the hydrogel tutorial's `compute_modify thermo_temp dynamic yes`):
+// checked, and changes nothing (sable has no temperature compute).
+TEST(ComputeModify, AcceptsTemperatureKeywordsAndChecksThem) {
+  Deck d;
+  d("units si\natom_style granular\nregion box block 0 1 0 1 0 1 units box\ncreate_box 1 box\ncompute k all ke\n");
+  EXPECT_EQ(error_of(d, "compute_modify thermo_temp dynamic yes\ncompute_modify k extra/dof 0\n"), "(no error)");
+  EXPECT_NE(error_of(d, "compute_modify nothere dynamic yes\n").find("an existing compute ID"), std::string::npos);
+  EXPECT_NE(error_of(d, "compute_modify thermo_temp dynamic maybe\n").find("yes or no"), std::string::npos);
+  EXPECT_NE(error_of(d, "compute_modify thermo_temp colour red\n").find("dynamic, dynamic/dof, extra"), std::string::npos);
+}
