@@ -343,3 +343,40 @@ write_restart )" + std::string(tmp / "ms.restart"));
   EXPECT_NEAR(std::stod(c[7]), -0.3 - 9.81e-6 * 0, 1e-5);  // one step, no gravity here
   EXPECT_NEAR(std::stod(c[8]), 2.5132741228718345e-4, 1e-18);
 }
+
+// fix rigid group N ... with flags on one body (M = 2), and rigid/small custom: one clump per body, in body order.
+TEST(ExportYade, RigidGroupAndCustomBodiesBecomeOneClumpEach) {
+  const std::string grains = R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 1 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+create_atoms 1 single -0.004 0 0.003 units box
+create_atoms 1 single -0.002 0 0.003 units box
+create_atoms 1 single 0.002 0 0.003 units box
+create_atoms 1 single 0.004 0 0.003 units box
+set group all diameter 0.002 density 2500
+group a id 1 2
+group b id 3 4
+variable body atom 1+(id>2)
+)";
+  TempDir tmp;
+  const std::string g = exported(tmp, grains + "fix rb all rigid group 2 a b force 2 off on off torque 2 off off off\nrun 10\n");
+  ASSERT_EQ(g.find("ERROR"), std::string::npos) << g;
+  EXPECT_NE(g.find("\n ([1, 2, ], "), std::string::npos) << g;
+  EXPECT_NE(g.find("'', "), std::string::npos) << g;          // body 1: every flag on
+  EXPECT_NE(g.find("'xzXYZ', "), std::string::npos) << g;     // body 2: y only
+  const std::string c = exported(tmp, grains + "fix rb all rigid/small custom v_body\nrun 10\n");
+  ASSERT_EQ(c.find("ERROR"), std::string::npos) << c;
+  EXPECT_NE(c.find("\n ([1, 2, ], "), std::string::npos) << c;
+  EXPECT_NE(c.find("\n ([3, 4, ], "), std::string::npos) << c;
+}
