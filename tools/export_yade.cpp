@@ -96,6 +96,12 @@ class YadeExporter {
     long type;
     int material = -1;
     std::string motion;  // a YADE kinematic engine on the facets, from fix move/mesh
+    // One step of that motion, p -> origin + R(axis, angle) (p - origin) + shift:
+    // YADE's forces after step n were found where the mesh was after step n - 1
+    // (its integrator moves the facets after the force pass), so the mesh torque
+    // takes its lever arms there.
+    Vec3d shift{0, 0, 0}, origin{0, 0, 0}, axis{0, 0, 1};
+    double angle = 0;
   };
   std::map<std::string, MeshWall> meshes_;  // by mesh fix ID
   std::vector<std::string> mesh_order_;     // meshes a wall/gran uses, in order: the script's _meshes
@@ -662,6 +668,7 @@ void YadeExporter::fix_move_mesh(const Fix& f) {
     if (speed == 0) return;
     it->second.motion = "TranslationEngine(ids=IDS, translationAxis=Vector3(" + num(a.num(6, "vx") / speed) + ", " +
                         num(a.num(7, "vy") / speed) + ", " + num(a.num(8, "vz") / speed) + "), velocity=" + num(speed) + ")";
+    for (int k = 0; k < 3; ++k) it->second.shift[k] = a.num(6 + k, "v") * sim_.dt;
   } else if (a[5] == "rotate") {
     const double axis = std::sqrt(vec(11));
     // LIGGGHTS: right-handed about the axis, omega = 2 pi / period; YADE's RotationEngine turns the same way.
@@ -669,12 +676,18 @@ void YadeExporter::fix_move_mesh(const Fix& f) {
                         num(a.num(12, "ay") / axis) + ", " + num(a.num(13, "az") / axis) + "), angularVelocity=" +
                         num(2 * std::numbers::pi / a.num(15, "a period")) + ", rotateAroundZero=True, zeroPoint=Vector3(" +
                         num(a.num(7, "ox")) + ", " + num(a.num(8, "oy")) + ", " + num(a.num(9, "oz")) + "))";
+    for (int k = 0; k < 3; ++k) {
+      it->second.origin[k] = a.num(7 + k, "origin");
+      it->second.axis[k] = a.num(11 + k, "axis") / axis;
+    }
+    it->second.angle = 2 * std::numbers::pi / a.num(15, "a period") * sim_.dt;
   } else {
     a.fail(5, "linear or rotate (export-yade)");
   }
 }
 
-// The facets of each mesh a wall uses, in the world frame, and its reference point.
+// The facets of each mesh a wall uses, in the world frame, its reference
+// point, and one step of its motion (for the torque's lever arms).
 void YadeExporter::mesh_facets() {
   py_ << "_meshes = []\n";
   for (const auto& id : mesh_order_) {
@@ -690,7 +703,9 @@ void YadeExporter::mesh_facets() {
       py_ << "),\n";
     }
     const Vec3d r = m.to_world(m.ref_body);
-    py_ << "], " << w.material << ", (" << num(r[0]) << ", " << num(r[1]) << ", " << num(r[2]) << ")))\n";
+    auto v3 = [](const Vec3d& v) { return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")"; };
+    py_ << "], " << w.material << ", " << v3(r) << ", (" << v3(w.origin) << ", " << v3(w.axis) << ", " << num(w.angle)
+        << ", " << v3(w.shift) << ")))\n";
   }
 }
 
@@ -798,17 +813,22 @@ std::string YadeExporter::head() const {
          "    mean = sum(fs, Vector3.Zero) / len(fs)\n"
          "    for i, f in zip(ids, fs):\n"
          "        O.forces.addF(_aid[i], Vector3(*[0 if F[k] is None else mean[k] + F[k] - f[k] for k in range(3)]))\n"
-         "def _facets(tris, mat, ref):  # a mesh's facets, and its reference point in the first facet's frame\n"
+         "def _facets(tris, mat, ref, step):  # a mesh's facets, its reference point in the first facet's frame, one motion step\n"
          "    ids = [O.bodies.append(utils.facet((Vector3(*t[0:3]), Vector3(*t[3:6]), Vector3(*t[6:9])), material=mat)) for t in tris]\n"
          "    b = O.bodies[ids[0]]\n"
-         "    return (ids, b.state.ori.conjugate() * (Vector3(*ref) - b.state.pos))\n"
+         "    return (ids, b.state.ori.conjugate() * (Vector3(*ref) - b.state.pos), step)\n"
+         "def _unstep(q, step):  # where a point of the mesh was when this step's forces were found\n"
+         "    o, axis, angle, shift = (Vector3(*step[0]), Vector3(*step[1]), step[2], Vector3(*step[3]))\n"
+         "    return o + Quaternion(axis, -angle) * (q - shift - o)\n"
          "def _mesh_out(k, j):  # f_ID[j] of a mesh: force, torque about the reference point (moving with it), the point\n"
-         "    ids, off = _meshes[k]\n"
+         "    ids, off, step = _meshes[k]\n"
          "    ref = O.bodies[ids[0]].state.pos + O.bodies[ids[0]].state.ori * off\n"
          "    if j >= 7:\n"
          "        return ref[j - 7]\n"
+         "    ref = _unstep(ref, step)\n"
          "    F = sum((O.forces.f(i, sync=True) for i in ids), Vector3.Zero)\n"
-         "    T = sum((O.forces.t(i, sync=True) + (O.bodies[i].state.pos - ref).cross(O.forces.f(i, sync=True)) for i in ids), Vector3.Zero)\n"
+         "    T = sum((O.forces.t(i, sync=True) + (_unstep(O.bodies[i].state.pos, step) - ref).cross(O.forces.f(i, sync=True))\n"
+         "             for i in ids), Vector3.Zero)\n"
          "    return F[j - 1] if j <= 3 else T[j - 4]\n"
          "def _clump(ids, M, I, v, w, dofs, member_mass):\n"
          "    c = O.bodies[O.bodies.clump([_aid[i] for i in ids])]\n"

@@ -224,7 +224,8 @@ TEST(ExportYade, MeshWallBecomesFacetsWithEngineAndForce) {
                    "0.0050000000000000001, 0.001, ),\n"),
             std::string::npos)
       << s;
-  EXPECT_NE(s.find("], 2, (0.001, 0, 0)))"), std::string::npos) << s;  // material 2: the mesh's own
+  // material 2 (the mesh's own), the reference point, one step of the motion (axis normalised, omega dt)
+  EXPECT_NE(s.find("], 2, (0.001, 0, 0), ((0, 0, 0), (0, 0, 1), 1.2566370614359172e-05, (0, 0, 0))))"), std::string::npos) << s;
   EXPECT_NE(s.find("# mesh plate: R = 2r/3 in YADE"), std::string::npos) << s;
   EXPECT_NE(s.find("RotationEngine(ids=_meshes[0][0], rotationAxis=Vector3(0, 0, 1), angularVelocity=12.566370614359172, "
                    "rotateAroundZero=True, zeroPoint=Vector3(0, 0, 0))"),
