@@ -129,6 +129,7 @@ class YadeExporter {
   bool gravity_seen_ = false;
   void fix_bodies(const Fix& f);
   void fix_aveforce(const Fix& f);
+  std::string force_component(const Args& a, std::size_t i) const;
   void clumps();
   double gravity_[3] = {0, 0, 0};
   bool rotation_ = false;
@@ -538,11 +539,15 @@ void YadeExporter::fixes() {
     } else if (f.style == "freeze") {
       members([&](std::size_t i) { fixed_[i] = 1; });
     } else if (f.style == "addforce") {
-      double F[3];
-      for (int k = 0; k < 3; ++k) F[k] = a.num(3 + k, "a constant force component (export-yade)");
+      if (f.args.size() > 7) f.args.fail(7, "nothing after fx fy fz (export-yade translates no every or region)");
+      std::string F[3];
+      for (int k = 0; k < 3; ++k) {
+        F[k] = force_component(f.args, 4 + k);
+        if (F[k] == "None") F[k] = "0";
+      }
       members([&](std::size_t i) {
-        forces_.push_back("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + num(F[0]) + ", " +
-                          num(F[1]) + ", " + num(F[2]) + "))");
+        forces_.push_back("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + F[0] + ", " + F[1] + ", " +
+                          F[2] + "))");
       });
     } else if (f.style == "move") {
       if (a.word(3, "linear") != "linear") a.fail(3, "linear (export-yade translates fix move linear)");
@@ -590,8 +595,10 @@ void YadeExporter::fix_aveforce(const Fix& f) {
   const Args& a = f.args;  // fix ID group aveforce fx fy fz
   if (a.size() > 7) a.fail(7, "nothing after fx fy fz (export-yade translates no region)");
   std::string F = "(";
-  for (int k = 0; k < 3; ++k)
-    F += (a.word(4 + k, "fx fy fz") == "NULL" ? std::string("None") : num(a.num(4 + k, "a number or NULL (export-yade)"))) + ", ";
+  for (int k = 0; k < 3; ++k) {
+    const std::string c = force_component(a, 4 + k);
+    F += (c == "None" || a[4 + k].rfind("v_", 0) != 0 ? c : "lambda: " + c) + ", ";
+  }
   std::string ids;
   std::set<double> masses;
   for (std::size_t i = 0; i < sim_.atoms.n; ++i)
@@ -603,6 +610,15 @@ void YadeExporter::fix_aveforce(const Fix& f) {
     a.fail_line("export-yade: this fix aveforce comes after fix gravity, so sable averages the grains' weights in "
                 "(LAMMPS' order) and YADE, which adds gravity later, cannot: define fix gravity after fix aveforce");
   forces_.push_back("_aveforce([" + ids + "], " + F + "))");
+}
+
+// A force component of addforce / aveforce: a number, NULL ("None") or v_name
+// (an equal-style variable, as a Python expression evaluated each step).
+std::string YadeExporter::force_component(const Args& a, std::size_t i) const {
+  const std::string& w = a.word(i, "a force component (number, v_name or NULL)");
+  if (w == "NULL") return "None";
+  if (w.rfind("v_", 0) == 0) return "(" + translate(w, a) + ")";
+  return num(a.num(i, "a number, v_name or NULL (export-yade)"));
 }
 
 // fix ID group wall/gran model M tangential history primitive type T xplane|yplane|zplane POS
@@ -812,7 +828,8 @@ std::string YadeExporter::head() const {
          "    fs = [O.forces.f(_aid[i], sync=True) for i in ids]\n"
          "    mean = sum(fs, Vector3.Zero) / len(fs)\n"
          "    for i, f in zip(ids, fs):\n"
-         "        O.forces.addF(_aid[i], Vector3(*[0 if F[k] is None else mean[k] + F[k] - f[k] for k in range(3)]))\n"
+         "        O.forces.addF(_aid[i], Vector3(*[0 if F[k] is None else mean[k] + (F[k]() if callable(F[k]) else F[k]) - f[k]\n"
+         "                                          for k in range(3)]))\n"
          "def _facets(tris, mat, ref, step):  # a mesh's facets, its reference point in the first facet's frame, one motion step\n"
          "    ids = [O.bodies.append(utils.facet((Vector3(*t[0:3]), Vector3(*t[3:6]), Vector3(*t[6:9])), material=mat)) for t in tris]\n"
          "    b = O.bodies[ids[0]]\n"

@@ -178,11 +178,20 @@ TEST(ExportYade, RigidMemberIntegratedTwiceIsRefused) {
   EXPECT_NE(e.find("atom 1 is in a rigid body and integrated on its own too"), std::string::npos) << e;
 }
 
-TEST(ExportYade, AveforceWithAVariableIsRefused) {
+// Equal-style variables in addforce / aveforce become Python evaluated each step;
+// what YADE cannot take (an atom-style variable, every, region) is refused.
+TEST(ExportYade, ForceVariablesAreEvaluatedEachStep) {
   TempDir tmp;
-  const std::string e = exported(tmp, kHead + "variable p equal -0.001\nfix push all aveforce 0 0 v_p\nrun 10\n");
-  EXPECT_NE(e.find("deck.in:20: 'v_p' in 'fix push all aveforce 0 0 v_p'"), std::string::npos) << e;
-  EXPECT_NE(e.find("a number or NULL (export-yade)"), std::string::npos) << e;
+  const std::string s = exported(tmp, kHead + "variable p equal -0.001*2\nfix push all aveforce 0 NULL v_p\n"
+                                              "fix add all addforce v_p 0 0.5\nrun 10\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_aveforce([1, 2, ], (0, None, lambda: ((-0.001*2)), ))"), std::string::npos) << s;
+  EXPECT_NE(s.find("O.forces.addF(_bid(2), Vector3(((-0.001*2)), 0, 0.5))"), std::string::npos) << s;
+  const std::string e = exported(tmp, kHead + "variable pa atom -0.001*z\nfix push all addforce 0 0 v_pa\nrun 10\n");
+  EXPECT_NE(e.find("deck.in:20"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot translate 'v_pa'"), std::string::npos) << e;
+  const std::string r = exported(tmp, kHead + "fix push all addforce 0 0 -1 every 2\nrun 10\n");
+  EXPECT_NE(r.find("deck.in:19: 'every' in 'fix push all addforce 0 0 -1 every 2'"), std::string::npos) << r;
 }
 
 // sable averages the weights in when gravity comes first; YADE adds gravity after the average.
