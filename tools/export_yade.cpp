@@ -109,6 +109,7 @@ class YadeExporter {
   void fix_wall_mesh(const Args& a, std::size_t k);
   void fix_move_mesh(const Fix& f);
   void mesh_facets();
+  void periodic_fit(const MeshWall& w, std::size_t t) const;
   void walls();
   void bodies();
   void fixes();
@@ -332,8 +333,9 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
     if (const auto b = clumps_of_.find(name.substr(2)); b != clumps_of_.end() && index.find("][") != std::string::npos) {
       const long i = std::stol(index), j = std::stol(index.substr(index.find("][") + 2));
       if (i >= 1 && i <= static_cast<long>(b->second.second) && j >= 1 && j <= 6)  // body i's centre and velocity
-        return "O.bodies[_cid[" + std::to_string(b->second.first + i - 1) + "]].state." + (j <= 3 ? "pos[" : "vel[") +
-               std::to_string((j - 1) % 3) + "]";
+        return j <= 3 ? "_wrapped(O.bodies[_cid[" + std::to_string(b->second.first + i - 1) + "]].state.pos[" +
+                            std::to_string(j - 1) + "], " + std::to_string(j - 1) + ")"
+                      : "O.bodies[_cid[" + std::to_string(b->second.first + i - 1) + "]].state.vel[" + std::to_string(j - 4) + "]";
     }
   }
   at.fail_line("export-yade: cannot translate '" + name + (index.empty() ? "" : "[" + index + "]") +
@@ -702,6 +704,23 @@ void YadeExporter::fix_move_mesh(const Fix& f) {
   }
 }
 
+// YADE's periodic collider needs every body shorter than 0.99 of the cell.
+void YadeExporter::periodic_fit(const MeshWall& w, std::size_t t) const {
+  const Domain& d = sim_.domain;
+  for (int k = 0; k < 3; ++k) {
+    if (!d.wraps(k)) continue;
+    double lo = 1e300, hi = -1e300;
+    for (int c = 0; c < 3; ++c) {
+      const double x = w.mesh->to_world(w.mesh->corner(static_cast<int>(t), c))[k];
+      lo = std::min(lo, x), hi = std::max(hi, x);
+    }
+    if (hi - lo >= 0.99 * d.length(k))
+      w.fix->args.fail_line("export-yade: triangle " + std::to_string(t + 1) + " of this mesh spans " +
+                            std::string(1, "xyz"[k]) + " across 0.99 of the periodic box or more, which YADE's "
+                            "periodic collider does not take (cut the mesh into shorter triangles)");
+  }
+}
+
 // The facets of each mesh a wall uses, in the world frame, its reference
 // point, and one step of its motion (for the torque's lever arms).
 void YadeExporter::mesh_facets() {
@@ -711,6 +730,7 @@ void YadeExporter::mesh_facets() {
     const TriMesh& m = *w.mesh;
     py_ << "_meshes.append(_facets([  # fix " << id << ": " << m.ntri() << " triangles\n";
     for (std::size_t t = 0; t < m.ntri(); ++t) {
+      periodic_fit(w, t);
       py_ << " (";
       for (int k = 0; k < 3; ++k) {
         const Vec3d p = m.to_world(m.corner(static_cast<int>(t), k));
@@ -726,6 +746,10 @@ void YadeExporter::mesh_facets() {
 }
 
 void YadeExporter::walls() {
+  const Domain& d = sim_.domain;
+  if (!walls_.empty() && (d.wraps(0) || d.wraps(1) || d.wraps(2)))
+    walls_[0].fix->args.fail_line("export-yade: a primitive wall in a periodic box is not translated (YADE's periodic "
+                                  "collider needs every body shorter than the cell, and utils.wall is infinite)");
   py_ << "_walls = []\n";
   for (const Wall& w : walls_)
     py_ << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis
@@ -749,7 +773,9 @@ void YadeExporter::bodies() {
     for (char c : std::string("xyzXYZ"))
       if (dofs.find(c) != std::string::npos && !in_body_[i]) uniq += c;
     py_ << " (" << at.id[i] << ", " << at.type[i];
-    for (int k = 0; k < 3; ++k) py_ << ", " << num(at.x[3 * i + k]);
+    double u[3];  // unwrapped: a rigid body across a periodic boundary stays whole (YADE wraps for contacts)
+    sim_.domain.unmap(&at.x[3 * i], &at.image[3 * i], u);
+    for (int k = 0; k < 3; ++k) py_ << ", " << num(u[k]);
     py_ << ", " << num(at.radius[i]) << ", " << num(at.rmass[i]) << ", " << num(at.inertia(i));
     for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] ? 0.0 : at.v[3 * i + k]);
     for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
@@ -819,9 +845,10 @@ std::string YadeExporter::head() const {
          "def _b(i):\n    return O.bodies[_aid[i]]\n"
          "def _fmt(v):\n    return '%.15g' % v\n"
          "_wrap = [None, None, None]\n"
-         "def _pos(i, k):  # wrapped into sable's box on a periodic axis\n"
-         "    p = _b(i).state.pos[k]\n"
+         "def _wrapped(p, k):  # wrapped into sable's box on a periodic axis\n"
          "    return p if _wrap[k] is None else _wrap[k][0] + (p - _wrap[k][0]) % _wrap[k][1]\n"
+         "def _pos(i, k):\n"
+         "    return _wrapped(_b(i).state.pos[k], k)\n"
          "def _ke():  # sable's: every grain's own mass\n"
          "    return sum(0.5 * _m[i] * _b(i).state.vel.squaredNorm() for i in _aid)\n"
          "def _aveforce(ids, F):  # fix aveforce: each grain's force set to the group's mean plus F (None: left)\n"

@@ -169,7 +169,7 @@ print "OBSERVABLE zl ${zl}"
   for (int k = 11; k <= 13; ++k) EXPECT_NEAR(std::stod(c[k]), 0.0, 1e-12) << k;
   EXPECT_NEAR(std::stod(c[14]), 2 * m, 1e-15 * m);  // contacts see the body's mass
   EXPECT_NE(s.find("_aveforce([1, 2, ], (None, None, -0.001, ))"), std::string::npos) << s;
-  EXPECT_NE(s.find("_fmt((O.bodies[_cid[0]].state.pos[2]))"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt((_wrapped(O.bodies[_cid[0]].state.pos[2], 2)))"), std::string::npos) << s;
 }
 
 TEST(ExportYade, RigidMemberIntegratedTwiceIsRefused) {
@@ -389,4 +389,20 @@ variable body atom 1+(id>2)
   ASSERT_EQ(c.find("ERROR"), std::string::npos) << c;
   EXPECT_NE(c.find("\n ([1, 2, ], "), std::string::npos) << c;
   EXPECT_NE(c.find("\n ([3, 4, ], "), std::string::npos) << c;
+}
+
+// YADE's periodic collider takes no body as long as the cell: walls, and mesh triangles spanning it, are refused.
+TEST(ExportYade, WallsAndCellLongTrianglesInAPeriodicBoxAreRefused) {
+  TempDir tmp;
+  std::string deck = kHead;
+  deck.replace(deck.find("boundary f f f"), 14, "boundary p f f");
+  const std::string w =
+      exported(tmp, deck + "fix floor all wall/gran model hertz tangential history primitive type 2 zplane -0.005\nrun 10\n");
+  EXPECT_NE(w.find("deck.in:19"), std::string::npos) << w;
+  EXPECT_NE(w.find("a primitive wall in a periodic box is not translated"), std::string::npos) << w;
+  std::string mdeck = mesh_deck(tmp, "scale 1.0", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\nrun 10\n");
+  mdeck.replace(mdeck.find("boundary f f f"), 14, "boundary p f f");
+  const std::string m = exported(tmp, mdeck);
+  EXPECT_NE(m.find("deck.in:19"), std::string::npos) << m;
+  EXPECT_NE(m.find("triangle 1 of this mesh spans x across 0.99 of the periodic box"), std::string::npos) << m;
 }
