@@ -127,9 +127,9 @@ class YadeExporter {
   std::vector<yade::Clump> clumps_;           // rigid bodies (fix rigid, rigid/small, multisphere)
   std::map<std::string, std::pair<std::size_t, std::size_t>> clumps_of_;  // fix ID -> first index in clumps_, count
   std::vector<char> in_body_;                 // per atom index: a member of a clump
-  bool gravity_seen_ = false;
   void fix_bodies(const Fix& f);
-  void fix_aveforce(const Fix& f);
+  void fix_set_forces(const Fix& f);
+  std::set<std::string> set_force_fixes_;  // aveforce / setforce fix IDs: f_ID[1..3] from the script's _fixf
   std::string force_component(const Args& a, std::size_t i) const;
   void clumps();
   double gravity_[3] = {0, 0, 0};
@@ -327,6 +327,8 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
     const long k = index.empty() ? 0 : std::stol(index);
     if (it != wall_of_fix_.end() && k >= 1 && k <= 3)
       return "O.forces.f(_walls[" + std::to_string(it->second) + "])[" + std::to_string(k - 1) + "]";
+    if (set_force_fixes_.count(name.substr(2)) && k >= 1 && k <= 3)  // the group's total force before
+      return "_fixf.get(" + quoted(name.substr(2)) + ", Vector3.Zero)[" + std::to_string(k - 1) + "]";
     if (const auto m = std::find(mesh_order_.begin(), mesh_order_.end(), name.substr(2));
         m != mesh_order_.end() && k >= 1 && k <= 9)  // force, torque about the reference point, the point
       return "_mesh_out(" + std::to_string(m - mesh_order_.begin()) + ", " + std::to_string(k) + ")";
@@ -341,7 +343,7 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
   at.fail_line("export-yade: cannot translate '" + name + (index.empty() ? "" : "[" + index + "]") +
                "' to YADE (atom values x y z vx vy vz omegax omegay omegaz fx fy fz mass radius [id], "
                "step, time, dt, atoms, ke, v_ of equal-style variables, f_ of a primitive wall's force [1-3], f_ID[1-9] of a mesh, "
-               "f_ID[i][1-6] of a rigid body's centre and velocity)");
+               "f_ID[i][1-6] of a rigid body's centre and velocity, f_ID[1-3] of aveforce/setforce)");
 }
 
 // ------------------------------------------------------------------ the scene
@@ -526,14 +528,13 @@ void YadeExporter::fixes() {
         norm += d[k] * d[k];
       }
       for (int k = 0; k < 3; ++k) gravity_[k] += g * d[k] / std::sqrt(norm);
-      gravity_seen_ = true;
       if (f.groupbit != 1u) a.fail(1, "all (YADE's gravity acts on every body)");
     } else if (f.style == "wall/gran") {
       fix_wall(f);
     } else if (f.style == "rigid" || f.style == "rigid/small" || f.style == "multisphere") {
       fix_bodies(f);
-    } else if (f.style == "aveforce") {
-      fix_aveforce(f);
+    } else if (f.style == "aveforce" || f.style == "setforce") {
+      fix_set_forces(f);
     } else if (f.style == "mesh/surface" || f.style == "mesh/surface/stress") {
       fix_mesh(f);
     } else if (f.style == "move/mesh") {
@@ -588,13 +589,14 @@ void YadeExporter::fix_bodies(const Fix& f) {
     if (f.body_of(i) >= 0) in_body_[i] = 1;
 }
 
-// fix aveforce fx fy fz (numbers or NULL): each step every grain's force becomes
-// the group's average plus the value (LAMMPS), averaged over YADE's contact
-// and applied forces, before its integrator adds gravity: sable averages
-// gravity in too when fix gravity comes first, which matters only when the
-// group's grains differ in mass (then refused).
-void YadeExporter::fix_aveforce(const Fix& f) {
-  const Args& a = f.args;  // fix ID group aveforce fx fy fz
+// fix aveforce / setforce fx fy fz (numbers, NULL or v_name), as LAMMPS: each
+// step every grain's force becomes the group's mean plus the value (aveforce)
+// or the value (setforce); f_ID[1..3] is the group's total force before. YADE's
+// integrator adds gravity after the force pass, so the weight that sable's fix
+// gravity put in before this fix (gravity defined earlier) is counted in by
+// hand and taken back out of what is set.
+void YadeExporter::fix_set_forces(const Fix& f) {
+  const Args& a = f.args;  // fix ID group aveforce|setforce fx fy fz
   if (a.size() > 7) a.fail(7, "nothing after fx fy fz (export-yade translates no region)");
   std::string F = "(";
   for (int k = 0; k < 3; ++k) {
@@ -602,16 +604,12 @@ void YadeExporter::fix_aveforce(const Fix& f) {
     F += (c == "None" || a[4 + k].rfind("v_", 0) != 0 ? c : "lambda: " + c) + ", ";
   }
   std::string ids;
-  std::set<double> masses;
   for (std::size_t i = 0; i < sim_.atoms.n; ++i)
-    if (sim_.atoms.mask[i] & f.groupbit) {
-      ids += std::to_string(sim_.atoms.id[i]) + ", ";
-      masses.insert(sim_.atoms.rmass[i]);
-    }
-  if (gravity_seen_ && masses.size() > 1)
-    a.fail_line("export-yade: this fix aveforce comes after fix gravity, so sable averages the grains' weights in "
-                "(LAMMPS' order) and YADE, which adds gravity later, cannot: define fix gravity after fix aveforce");
-  forces_.push_back("_aveforce([" + ids + "], " + F + "))");
+    if (sim_.atoms.mask[i] & f.groupbit) ids += std::to_string(sim_.atoms.id[i]) + ", ";
+  const std::string g = "Vector3(" + num(gravity_[0]) + ", " + num(gravity_[1]) + ", " + num(gravity_[2]) + ")";
+  forces_.push_back("_set_forces(" + quoted(f.id) + ", [" + ids + "], " + F + "), " + g + ", " +
+                    (f.style == "aveforce" ? "True" : "False") + ")");
+  set_force_fixes_.insert(f.id);
 }
 
 // A force component of addforce / aveforce: a number, NULL ("None") or v_name
@@ -851,11 +849,14 @@ std::string YadeExporter::head() const {
          "    return _wrapped(_b(i).state.pos[k], k)\n"
          "def _ke():  # sable's: every grain's own mass\n"
          "    return sum(0.5 * _m[i] * _b(i).state.vel.squaredNorm() for i in _aid)\n"
-         "def _aveforce(ids, F):  # fix aveforce: each grain's force set to the group's mean plus F (None: left)\n"
-         "    fs = [O.forces.f(_aid[i], sync=True) for i in ids]\n"
-         "    mean = sum(fs, Vector3.Zero) / len(fs)\n"
+         "_fixf = {}\n"
+         "def _set_forces(name, ids, F, g, ave):  # fix aveforce (ave) / setforce; g: the weight sable counts in already\n"
+         "    fs = [O.forces.f(_aid[i], sync=True) + g * _m[i] for i in ids]\n"
+         "    total = sum(fs, Vector3.Zero)\n"
+         "    base = total / len(fs) if ave else Vector3.Zero\n"
+         "    _fixf[name] = total\n"
          "    for i, f in zip(ids, fs):\n"
-         "        O.forces.addF(_aid[i], Vector3(*[0 if F[k] is None else mean[k] + (F[k]() if callable(F[k]) else F[k]) - f[k]\n"
+         "        O.forces.addF(_aid[i], Vector3(*[0 if F[k] is None else base[k] + (F[k]() if callable(F[k]) else F[k]) - f[k]\n"
          "                                          for k in range(3)]))\n"
          "def _facets(tris, mat, ref, step):  # a mesh's facets, its reference point in the first facet's frame, one motion step\n"
          "    ids = [O.bodies.append(utils.facet((Vector3(*t[0:3]), Vector3(*t[3:6]), Vector3(*t[6:9])), material=mat)) for t in tris]\n"

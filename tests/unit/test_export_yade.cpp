@@ -168,7 +168,7 @@ print "OBSERVABLE zl ${zl}"
   EXPECT_NEAR(std::stod(c[10]), -0.1, 1e-15);
   for (int k = 11; k <= 13; ++k) EXPECT_NEAR(std::stod(c[k]), 0.0, 1e-12) << k;
   EXPECT_NEAR(std::stod(c[14]), 2 * m, 1e-15 * m);  // contacts see the body's mass
-  EXPECT_NE(s.find("_aveforce([1, 2, ], (None, None, -0.001, ))"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('push', [1, 2, ], (None, None, -0.001, ), Vector3(0, 0, 0), True)"), std::string::npos) << s;
   EXPECT_NE(s.find("_fmt((_wrapped(O.bodies[_cid[0]].state.pos[2], 2)))"), std::string::npos) << s;
 }
 
@@ -185,7 +185,7 @@ TEST(ExportYade, ForceVariablesAreEvaluatedEachStep) {
   const std::string s = exported(tmp, kHead + "variable p equal -0.001*2\nfix push all aveforce 0 NULL v_p\n"
                                               "fix add all addforce v_p 0 0.5\nrun 10\n");
   ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
-  EXPECT_NE(s.find("_aveforce([1, 2, ], (0, None, lambda: ((-0.001*2)), ))"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('push', [1, 2, ], (0, None, lambda: ((-0.001*2)), ), Vector3(0, 0, 0), True)"), std::string::npos) << s;
   EXPECT_NE(s.find("O.forces.addF(_bid(2), Vector3(((-0.001*2)), 0, 0.5))"), std::string::npos) << s;
   const std::string e = exported(tmp, kHead + "variable pa atom -0.001*z\nfix push all addforce 0 0 v_pa\nrun 10\n");
   EXPECT_NE(e.find("deck.in:20"), std::string::npos) << e;
@@ -194,13 +194,18 @@ TEST(ExportYade, ForceVariablesAreEvaluatedEachStep) {
   EXPECT_NE(r.find("deck.in:19: 'every' in 'fix push all addforce 0 0 -1 every 2'"), std::string::npos) << r;
 }
 
-// sable averages the weights in when gravity comes first; YADE adds gravity after the average.
-TEST(ExportYade, AveforceAfterGravityOnUnequalMassesIsRefused) {
+// sable's fix gravity defined before aveforce / setforce puts the weight in
+// before the fix acts; YADE adds gravity after the force pass, so the script
+// counts it in (g) and takes it back out; f_ID[1..3] is the total before.
+TEST(ExportYade, SetforceAndAveforceAfterGravityCountTheWeightIn) {
   TempDir tmp;
-  const std::string e = exported(tmp, kHead + "set atom 2 diameter 0.001\nfix g all gravity 9.81 vector 0 0 -1\n"
-                                              "fix push all aveforce 0 0 -0.001\nrun 10\n");
-  EXPECT_NE(e.find("deck.in:21"), std::string::npos) << e;
-  EXPECT_NE(e.find("define fix gravity after fix aveforce"), std::string::npos) << e;
+  const std::string s = exported(tmp, kHead + "set atom 2 diameter 0.001\nfix g all gravity 9.81 vector 0 0 -1\n"
+                                              "fix push all aveforce 0 0 -0.001\nfix guide all setforce NULL 0.0 NULL\n"
+                                              "variable fg equal f_guide[3]\nrun 10\nprint \"OBSERVABLE fg ${fg}\"\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('push', [1, 2, ], (0, 0, -0.001, ), Vector3(0, 0, -9.8100000000000005), True)"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('guide', [1, 2, ], (None, 0, None, ), Vector3(0, 0, -9.8100000000000005), False)"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt((_fixf.get('guide', Vector3.Zero)[2]))"), std::string::npos) << s;
 }
 
 namespace {
