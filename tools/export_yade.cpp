@@ -1,6 +1,8 @@
 // sable --export-yade (tools/export_yade.h). The translator sits beside the
-// engine: it reads the styles' deck words (Fix::args, Pair::args), never
-// their internals, and maps each supported style onto YADE's own classes.
+// engine: it reads the styles' deck words (Fix::args, Pair::args) and, where
+// the words are not the state, public interfaces (a mesh's loaded triangles
+// through MeshHolder, rigid bodies through Fix::body_of and FixMultisphere),
+// and maps each supported style onto YADE's own classes.
 #include "tools/export_yade.h"
 
 #include <algorithm>
