@@ -1,6 +1,8 @@
 // sable --export-yade (tools/export_yade.h). The translator sits beside the
-// engine: it reads the styles' deck words (Fix::args, Pair::args), never
-// their internals, and maps each supported style onto YADE's own classes.
+// engine: it reads the styles' deck words (Fix::args, Pair::args) and, where
+// the words are not the state, public interfaces (a mesh's loaded triangles
+// through MeshHolder, rigid bodies through Fix::body_of and FixMultisphere),
+// and maps each supported style onto YADE's own classes.
 #include "tools/export_yade.h"
 
 #include <algorithm>
@@ -20,8 +22,10 @@
 #include "core/error.h"
 #include "core/global_property.h"
 #include "core/input.h"
+#include "core/mesh.h"
 #include "core/simulation.h"
 #include "core/variable.h"
+#include "tools/yade_clumps.h"
 
 namespace sable {
 namespace {
@@ -83,8 +87,31 @@ class YadeExporter {
   std::string substitute(const std::string& line, const Args& at, std::vector<std::string>& exprs);
   void scene(const Args& run);
   void pair_model();
+  void periodic_cell();
   void materials();
   void wall_materials(const Args& pair);
+  int hertz_surface_material(const Fix& f, long type, double s, const std::string& note, const Args& pair, int& next_id);
+  // Mesh walls: fix mesh/surface[/stress] used by a fix wall/gran mesh, as YADE facets.
+  struct MeshWall {
+    const Fix* fix;
+    const TriMesh* mesh;
+    long type;
+    int material = -1;
+    std::string motion;  // a YADE kinematic engine on the facets, from fix move/mesh
+    // One step of that motion, p -> origin + R(axis, angle) (p - origin) + shift:
+    // YADE's forces after step n were found where the mesh was after step n - 1
+    // (its integrator moves the facets after the force pass), so the mesh torque
+    // takes its lever arms there.
+    Vec3d shift{0, 0, 0}, origin{0, 0, 0}, axis{0, 0, 1};
+    double angle = 0;
+  };
+  std::map<std::string, MeshWall> meshes_;  // by mesh fix ID
+  std::vector<std::string> mesh_order_;     // meshes a wall/gran uses, in order: the script's _meshes
+  void fix_mesh(const Fix& f);
+  void fix_wall_mesh(const Args& a, std::size_t k);
+  void fix_move_mesh(const Fix& f);
+  void mesh_facets();
+  void periodic_fit(const MeshWall& w, std::size_t t) const;
   void walls();
   void bodies();
   void fixes();
@@ -99,6 +126,14 @@ class YadeExporter {
   std::vector<char> fixed_;
   std::vector<std::string> blocked_;
   std::vector<std::string> forces_, moves_;  // python lines run each step / at set-up
+  std::vector<yade::Clump> clumps_;           // rigid bodies (fix rigid, rigid/small, multisphere)
+  std::map<std::string, std::pair<std::size_t, std::size_t>> clumps_of_;  // fix ID -> first index in clumps_, count
+  std::vector<char> in_body_;                 // per atom index: a member of a clump
+  void fix_bodies(const Fix& f);
+  void fix_set_forces(const Fix& f);
+  std::set<std::string> set_force_fixes_;  // aveforce / setforce fix IDs: f_ID[1..3] from the script's _fixf
+  std::string force_component(const Args& a, std::size_t i) const;
+  void clumps();
   double gravity_[3] = {0, 0, 0};
   bool rotation_ = false;
 };
@@ -234,6 +269,12 @@ std::string YadeExporter::translate(const std::string& e, const Args& at, int de
         if (close == std::string::npos) at.fail_line("export-yade: no ']' in '" + e + "'");
         index = e.substr(k + 1, close - k - 1);
         k = close + 1;
+        if (k < e.size() && e[k] == '[') {  // f_ID[i][j]: index "i][j"
+          const std::size_t c2 = e.find(']', k);
+          if (c2 == std::string::npos) at.fail_line("export-yade: no ']' in '" + e + "'");
+          index += "][" + e.substr(k + 1, c2 - k - 1);
+          k = c2 + 1;
+        }
       }
       out += term(name, index, at, depth);
       i = k;
@@ -255,9 +296,9 @@ std::string YadeExporter::translate(const std::string& e, const Args& at, int de
 
 std::string YadeExporter::term(const std::string& name, const std::string& index, const Args& at, int depth) const {
   static const std::map<std::string, std::string> per_atom{
-      {"x", "state.pos[0]"},    {"y", "state.pos[1]"},    {"z", "state.pos[2]"},    {"vx", "state.vel[0]"},
+      {"vx", "state.vel[0]"},
       {"vy", "state.vel[1]"},   {"vz", "state.vel[2]"},   {"omegax", "state.angVel[0]"},
-      {"omegay", "state.angVel[1]"}, {"omegaz", "state.angVel[2]"}, {"mass", "state.mass"},
+      {"omegay", "state.angVel[1]"}, {"omegaz", "state.angVel[2]"},
       {"radius", "shape.radius"}};
   static const std::map<std::string, std::string> funcs{
       {"sqrt", "math.sqrt"}, {"exp", "math.exp"}, {"ln", "math.log"}, {"log", "math.log10"}, {"abs", "abs"},
@@ -266,6 +307,9 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
       {"ceil", "math.ceil"}, {"min", "min"},       {"max", "max"},      {"PI", "math.pi"}};
   auto atom = [&] { return "_b(" + std::to_string(std::stol(index)) + ")."; };
   if (!index.empty() && per_atom.count(name)) return atom() + per_atom.at(name);
+  if (!index.empty() && (name == "x" || name == "y" || name == "z"))
+    return "_pos(" + std::to_string(std::stol(index)) + ", " + std::to_string(name[0] - 'x') + ")";
+  if (!index.empty() && name == "mass") return "_m[" + std::to_string(std::stol(index)) + "]";  // the grain's own
   if (!index.empty() && (name == "fx" || name == "fy" || name == "fz"))
     return "O.forces.f(_bid(" + std::to_string(std::stol(index)) + "))[" + std::to_string(name[1] - 'x') + "]";
   if (index.empty() && funcs.count(name)) return funcs.at(name);
@@ -285,10 +329,23 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
     const long k = index.empty() ? 0 : std::stol(index);
     if (it != wall_of_fix_.end() && k >= 1 && k <= 3)
       return "O.forces.f(_walls[" + std::to_string(it->second) + "])[" + std::to_string(k - 1) + "]";
+    if (set_force_fixes_.count(name.substr(2)) && k >= 1 && k <= 3)  // the group's total force before
+      return "_fixf.get(" + quoted(name.substr(2)) + ", Vector3.Zero)[" + std::to_string(k - 1) + "]";
+    if (const auto m = std::find(mesh_order_.begin(), mesh_order_.end(), name.substr(2));
+        m != mesh_order_.end() && k >= 1 && k <= 9)  // force, torque about the reference point, the point
+      return "_mesh_out(" + std::to_string(m - mesh_order_.begin()) + ", " + std::to_string(k) + ")";
+    if (const auto b = clumps_of_.find(name.substr(2)); b != clumps_of_.end() && index.find("][") != std::string::npos) {
+      const long i = std::stol(index), j = std::stol(index.substr(index.find("][") + 2));
+      if (i >= 1 && i <= static_cast<long>(b->second.second) && j >= 1 && j <= 6)  // body i's centre and velocity
+        return j <= 3 ? "_wrapped(O.bodies[_cid[" + std::to_string(b->second.first + i - 1) + "]].state.pos[" +
+                            std::to_string(j - 1) + "], " + std::to_string(j - 1) + ")"
+                      : "O.bodies[_cid[" + std::to_string(b->second.first + i - 1) + "]].state.vel[" + std::to_string(j - 4) + "]";
+    }
   }
   at.fail_line("export-yade: cannot translate '" + name + (index.empty() ? "" : "[" + index + "]") +
                "' to YADE (atom values x y z vx vy vz omegax omegay omegaz fx fy fz mass radius [id], "
-               "step, time, dt, atoms, ke, v_ of equal-style variables, f_ of a primitive wall's force [1-3])");
+               "step, time, dt, atoms, ke, v_ of equal-style variables, f_ of a primitive wall's force [1-3], f_ID[1-9] of a mesh, "
+               "f_ID[i][1-6] of a rigid body's centre and velocity, f_ID[1-3] of aveforce/setforce)");
 }
 
 // ------------------------------------------------------------------ the scene
@@ -309,15 +366,29 @@ double YadeExporter::pair_value(const std::string& prop, int i, int j, const Arg
 
 void YadeExporter::scene(const Args& run) {
   if (!sim_.pair) run.fail_line("export-yade needs a pair_style before the first run");
-  if (sim_.domain.wraps(0) || sim_.domain.wraps(1) || sim_.domain.wraps(2))
-    run.fail_line("export-yade: periodic boundaries are not translated (only f f f)");
   for (const auto& d : sim_.dumps) d->args.fail_line("export-yade: dumps are not translated to YADE");
   pair_model();
+  periodic_cell();
   fixes();
   materials();
   walls();
+  mesh_facets();
   bodies();
   engines();
+}
+
+// boundary p on any axis: YADE's cell is periodic on all three, so a fixed axis
+// gets a cell 100 box lengths long (nothing meets through it). Positions are
+// reported wrapped into sable's box on the periodic axes (YADE keeps them unwrapped).
+void YadeExporter::periodic_cell() {
+  const Domain& d = sim_.domain;
+  if (!d.wraps(0) && !d.wraps(1) && !d.wraps(2)) return;
+  py_ << "O.periodic = True\nO.cell.hSize = Matrix3(";
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j) py_ << (j == k ? num(d.wraps(k) ? d.length(k) : 100 * d.length(k)) : "0") << (k == 2 && j == 2 ? ")\n" : ", ");
+  py_ << "_wrap = [";
+  for (int k = 0; k < 3; ++k)
+    py_ << (d.wraps(k) ? "(" + num(d.lo[k]) + ", " + num(d.length(k)) + ")" : "None") << (k < 2 ? ", " : "]\n");
 }
 
 // pair_style gran model hertz|linear/kneib tangential history, nothing else.
@@ -366,12 +437,14 @@ void YadeExporter::materials() {
     }
   }
   if (model_ == "hertz") wall_materials(a);
-  for (const Wall& w : walls_)
-    if (w.material >= 0) {
-      const int t = grain_type_;
-      fric << "(" << t - 1 << ", " << w.material << ", math.atan(" << num(pair_value("coefficientFriction", t, w.type, a)) << ")), ";
-      bn << "(" << t - 1 << ", " << w.material << ", " << num(std::sqrt(5.0 / 6.0) * beta(t, w.type)) << "), ";
-    }
+  auto surface = [&](int material, long type) {
+    if (material < 0) return;
+    const int t = grain_type_;
+    fric << "(" << t - 1 << ", " << material << ", math.atan(" << num(pair_value("coefficientFriction", t, type, a)) << ")), ";
+    bn << "(" << t - 1 << ", " << material << ", " << num(std::sqrt(5.0 / 6.0) * beta(t, type)) << "), ";
+  };
+  for (const Wall& w : walls_) surface(w.material, w.type);
+  for (const auto& id : mesh_order_) surface(meshes_.at(id).material, meshes_.at(id).type);
   py_ << "_fric = MatchMaker(matches=[" << fric.str() << "])\n";
   if (model_ == "hertz")
     py_ << "_betan = MatchMaker(matches=[" << bn.str() << "])\n"
@@ -383,43 +456,55 @@ void YadeExporter::materials() {
         << "_law2 = Law2_ScGeom_FrictViscoPhys_CundallStrackVisco()\n";
 }
 
-// YADE's Hertz wall contact takes R = r/2 (Ig2_Wall_Sphere_ScGeom gives the
-// wall the grain's radius), LIGGGHTS' R = r. A wall material of its own,
-// (E_b, nu_b), restores LIGGGHTS' kn = 4/3 Y* sqrt(r dn) and kt = 8 G* sqrt(r dn)
-// for the grains' type: YADE's E* = E_a E_b / ((1 - nu_a^2) E_b + (1 - nu_b^2) E_a)
-// must be sqrt(2) Y*, and its G / (2 - nu) (G, nu: means of the two) 2 sqrt(2) G*.
+// YADE's Hertz contact of a sphere with a wall takes R = r/2
+// (Ig2_Wall_Sphere_ScGeom gives the wall the grain's radius), with a facet
+// R = 2r/3 (Ig2_Facet_Sphere_ScGeom: 2r), LIGGGHTS' R = r for both. A material
+// of its own per wall or mesh, (E_b, nu_b), restores LIGGGHTS' kn = 4/3 Y* sqrt(r dn)
+// and kt = 8 G* sqrt(r dn) for the grains' type: with s = sqrt(r / R_YADE), YADE's
+// E* = E_a E_b / ((1 - nu_a^2) E_b + (1 - nu_b^2) E_a) must be s Y*, and its
+// G / (2 - nu) (G, nu: means of the two) 2 s G*.
 void YadeExporter::wall_materials(const Args& pair) {
-  if (walls_.empty()) return;
+  if (walls_.empty() && mesh_order_.empty()) return;
   std::set<int> types(sim_.atoms.type.begin(), sim_.atoms.type.begin() + sim_.atoms.n);
+  const Fix& first = walls_.empty() ? *meshes_.at(mesh_order_[0]).fix : *walls_[0].fix;
   if (types.size() != 1)
-    walls_[0].fix->args.fail_line("export-yade: a Hertz wall is matched to one grain type (YADE's wall radius convention), the deck has " +
-                                  std::to_string(types.size()));
-  const int a = grain_type_ = *types.begin();
+    first.args.fail_line("export-yade: a Hertz wall or mesh is matched to one grain type (YADE's wall radius "
+                         "convention), the deck has " + std::to_string(types.size()));
+  grain_type_ = *types.begin();
+  int next_id = sim_.atoms.ntypes;
+  for (Wall& w : walls_) w.material = hertz_surface_material(*w.fix, w.type, std::sqrt(2.0), "wall " + w.fix->id + ": R = r/2", pair, next_id);
+  for (const auto& id : mesh_order_) {
+    MeshWall& m = meshes_.at(id);
+    m.material = hertz_surface_material(*m.fix, m.type, std::sqrt(1.5), "mesh " + id + ": R = 2r/3", pair, next_id);
+  }
+}
+
+int YadeExporter::hertz_surface_material(const Fix& f, long type, double s, const std::string& note, const Args& pair,
+                                         int& next_id) {
+  const int a = grain_type_;
   const double Ea = type_value("youngsModulus", a, pair), na = type_value("poissonsRatio", a, pair);
   const double Ga = Ea / (2 * (1 + na));
-  int next_id = sim_.atoms.ntypes;
-  for (Wall& w : walls_) {
-    const double Ew = type_value("youngsModulus", w.type, pair), nw = type_value("poissonsRatio", w.type, pair);
-    const double Y = 1 / ((1 - na * na) / Ea + (1 - nw * nw) / Ew);
-    const double G = 1 / (2 * (2 - na) * (1 + na) / Ea + 2 * (2 - nw) * (1 + nw) / Ew);
-    const double q = 1 / (std::sqrt(2.0) * Y) - (1 - na * na) / Ea;  // (1 - nu_b^2) / E_b
-    auto excess = [&](double nb) { return 0.5 * (Ga + (1 - nb) / (2 * q)) / (2 - 0.5 * (na + nb)) - 2 * std::sqrt(2.0) * G; };
-    double lo = -0.99, hi = 0.99;
-    if (q <= 0 || excess(lo) * excess(hi) > 0)
-      w.fix->args.fail_line("export-yade: no YADE wall material reproduces this Hertz wall's stiffness");
-    for (int it = 0; it < 200; ++it) ((excess(lo) > 0) == (excess(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
-    const double nb = 0.5 * (lo + hi), Eb = (1 - nb * nb) / q;
-    const double mu = pair_value("coefficientFriction", a, w.type, pair);
-    py_ << "O.materials.append(FrictMat(young=" << num(Eb) << ", poisson=" << num(nb) << ", frictionAngle=math.atan("
-        << num(mu) << "), density=1000))  # wall " << w.fix->id << ": R = r/2 in YADE, see export_yade.cpp\n";
-    w.material = next_id++;
-  }
+  const double Ew = type_value("youngsModulus", type, pair), nw = type_value("poissonsRatio", type, pair);
+  const double Y = 1 / ((1 - na * na) / Ea + (1 - nw * nw) / Ew);
+  const double G = 1 / (2 * (2 - na) * (1 + na) / Ea + 2 * (2 - nw) * (1 + nw) / Ew);
+  const double q = 1 / (s * Y) - (1 - na * na) / Ea;  // (1 - nu_b^2) / E_b
+  auto excess = [&](double nb) { return 0.5 * (Ga + (1 - nb) / (2 * q)) / (2 - 0.5 * (na + nb)) - 2 * s * G; };
+  double lo = -0.99, hi = 0.99;
+  if (q <= 0 || excess(lo) * excess(hi) > 0)
+    f.args.fail_line("export-yade: no YADE material reproduces this Hertz wall's stiffness");
+  for (int it = 0; it < 200; ++it) ((excess(lo) > 0) == (excess(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  const double nb = 0.5 * (lo + hi), Eb = (1 - nb * nb) / q;
+  const double mu = pair_value("coefficientFriction", a, type, pair);
+  py_ << "O.materials.append(FrictMat(young=" << num(Eb) << ", poisson=" << num(nb) << ", frictionAngle=math.atan("
+      << num(mu) << "), density=1000))  # " << note << " in YADE, see export_yade.cpp\n";
+  return next_id++;
 }
 
 void YadeExporter::fixes() {
   const Atoms& at = sim_.atoms;
   fixed_.assign(at.n, 0);
   blocked_.assign(at.n, "");
+  in_body_.assign(at.n, 0);
   std::vector<char> integrated(at.n, 0);
   for (const auto& fp : sim_.fixes) {
     const Fix& f = *fp;
@@ -428,7 +513,9 @@ void YadeExporter::fixes() {
       for (std::size_t i = 0; i < at.n; ++i)
         if (at.mask[i] & f.groupbit) fn(i);
     };
-    if (f.style == "property/global" || f.style == "check/timestep/gran" || f.style == "enforce2d") continue;
+    if (f.style == "property/global" || f.style == "check/timestep/gran" || f.style == "enforce2d" ||
+        f.style.rfind("particletemplate/", 0) == 0 || f.style.rfind("particledistribution/", 0) == 0)
+      continue;  // definitions only: what they make is in the atoms and bodies
     if (f.style == "nve/sphere") {
       for (std::size_t k = 3; k < a.size(); ++k)
         if (a[k] != "disc") a.fail(k, "nothing (export-yade translates nve/sphere [disc])");
@@ -446,14 +533,26 @@ void YadeExporter::fixes() {
       if (f.groupbit != 1u) a.fail(1, "all (YADE's gravity acts on every body)");
     } else if (f.style == "wall/gran") {
       fix_wall(f);
+    } else if (f.style == "rigid" || f.style == "rigid/small" || f.style == "multisphere") {
+      fix_bodies(f);
+    } else if (f.style == "aveforce" || f.style == "setforce") {
+      fix_set_forces(f);
+    } else if (f.style == "mesh/surface" || f.style == "mesh/surface/stress") {
+      fix_mesh(f);
+    } else if (f.style == "move/mesh") {
+      fix_move_mesh(f);
     } else if (f.style == "freeze") {
       members([&](std::size_t i) { fixed_[i] = 1; });
     } else if (f.style == "addforce") {
-      double F[3];
-      for (int k = 0; k < 3; ++k) F[k] = a.num(3 + k, "a constant force component (export-yade)");
+      if (f.args.size() > 7) f.args.fail(7, "nothing after fx fy fz (export-yade translates no every or region)");
+      std::string F[3];
+      for (int k = 0; k < 3; ++k) {
+        F[k] = force_component(f.args, 4 + k);
+        if (F[k] == "None") F[k] = "0";
+      }
       members([&](std::size_t i) {
-        forces_.push_back("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + num(F[0]) + ", " +
-                          num(F[1]) + ", " + num(F[2]) + "))");
+        forces_.push_back("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + F[0] + ", " + F[1] + ", " +
+                          F[2] + "))");
       });
     } else if (f.style == "move") {
       if (a.word(3, "linear") != "linear") a.fail(3, "linear (export-yade translates fix move linear)");
@@ -474,8 +573,54 @@ void YadeExporter::fixes() {
     }
   }
   for (std::size_t i = 0; i < at.n; ++i)
-    if (!integrated[i] && !fixed_[i])
+    if (integrated[i] && in_body_[i])
+      fail("export-yade: atom " + std::to_string(at.id[i]) + " is in a rigid body and integrated on its own too "
+           "(fix nve/sphere or move): give that fix a group without the body's grains");
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (!integrated[i] && !fixed_[i] && !in_body_[i])
       fail("export-yade: atom " + std::to_string(at.id[i]) + " is neither integrated (fix nve/sphere, move) nor frozen");
+}
+
+// fix rigid / rigid/small / multisphere: each body one YADE clump (tools/yade_clumps.h).
+void YadeExporter::fix_bodies(const Fix& f) {
+  const std::size_t first = clumps_.size();
+  for (auto& c : f.style == "multisphere" ? yade::multisphere_clumps(sim_, f) : yade::rigid_clumps(sim_, f))
+    clumps_.push_back(c);
+  clumps_of_[f.id] = {first, clumps_.size() - first};
+  for (std::size_t i = 0; i < sim_.atoms.n; ++i)
+    if (f.body_of(i) >= 0) in_body_[i] = 1;
+}
+
+// fix aveforce / setforce fx fy fz (numbers, NULL or v_name), as LAMMPS: each
+// step every grain's force becomes the group's mean plus the value (aveforce)
+// or the value (setforce); f_ID[1..3] is the group's total force before. YADE's
+// integrator adds gravity after the force pass, so the weight that sable's fix
+// gravity put in before this fix (gravity defined earlier) is counted in by
+// hand and taken back out of what is set.
+void YadeExporter::fix_set_forces(const Fix& f) {
+  const Args& a = f.args;  // fix ID group aveforce|setforce fx fy fz
+  if (a.size() > 7) a.fail(7, "nothing after fx fy fz (export-yade translates no region)");
+  std::string F = "(";
+  for (int k = 0; k < 3; ++k) {
+    const std::string c = force_component(a, 4 + k);
+    F += (c == "None" || a[4 + k].rfind("v_", 0) != 0 ? c : "lambda: " + c) + ", ";
+  }
+  std::string ids;
+  for (std::size_t i = 0; i < sim_.atoms.n; ++i)
+    if (sim_.atoms.mask[i] & f.groupbit) ids += std::to_string(sim_.atoms.id[i]) + ", ";
+  const std::string g = "Vector3(" + num(gravity_[0]) + ", " + num(gravity_[1]) + ", " + num(gravity_[2]) + ")";
+  forces_.push_back("_set_forces(" + quoted(f.id) + ", [" + ids + "], " + F + "), " + g + ", " +
+                    (f.style == "aveforce" ? "True" : "False") + ")");
+  set_force_fixes_.insert(f.id);
+}
+
+// A force component of addforce / aveforce: a number, NULL ("None") or v_name
+// (an equal-style variable, as a Python expression evaluated each step).
+std::string YadeExporter::force_component(const Args& a, std::size_t i) const {
+  const std::string& w = a.word(i, "a force component (number, v_name or NULL)");
+  if (w == "NULL") return "None";
+  if (w.rfind("v_", 0) == 0) return "(" + translate(w, a) + ")";
+  return num(a.num(i, "a number, v_name or NULL (export-yade)"));
 }
 
 // fix ID group wall/gran model M tangential history primitive type T xplane|yplane|zplane POS
@@ -483,10 +628,8 @@ void YadeExporter::fix_wall(const Fix& f) {
   const Args a = f.args.tail(1);
   if (a.word(4, "a model") != model_) a.fail(4, "the pair style's model (" + model_ + ")");
   std::size_t k = 5;
-  while (k < a.size() && a[k] != "primitive") {
-    if (a[k] == "mesh") a.fail(k, "primitive (export-yade does not translate mesh walls yet)");
-    k += 2;
-  }
+  while (k < a.size() && a[k] != "primitive" && a[k] != "mesh") k += 2;
+  if (k < a.size() && a[k] == "mesh") return fix_wall_mesh(a, k);
   if (k + 4 >= a.size() || a[k + 1] != "type") a.fail(k, "primitive type T xplane|yplane|zplane POS");
   const long type = a.integer(k + 2, "a wall atom type");
   const std::string& plane = a[k + 3];
@@ -496,7 +639,117 @@ void YadeExporter::fix_wall(const Fix& f) {
   walls_.push_back({&f, type, plane[0] - 'x', a.num(k + 4, "a position")});
 }
 
+// fix ID group wall/gran model hertz tangential history mesh n_meshes K meshes ID...
+void YadeExporter::fix_wall_mesh(const Args& a, std::size_t k) {
+  if (model_ != "hertz") a.fail(4, "hertz (export-yade translates mesh walls with the Hertz law only)");
+  if (a.word(k + 1, "n_meshes") != "n_meshes") a.fail(k + 1, "n_meshes");
+  const long n = a.integer(k + 2, "the number of meshes");
+  if (a.word(k + 3, "meshes") != "meshes") a.fail(k + 3, "meshes");
+  for (long m = 0; m < n; ++m) {
+    const std::string& id = a.word(k + 4 + m, "a mesh/surface fix ID");
+    if (!meshes_.count(id)) a.fail(k + 4 + m, "the ID of a fix mesh/surface defined before");
+    if (std::find(mesh_order_.begin(), mesh_order_.end(), id) != mesh_order_.end())
+      a.fail(k + 4 + m, "a mesh no other wall/gran uses (export-yade)");
+    mesh_order_.push_back(id);
+  }
+  for (std::size_t i = k + 4 + n; i < a.size(); i += 2)  // YADE's Mindlin law always clips the normal force
+    if (a[i] != "limitForce" && a[i] != "store_force" && a[i] != "store_force_contact")
+      a.fail(i, "limitForce, store_force or nothing after the mesh IDs (export-yade)");
+}
+
+// fix mesh/surface[/stress]: the triangles as sable loaded them (scale, move,
+// rotate applied in the deck's order) become YADE facets (what ymport.stl makes).
+void YadeExporter::fix_mesh(const Fix& f) {
+  auto* holder = dynamic_cast<MeshHolder*>(const_cast<Fix*>(&f));
+  if (!holder) f.args.fail_line("export-yade: fix " + f.id + " holds no mesh");
+  const TriMesh& m = holder->mesh();
+  if (m.belt[0] != 0 || m.belt[1] != 0 || m.belt[2] != 0)
+    f.args.fail_line("export-yade: surface_vel (a conveyor mesh) is not translated to YADE");
+  meshes_[f.id] = {&f, &m, holder->wall_type(), -1, ""};
+}
+
+// fix move/mesh linear | rotate: a YADE TranslationEngine or RotationEngine on
+// the mesh's facets (IDS stands for them until the script's mesh index is known).
+void YadeExporter::fix_move_mesh(const Fix& f) {
+  const Args a = f.args.tail(1);  // ID group move/mesh mesh MESHID linear|rotate ...
+  const std::string& id = a.word(4, "a mesh ID");
+  auto it = meshes_.find(id);
+  if (it == meshes_.end()) a.fail(4, "the ID of a fix mesh/surface");
+  if (!it->second.motion.empty())
+    a.fail_line("export-yade: one move/mesh per mesh (YADE's kinematic engines set the facets' velocity, they do not add)");
+  auto vec = [&](std::size_t i) {
+    double v[3] = {a.num(i, "x"), a.num(i + 1, "y"), a.num(i + 2, "z")};
+    return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  };
+  if (a.word(5, "linear or rotate") == "linear") {
+    const double speed = std::sqrt(vec(6));
+    if (speed == 0) return;
+    it->second.motion = "TranslationEngine(ids=IDS, translationAxis=Vector3(" + num(a.num(6, "vx") / speed) + ", " +
+                        num(a.num(7, "vy") / speed) + ", " + num(a.num(8, "vz") / speed) + "), velocity=" + num(speed) + ")";
+    for (int k = 0; k < 3; ++k) it->second.shift[k] = a.num(6 + k, "v") * sim_.dt;
+  } else if (a[5] == "rotate") {
+    const double axis = std::sqrt(vec(11));
+    // LIGGGHTS: right-handed about the axis, omega = 2 pi / period; YADE's RotationEngine turns the same way.
+    it->second.motion = "RotationEngine(ids=IDS, rotationAxis=Vector3(" + num(a.num(11, "ax") / axis) + ", " +
+                        num(a.num(12, "ay") / axis) + ", " + num(a.num(13, "az") / axis) + "), angularVelocity=" +
+                        num(2 * std::numbers::pi / a.num(15, "a period")) + ", rotateAroundZero=True, zeroPoint=Vector3(" +
+                        num(a.num(7, "ox")) + ", " + num(a.num(8, "oy")) + ", " + num(a.num(9, "oz")) + "))";
+    for (int k = 0; k < 3; ++k) {
+      it->second.origin[k] = a.num(7 + k, "origin");
+      it->second.axis[k] = a.num(11 + k, "axis") / axis;
+    }
+    it->second.angle = 2 * std::numbers::pi / a.num(15, "a period") * sim_.dt;
+  } else {
+    a.fail(5, "linear or rotate (export-yade)");
+  }
+}
+
+// YADE's periodic collider needs every body shorter than 0.99 of the cell.
+void YadeExporter::periodic_fit(const MeshWall& w, std::size_t t) const {
+  const Domain& d = sim_.domain;
+  for (int k = 0; k < 3; ++k) {
+    if (!d.wraps(k)) continue;
+    double lo = 1e300, hi = -1e300;
+    for (int c = 0; c < 3; ++c) {
+      const double x = w.mesh->to_world(w.mesh->corner(static_cast<int>(t), c))[k];
+      lo = std::min(lo, x), hi = std::max(hi, x);
+    }
+    if (hi - lo >= 0.99 * d.length(k))
+      w.fix->args.fail_line("export-yade: triangle " + std::to_string(t + 1) + " of this mesh spans " +
+                            std::string(1, "xyz"[k]) + " across 0.99 of the periodic box or more, which YADE's "
+                            "periodic collider does not take (cut the mesh into shorter triangles)");
+  }
+}
+
+// The facets of each mesh a wall uses, in the world frame, its reference
+// point, and one step of its motion (for the torque's lever arms).
+void YadeExporter::mesh_facets() {
+  py_ << "_meshes = []\n";
+  for (const auto& id : mesh_order_) {
+    const MeshWall& w = meshes_.at(id);
+    const TriMesh& m = *w.mesh;
+    py_ << "_meshes.append(_facets([  # fix " << id << ": " << m.ntri() << " triangles\n";
+    for (std::size_t t = 0; t < m.ntri(); ++t) {
+      periodic_fit(w, t);
+      py_ << " (";
+      for (int k = 0; k < 3; ++k) {
+        const Vec3d p = m.to_world(m.corner(static_cast<int>(t), k));
+        py_ << num(p[0]) << ", " << num(p[1]) << ", " << num(p[2]) << ", ";
+      }
+      py_ << "),\n";
+    }
+    const Vec3d r = m.to_world(m.ref_body);
+    auto v3 = [](const Vec3d& v) { return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")"; };
+    py_ << "], " << w.material << ", " << v3(r) << ", (" << v3(w.origin) << ", " << v3(w.axis) << ", " << num(w.angle)
+        << ", " << v3(w.shift) << ")))\n";
+  }
+}
+
 void YadeExporter::walls() {
+  const Domain& d = sim_.domain;
+  if (!walls_.empty() && (d.wraps(0) || d.wraps(1) || d.wraps(2)))
+    walls_[0].fix->args.fail_line("export-yade: a primitive wall in a periodic box is not translated (YADE's periodic "
+                                  "collider needs every body shorter than the cell, and utils.wall is infinite)");
   py_ << "_walls = []\n";
   for (const Wall& w : walls_)
     py_ << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis
@@ -518,33 +771,64 @@ void YadeExporter::bodies() {
     if (!fixed_[i] && !rotation_) dofs += "XYZ";
     std::string uniq;
     for (char c : std::string("xyzXYZ"))
-      if (dofs.find(c) != std::string::npos) uniq += c;
+      if (dofs.find(c) != std::string::npos && !in_body_[i]) uniq += c;
     py_ << " (" << at.id[i] << ", " << at.type[i];
-    for (int k = 0; k < 3; ++k) py_ << ", " << num(at.x[3 * i + k]);
+    double u[3];  // unwrapped: a rigid body across a periodic boundary stays whole (YADE wraps for contacts)
+    sim_.domain.unmap(&at.x[3 * i], &at.image[3 * i], u);
+    for (int k = 0; k < 3; ++k) py_ << ", " << num(u[k]);
     py_ << ", " << num(at.radius[i]) << ", " << num(at.rmass[i]) << ", " << num(at.inertia(i));
     for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] ? 0.0 : at.v[3 * i + k]);
     for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
     py_ << ", " << (fixed_[i] ? "True" : "False") << ", '" << uniq << "'),\n";
   }
-  py_ << "]\n_aid = {}\n"
+  py_ << "]\n_aid, _m = {}, {}\n"
          "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
          "    b = utils.sphere((x, y, z), r, material=_mats[t - 1], fixed=fixed)\n"
          "    b.state.mass, b.state.inertia = m, Vector3(I, I, I)\n"
          "    b.state.vel, b.state.angVel = Vector3(vx, vy, vz), Vector3(wx, wy, wz)\n"
          "    b.state.blockedDOFs = dofs\n"
-         "    _aid[i] = O.bodies.append(b)\n";
+         "    _aid[i] = O.bodies.append(b)\n"
+         "    _m[i] = m\n";
   for (const auto& m : moves_) py_ << m << "\n";
+  clumps();
+}
+
+// Rigid bodies: YADE's clump() computes mass and inertia from the materials'
+// density; _clump (head()) sets sable's instead, and the members' contact mass.
+void YadeExporter::clumps() {
+  if (clumps_.empty()) return;
+  py_ << "# clumps: member ids, mass, inertia xx yy zz xy xz yz (world frame), vcm, spin, blockedDOFs, members' contact mass\n"
+         "_clumps = [\n";
+  for (const yade::Clump& c : clumps_) {
+    std::string ids, dofs = c.dofs + (sim_.domain.dimension == 2 ? "zXY" : ""), uniq;
+    for (long id : c.ids) ids += std::to_string(id) + ", ";
+    for (char ch : std::string("xyzXYZ"))
+      if (dofs.find(ch) != std::string::npos) uniq += ch;
+    py_ << " ([" << ids << "], " << num(c.mass) << ", (";
+    for (double v : c.inertia) py_ << num(v) << ", ";
+    py_ << "), (" << num(c.vcm[0]) << ", " << num(c.vcm[1]) << ", " << num(c.vcm[2]) << "), (" << num(c.omega[0])
+        << ", " << num(c.omega[1]) << ", " << num(c.omega[2]) << "), '" << uniq << "', " << num(c.member_mass) << "),\n";
+  }
+  py_ << "]\n_cid = [_clump(*c) for c in _clumps]\n";
 }
 
 void YadeExporter::engines() {
   py_ << "O.dt = " << num(sim_.dt) << "\n";
   py_ << "def _add_forces():\n    pass\n";
   for (const auto& f : forces_) py_ << "    " << f << "\n";
+  const bool facets = !mesh_order_.empty();
   py_ << "O.engines = [\n"
          "    ForceResetter(),\n"
-         "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),\n"
-         "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()], [_ip2], [_law2]),\n";
+         "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()" << (facets ? ", Bo1_Facet_Aabb()" : "") << "]),\n"
+         "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()" << (facets ? ", Ig2_Facet_Sphere_ScGeom()" : "")
+      << "], [_ip2], [_law2]),\n";
   if (!forces_.empty()) py_ << "    PyRunner(command='_add_forces()', iterPeriod=1),\n";
+  for (std::size_t k = 0; k < mesh_order_.size(); ++k) {
+    std::string e = meshes_.at(mesh_order_[k]).motion;
+    if (e.empty()) continue;
+    e.replace(e.find("IDS"), 3, "_meshes[" + std::to_string(k) + "][0]");
+    py_ << "    " << e << ",  # fix move/mesh on " << mesh_order_[k] << "\n";
+  }
   py_ << "    NewtonIntegrator(damping=0, gravity=Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", "
       << num(gravity_[2]) << ")),\n"
       << "    PyRunner(command='_thermo_tick()', iterPeriod=1),\n]\n";
@@ -560,8 +844,55 @@ std::string YadeExporter::head() const {
          "def _bid(i):\n    return _aid[i]\n"
          "def _b(i):\n    return O.bodies[_aid[i]]\n"
          "def _fmt(v):\n    return '%.15g' % v\n"
-         "def _ke():\n"
-         "    return sum(0.5 * b.state.mass * b.state.vel.squaredNorm() for b in O.bodies if isinstance(b.shape, Sphere))\n"
+         "_wrap = [None, None, None]\n"
+         "def _wrapped(p, k):  # wrapped into sable's box on a periodic axis\n"
+         "    return p if _wrap[k] is None else _wrap[k][0] + (p - _wrap[k][0]) % _wrap[k][1]\n"
+         "def _pos(i, k):\n"
+         "    return _wrapped(_b(i).state.pos[k], k)\n"
+         "def _ke():  # sable's: every grain's own mass\n"
+         "    return sum(0.5 * _m[i] * _b(i).state.vel.squaredNorm() for i in _aid)\n"
+         "_fixf = {}\n"
+         "def _set_forces(name, ids, F, g, ave):  # fix aveforce (ave) / setforce; g: the weight sable counts in already\n"
+         "    fs = [O.forces.f(_aid[i], sync=True) + g * _m[i] for i in ids]\n"
+         "    total = sum(fs, Vector3.Zero)\n"
+         "    base = total / len(fs) if ave else Vector3.Zero\n"
+         "    _fixf[name] = total\n"
+         "    for i, f in zip(ids, fs):\n"
+         "        O.forces.addF(_aid[i], Vector3(*[0 if F[k] is None else base[k] + (F[k]() if callable(F[k]) else F[k]) - f[k]\n"
+         "                                          for k in range(3)]))\n"
+         "def _facets(tris, mat, ref, step):  # a mesh's facets, its reference point in the first facet's frame, one motion step\n"
+         "    ids = [O.bodies.append(utils.facet((Vector3(*t[0:3]), Vector3(*t[3:6]), Vector3(*t[6:9])), material=mat)) for t in tris]\n"
+         "    b = O.bodies[ids[0]]\n"
+         "    return (ids, b.state.ori.conjugate() * (Vector3(*ref) - b.state.pos), step)\n"
+         "def _unstep(q, step):  # where a point of the mesh was when this step's forces were found\n"
+         "    o, axis, angle, shift = (Vector3(*step[0]), Vector3(*step[1]), step[2], Vector3(*step[3]))\n"
+         "    return o + Quaternion(axis, -angle) * (q - shift - o)\n"
+         "def _mesh_out(k, j):  # f_ID[j] of a mesh: force, torque about the reference point (moving with it), the point\n"
+         "    ids, off, step = _meshes[k]\n"
+         "    ref = O.bodies[ids[0]].state.pos + O.bodies[ids[0]].state.ori * off\n"
+         "    if j >= 7:\n"
+         "        return ref[j - 7]\n"
+         "    ref = _unstep(ref, step)\n"
+         "    F = sum((O.forces.f(i, sync=True) for i in ids), Vector3.Zero)\n"
+         "    T = sum((O.forces.t(i, sync=True) + (_unstep(O.bodies[i].state.pos, step) - ref).cross(O.forces.f(i, sync=True))\n"
+         "             for i in ids), Vector3.Zero)\n"
+         "    return F[j - 1] if j <= 3 else T[j - 4]\n"
+         "def _clump(ids, M, I, v, w, dofs, member_mass):\n"
+         "    c = O.bodies[O.bodies.clump([_aid[i] for i in ids])]\n"
+         "    R = c.state.ori.toRotationMatrix()\n"
+         "    Iw = Matrix3(I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2])\n"
+         "    L = R.transpose() * Iw * R\n"
+         "    if max(abs(L[0, 1]), abs(L[0, 2]), abs(L[1, 2])) > 1e-9 * L.trace():\n"
+         "        raise RuntimeError('clump of atoms %s: principal axes of sable inertia differ from YADE clump frame' % ids)\n"
+         "    c.state.mass, c.state.inertia = M, Vector3(L[0, 0], L[1, 1], L[2, 2])\n"
+         "    c.state.vel, c.state.angVel, c.state.blockedDOFs = Vector3(*v), Vector3(*w), dofs\n"
+         "    c.state.angMom = Iw * c.state.angVel  # what YADE integrates for an aspherical body\n"
+         "    for i in ids:  # contacts see the body's mass as each member's (sable, LIGGGHTS)\n"
+         "        b = _b(i)\n"
+         "        b.state.mass = member_mass\n"
+         "        b.state.vel = c.state.vel + c.state.angVel.cross(b.state.pos - c.state.pos)\n"
+         "        b.state.angVel = c.state.angVel\n"
+         "    return c.id\n"
          "def _row():\n    print(' '.join('%.10g' % c() for c in _thermo['cols']), flush=True)\n"
          "def _thermo_tick():\n"
          "    _step[0] = O.iter + 1  # this engine runs after NewtonIntegrator, before O.iter counts the step\n"

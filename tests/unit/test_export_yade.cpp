@@ -116,3 +116,298 @@ TEST(ExportYade, HertzWallMaterialRestoresLiggghtsStiffness) {
   EXPECT_NEAR(Ey / (std::sqrt(2.0) * Y), 1.0, 1e-12);
   EXPECT_NEAR(Gy / (2 - 0.5 * (na + nb)) / (2 * std::sqrt(2.0) * G), 1.0, 1e-12);
 }
+
+// fix rigid -> one YADE clump with sable's mass, inertia (world frame, about the
+// centre of mass: two spheres of mass m, radius r at +-d on x: Ixx = 2 * 2/5 m r^2,
+// Iyy = Izz = Ixx + 2 m d^2), centre-of-mass velocity and the flags' blocked DOFs.
+TEST(ExportYade, RigidBodyBecomesAClumpWithSablesMassInertiaAndFlags) {
+  TempDir tmp;
+  const std::string deck = R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 1 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+create_atoms 1 single -0.0015 0 0.003 units box
+create_atoms 1 single 0.0015 0 0.003 units box
+create_atoms 1 single 0 0 0.0011 units box
+set group all diameter 0.002 density 2500
+group lid id 1 2
+group free id 3
+velocity lid set 0.05 0 -0.1
+fix integr free nve/sphere
+fix lid lid rigid single force * off on on torque * off off on
+fix push lid aveforce NULL NULL -0.001
+fix g all gravity 9.81 vector 0 0 -1
+variable zl equal f_lid[1][3]
+thermo_style custom step v_zl
+thermo 5
+run 10
+print "OBSERVABLE zl ${zl}"
+)";
+  const std::string s = exported(tmp, deck);
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  const double m = 2500 * 4.0 / 3.0 * M_PI * 1e-9, Ixx = 2 * 0.4 * m * 1e-6, Iyy = Ixx + 2 * m * 0.0015 * 0.0015;
+  std::smatch c;
+  ASSERT_TRUE(std::regex_search(s, c, std::regex(R"(\n \(\[1, 2, \], ([^,]+), \(([^,]+), ([^,]+), ([^,]+), ([^,]+), ([^,]+), ([^,]+), \), \(([^,]+), ([^,]+), ([^,]+)\), \(([^,]+), ([^,]+), ([^)]+)\), 'xXY', ([^)]+)\),)")))
+      << s;
+  EXPECT_NEAR(std::stod(c[1]), 2 * m, 1e-15 * m);
+  EXPECT_NEAR(std::stod(c[2]), Ixx, 1e-12 * Ixx);
+  EXPECT_NEAR(std::stod(c[3]), Iyy, 1e-12 * Iyy);
+  EXPECT_NEAR(std::stod(c[4]), Iyy, 1e-12 * Iyy);
+  for (int k = 5; k <= 7; ++k) EXPECT_NEAR(std::stod(c[k]), 0.0, 1e-12 * Ixx) << k;
+  EXPECT_NEAR(std::stod(c[8]), 0.05, 1e-15);
+  EXPECT_NEAR(std::stod(c[10]), -0.1, 1e-15);
+  for (int k = 11; k <= 13; ++k) EXPECT_NEAR(std::stod(c[k]), 0.0, 1e-12) << k;
+  EXPECT_NEAR(std::stod(c[14]), 2 * m, 1e-15 * m);  // contacts see the body's mass
+  EXPECT_NE(s.find("_set_forces('push', [1, 2, ], (None, None, -0.001, ), Vector3(0, 0, 0), True)"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt((_wrapped(O.bodies[_cid[0]].state.pos[2], 2)))"), std::string::npos) << s;
+}
+
+TEST(ExportYade, RigidMemberIntegratedTwiceIsRefused) {
+  TempDir tmp;
+  const std::string e = exported(tmp, kHead + "fix lid all rigid single\nrun 10\n");
+  EXPECT_NE(e.find("atom 1 is in a rigid body and integrated on its own too"), std::string::npos) << e;
+}
+
+// Equal-style variables in addforce / aveforce become Python evaluated each step;
+// what YADE cannot take (an atom-style variable, every, region) is refused.
+TEST(ExportYade, ForceVariablesAreEvaluatedEachStep) {
+  TempDir tmp;
+  const std::string s = exported(tmp, kHead + "variable p equal -0.001*2\nfix push all aveforce 0 NULL v_p\n"
+                                              "fix add all addforce v_p 0 0.5\nrun 10\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('push', [1, 2, ], (0, None, lambda: ((-0.001*2)), ), Vector3(0, 0, 0), True)"), std::string::npos) << s;
+  EXPECT_NE(s.find("O.forces.addF(_bid(2), Vector3(((-0.001*2)), 0, 0.5))"), std::string::npos) << s;
+  const std::string e = exported(tmp, kHead + "variable pa atom -0.001*z\nfix push all addforce 0 0 v_pa\nrun 10\n");
+  EXPECT_NE(e.find("deck.in:20"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot translate 'v_pa'"), std::string::npos) << e;
+  const std::string r = exported(tmp, kHead + "fix push all addforce 0 0 -1 every 2\nrun 10\n");
+  EXPECT_NE(r.find("deck.in:19: 'every' in 'fix push all addforce 0 0 -1 every 2'"), std::string::npos) << r;
+}
+
+// sable's fix gravity defined before aveforce / setforce puts the weight in
+// before the fix acts; YADE adds gravity after the force pass, so the script
+// counts it in (g) and takes it back out; f_ID[1..3] is the total before.
+TEST(ExportYade, SetforceAndAveforceAfterGravityCountTheWeightIn) {
+  TempDir tmp;
+  const std::string s = exported(tmp, kHead + "set atom 2 diameter 0.001\nfix g all gravity 9.81 vector 0 0 -1\n"
+                                              "fix push all aveforce 0 0 -0.001\nfix guide all setforce NULL 0.0 NULL\n"
+                                              "variable fg equal f_guide[3]\nrun 10\nprint \"OBSERVABLE fg ${fg}\"\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('push', [1, 2, ], (0, 0, -0.001, ), Vector3(0, 0, -9.8100000000000005), True)"), std::string::npos) << s;
+  EXPECT_NE(s.find("_set_forces('guide', [1, 2, ], (None, 0, None, ), Vector3(0, 0, -9.8100000000000005), False)"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt((_fixf.get('guide', Vector3.Zero)[2]))"), std::string::npos) << s;
+}
+
+namespace {
+
+// kHead with a two-triangle STL (one square in z = 0, corners +-0.01) at `stl`.
+std::string mesh_deck(const TempDir& tmp, const std::string& mesh_options, const std::string& rest) {
+  const std::string stl = tmp / "plate.stl";
+  std::ofstream(stl) << "solid p\n facet normal 0 0 1\n  outer loop\n   vertex -0.01 -0.01 0\n   vertex 0.01 -0.01 0\n"
+                        "   vertex 0.01 0.01 0\n  endloop\n endfacet\n facet normal 0 0 1\n  outer loop\n"
+                        "   vertex -0.01 -0.01 0\n   vertex 0.01 0.01 0\n   vertex -0.01 0.01 0\n  endloop\n endfacet\n"
+                        "endsolid p\n";
+  return kHead + "fix plate all mesh/surface/stress file " + stl + " type 2 " + mesh_options + "\n" + rest;
+}
+
+}  // namespace
+
+// The triangles as sable loaded them (here scaled by 0.5, then moved up 1 mm)
+// become facets with a material of their own, the motion a YADE engine, and
+// f_ID[1..9] the facets' summed force, torque and the moving reference point.
+TEST(ExportYade, MeshWallBecomesFacetsWithEngineAndForce) {
+  TempDir tmp;
+  const std::string s = exported(
+      tmp, mesh_deck(tmp, "scale 0.5 move 0 0 0.001 reference_point 0.001 0 0",
+                     "fix spin all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 2 period 0.5\n"
+                     "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\n"
+                     "variable tz equal f_plate[6]\nthermo_style custom step v_tz\nthermo 5\nrun 10\n"));
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_meshes.append(_facets([  # fix plate: 2 triangles\n (-0.0050000000000000001, -0.0050000000000000001, "
+                   "0.001, 0.0050000000000000001, -0.0050000000000000001, 0.001, 0.0050000000000000001, "
+                   "0.0050000000000000001, 0.001, ),\n"),
+            std::string::npos)
+      << s;
+  // material 2 (the mesh's own), the reference point, one step of the motion (axis normalised, omega dt)
+  EXPECT_NE(s.find("], 2, (0.001, 0, 0), ((0, 0, 0), (0, 0, 1), 1.2566370614359172e-05, (0, 0, 0))))"), std::string::npos) << s;
+  EXPECT_NE(s.find("# mesh plate: R = 2r/3 in YADE"), std::string::npos) << s;
+  EXPECT_NE(s.find("RotationEngine(ids=_meshes[0][0], rotationAxis=Vector3(0, 0, 1), angularVelocity=12.566370614359172, "
+                   "rotateAroundZero=True, zeroPoint=Vector3(0, 0, 0))"),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("Ig2_Facet_Sphere_ScGeom()"), std::string::npos) << s;
+  EXPECT_NE(s.find("lambda: (_mesh_out(0, 6))"), std::string::npos) << s;
+}
+
+// YADE's facet contact takes R = 2r/3: the mesh material gives its Hertz law
+// LIGGGHTS' kn and kt with R = r (E*_YADE = sqrt(3/2) Y*, G/(2 - nu) = 2 sqrt(3/2) G*).
+TEST(ExportYade, HertzMeshMaterialRestoresLiggghtsStiffness) {
+  TempDir tmp;
+  const std::string s = exported(
+      tmp, mesh_deck(tmp, "", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\nrun 10\n"));
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(s, m, std::regex(R"(FrictMat\(young=([^,]+), poisson=([^,]+), frictionAngle=math.atan\(0.29999999999999999\), density=1000\)\)  # mesh plate)")))
+      << s;
+  const double Eb = std::stod(m[1]), nb = std::stod(m[2]), Ea = 1e7, na = 0.3, Ew = 2e7, nw = 0.25, f = std::sqrt(1.5);
+  const double Y = 1 / ((1 - na * na) / Ea + (1 - nw * nw) / Ew);
+  const double G = 1 / (2 * (2 - na) * (1 + na) / Ea + 2 * (2 - nw) * (1 + nw) / Ew);
+  const double Ey = Ea * Eb / ((1 - na * na) * Eb + (1 - nb * nb) * Ea);
+  const double Gy = 0.5 * (Ea / (2 * (1 + na)) + Eb / (2 * (1 + nb)));
+  EXPECT_NEAR(Ey / (f * Y), 1.0, 1e-12);
+  EXPECT_NEAR(Gy / (2 - 0.5 * (na + nb)) / (2 * f * G), 1.0, 1e-12);
+}
+
+TEST(ExportYade, LinearMoveMeshBecomesATranslationEngine) {
+  TempDir tmp;
+  const std::string s = exported(
+      tmp, mesh_deck(tmp, "", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\n"
+                              "fix slide all move/mesh mesh plate linear 0 0.3 0.4\nrun 10\n"));
+  EXPECT_NE(s.find("TranslationEngine(ids=_meshes[0][0], translationAxis=Vector3(0, 0.59999999999999998, "
+                   "0.80000000000000004), velocity=0.5)"),
+            std::string::npos)
+      << s;
+}
+
+TEST(ExportYade, TwoMotionsOnOneMeshAreRefused) {
+  TempDir tmp;
+  const std::string e = exported(
+      tmp, mesh_deck(tmp, "", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\n"
+                              "fix a all move/mesh mesh plate linear 0 0 0.1\n"
+                              "fix b all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 1 period 1\nrun 10\n"));
+  EXPECT_NE(e.find("deck.in:22"), std::string::npos) << e;
+  EXPECT_NE(e.find("one move/mesh per mesh"), std::string::npos) << e;
+}
+
+TEST(ExportYade, ConveyorMeshIsRefused) {
+  TempDir tmp;
+  const std::string e = exported(
+      tmp, mesh_deck(tmp, "surface_vel 0.1 0 0", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\nrun 10\n"));
+  EXPECT_NE(e.find("deck.in:19"), std::string::npos) << e;
+  EXPECT_NE(e.find("surface_vel (a conveyor mesh) is not translated"), std::string::npos) << e;
+}
+
+TEST(ExportYade, CylinderWallStaysRefused) {
+  TempDir tmp;
+  const std::string e =
+      exported(tmp, kHead + "fix c all wall/gran model hertz tangential history primitive type 2 zcylinder 0.009 0 0\nrun 10\n");
+  EXPECT_NE(e.find("deck.in:19"), std::string::npos) << e;
+  EXPECT_NE(e.find("xplane, yplane or zplane (export-yade)"), std::string::npos) << e;
+}
+
+// boundary p p f: YADE's cell, periodic on x and y, 100 box heights in z; positions wrapped into sable's box.
+TEST(ExportYade, PeriodicBoxBecomesYadesCell) {
+  TempDir tmp;
+  std::string deck = kHead;
+  deck.replace(deck.find("boundary f f f"), 14, "boundary p p f");
+  const std::string s = exported(tmp, deck + "variable q equal x[1]\nrun 10\nprint \"OBSERVABLE q ${q}\"\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("O.periodic = True\nO.cell.hSize = Matrix3(0.02, 0, 0, 0, 0.02, 0, 0, 0, 2)\n"
+                   "_wrap = [(-0.01, 0.02), (-0.01, 0.02), None]\n"),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("_fmt((_pos(1, 0)))"), std::string::npos) << s;
+}
+
+// fix multisphere clumps exist only after insertion (a run), so they reach the
+// exporter from a restart file; the clump gets the template's mass and inertia
+// (here given: m, Ixx = Iyy, Izz), not a sum over its spheres, and its velocity.
+TEST(ExportYade, MultisphereClumpFromARestartKeepsTheTemplatesMassAndInertia) {
+  TempDir tmp;
+  const std::string setup = R"(neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+)";
+  sable::test::Deck first;
+  first("units si\natom_style granular\natom_modify map array\nboundary f f f\n"
+        "region box block -0.1 0.1 -0.1 0.1 -0.001 0.04 units box\ncreate_box 1 box\n" + setup + R"(
+fix pts all particletemplate/multisphere 15485863 atom_type 1 density constant 2500 volume_limit 1e-30 nspheres 3 ntry 1000 &
+    spheres 0.002 0 0 0.002  -0.001 0.0017320508075688772 0 0.002  -0.001 -0.0017320508075688772 0 0.002 &
+    type 1 mass 2.5132741228718345e-4 inertia_tensor 9.047786842338604e-10 0 0 9.047786842338604e-10 0 1.4074335088082274e-09 use_density
+fix pdd all particledistribution/discrete 15485867 1 pts 1.0
+region ins block -0.09 0.09 -0.09 0.005 0.015 0.01500001 units box
+fix ms all multisphere
+fix ins all insert/pack seed 32452843 distributiontemplate pdd insert_every once overlapcheck yes &
+    vel constant 0.05 -0.02 -0.3 region ins particles_in_region 1
+run 1
+write_restart )" + std::string(tmp / "ms.restart"));
+  const std::string s = exported(tmp, "read_restart " + std::string(tmp / "ms.restart") + "\n" + setup +
+                                          "fix ms all multisphere\nrun 10\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  std::smatch c;
+  ASSERT_TRUE(std::regex_search(s, c, std::regex(R"(\n \(\[1, 2, 3, \], ([^,]+), \(([^,]+), ([^,]+), ([^,]+), [^)]*\), \(([^,]+), ([^,]+), ([^,]+)\), \([^)]*\), '', ([^)]+)\),)")))
+      << s;
+  EXPECT_NEAR(std::stod(c[1]), 2.5132741228718345e-4, 1e-18);
+  EXPECT_NEAR(std::stod(c[2]) + std::stod(c[3]) + std::stod(c[4]), 2 * 9.047786842338604e-10 + 1.4074335088082274e-09, 1e-20);
+  EXPECT_NEAR(std::stod(c[5]), 0.05, 1e-12);
+  EXPECT_NEAR(std::stod(c[6]), -0.02, 1e-12);
+  EXPECT_NEAR(std::stod(c[7]), -0.3 - 9.81e-6 * 0, 1e-5);  // one step, no gravity here
+  EXPECT_NEAR(std::stod(c[8]), 2.5132741228718345e-4, 1e-18);
+}
+
+// fix rigid group N ... with flags on one body (M = 2), and rigid/small custom: one clump per body, in body order.
+TEST(ExportYade, RigidGroupAndCustomBodiesBecomeOneClumpEach) {
+  const std::string grains = R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 1 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.4
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+create_atoms 1 single -0.004 0 0.003 units box
+create_atoms 1 single -0.002 0 0.003 units box
+create_atoms 1 single 0.002 0 0.003 units box
+create_atoms 1 single 0.004 0 0.003 units box
+set group all diameter 0.002 density 2500
+group a id 1 2
+group b id 3 4
+variable body atom 1+(id>2)
+)";
+  TempDir tmp;
+  const std::string g = exported(tmp, grains + "fix rb all rigid group 2 a b force 2 off on off torque 2 off off off\nrun 10\n");
+  ASSERT_EQ(g.find("ERROR"), std::string::npos) << g;
+  EXPECT_NE(g.find("\n ([1, 2, ], "), std::string::npos) << g;
+  EXPECT_NE(g.find("'', "), std::string::npos) << g;          // body 1: every flag on
+  EXPECT_NE(g.find("'xzXYZ', "), std::string::npos) << g;     // body 2: y only
+  const std::string c = exported(tmp, grains + "fix rb all rigid/small custom v_body\nrun 10\n");
+  ASSERT_EQ(c.find("ERROR"), std::string::npos) << c;
+  EXPECT_NE(c.find("\n ([1, 2, ], "), std::string::npos) << c;
+  EXPECT_NE(c.find("\n ([3, 4, ], "), std::string::npos) << c;
+}
+
+// YADE's periodic collider takes no body as long as the cell: walls, and mesh triangles spanning it, are refused.
+TEST(ExportYade, WallsAndCellLongTrianglesInAPeriodicBoxAreRefused) {
+  TempDir tmp;
+  std::string deck = kHead;
+  deck.replace(deck.find("boundary f f f"), 14, "boundary p f f");
+  const std::string w =
+      exported(tmp, deck + "fix floor all wall/gran model hertz tangential history primitive type 2 zplane -0.005\nrun 10\n");
+  EXPECT_NE(w.find("deck.in:19"), std::string::npos) << w;
+  EXPECT_NE(w.find("a primitive wall in a periodic box is not translated"), std::string::npos) << w;
+  std::string mdeck = mesh_deck(tmp, "scale 1.0", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\nrun 10\n");
+  mdeck.replace(mdeck.find("boundary f f f"), 14, "boundary p f f");
+  const std::string m = exported(tmp, mdeck);
+  EXPECT_NE(m.find("deck.in:19"), std::string::npos) << m;
+  EXPECT_NE(m.find("triangle 1 of this mesh spans x across 0.99 of the periodic box"), std::string::npos) << m;
+}
