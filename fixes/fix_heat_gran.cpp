@@ -93,6 +93,12 @@ class FixHeatGran : public Fix {
   }
 
   void pre_force() override {
+    conduct();
+    integrate();
+  }
+
+  // heatFlux = the heat conducted into each grain this step.
+  void conduct() {
     Atoms& at = sim.atoms;
     std::vector<double>& flux = at.column(flux_col_);
     std::fill(flux.begin(), flux.end(), 0.0);
@@ -100,7 +106,13 @@ class FixHeatGran : public Fix {
     // Grains inserted since the last build have no list entries yet (as in the force pass).
     if (!list.first.empty() && list.first.size() - 1 <= at.n)
       law_.flows(at, list, sim.neighbor.builds, at.column(temp_col_).data(), conductivity_.data(), groupbit, flux);
+  }
+
+  // T += (heatFlux + heatSource) dt / (m c) for the group's grains (LIGGGHTS' transport equation).
+  void integrate() {
+    Atoms& at = sim.atoms;
     std::vector<double>& temp = at.column(temp_col_);
+    const std::vector<double>& flux = at.column(flux_col_);
     const std::vector<double>& source = at.column(source_col_);
     for (std::size_t i = 0; i < at.n; ++i) {
       const double c = capacity_[at.type[i]];

@@ -59,6 +59,10 @@ TUTORIALS = {
     'multisphere': ('multisphere_stone_restitution', ['in.multisphere']),
     'packing': ('packing', ['in.packing']),
     'superquadric': ('superquadric', ['in.particle_particle']),
+    # The ParScale decks need LIGGGHTS' ParScale coupling (fix couple/pascal), which the
+    # Debian LIGGGHTS 3.8 lacks ("Invalid fix style"); heatTransferBed_paScal stops even
+    # earlier there ("invalid radius random style" for `radius gaussian`), and
+    # in.liggghts_run asks for 2 processes (`processors 2 1 *`). Kept to show that.
     'parscale_init_run': ('ParScale/fluidizedBedTempParScale', ['in.liggghts_init', 'in.liggghts_run']),
     'parscale_heatTransferBed': ('ParScale/heatTransferBed_paScal', ['in.liggghts']),
 }
