@@ -82,7 +82,7 @@ print "OBSERVABLE zmax ${tut_zmax}"
 print "OBSERVABLE ke_end ${tut_ke}"
 """
 # Decks with grain temperatures (fix heat/gran) also give the mean, standard deviation,
-# lowest and highest grain temperature. Both codes evaluate a compute in a variable
+# lowest and highest grain temperature. LIGGGHTS evaluates a compute in a variable
 # after the last run only if it ran at that step: a `run 0` whose thermo prints them
 # does (it moves nothing, and repeats the last step, so the thermo series keep their values).
 HEAT_OBSERVE = """variable tut_T2 atom f_Temp*f_Temp
