@@ -18,6 +18,7 @@
 // sable does both before the force pass (pre_force, positions already those of
 // the step): the same numbers, and the integrator's passes stay fused.
 // heatFlux is zeroed for every grain each step (LIGGGHTS: for the group's).
+// Not here: LIGGGHTS' directionalHeatFlux, heat through walls (wall/gran `temperature`).
 #include <cmath>
 #include <string>
 #include <vector>
