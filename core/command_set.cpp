@@ -1,8 +1,9 @@
 // set atom|type|group|region ID  keyword value ...   (LIGGGHTS 3.8 `set`)
 // Keywords: type, type/fraction, x, y, z, vx, vy, vz, omegax, omegay, omegaz,
-// diameter, density, mass, image. Atoms are selected once, then each keyword
-// is applied in order. As in LIGGGHTS, diameter and density also set the mass
-// (4/3 pi r^3 rho, or pi r^2 rho in 2D); mass sets the mass alone. Values may
+// diameter, density, mass, image, property/atom NAME v (a fix's per-atom
+// value). Atoms are selected once, then each keyword is applied in order. As
+// in LIGGGHTS, diameter and density also set the mass (4/3 pi r^3 rho, or
+// pi r^2 rho in 2D); mass sets the mass alone. Values may
 // be v_name (atom- or equal-style variable). A single atom ID that does not
 // exist is an error (LIGGGHTS would silently make 0 settings).
 #include <cmath>
@@ -179,10 +180,25 @@ void cmd_set(Simulation& sim, const Args& a) {
           if (given[d]) at.image[3 * i + d] = static_cast<int>(img[d]);
       });
       k += 4;
+    } else if (key == "property/atom") {
+      // A fix's per-atom values (fix property/atom ID, fix heat/gran's Temp, heatSource, ...): the column f_NAME.
+      const std::string& name = a.word(k + 1, "the name of a per-atom property (Temp, heatSource, ...)");
+      const int h = at.find_column("f_" + name);
+      if (h < 0)
+        a.fail(k + 1, "a per-atom property defined by fix property/atom (its fix ID) or fix heat/gran (Temp, "
+                      "heatFlux, heatSource): there is no '" + name + "'");
+      const int stride = at.column_stride(h);
+      std::vector<Value> vals;
+      for (int c = 0; c < stride; ++c) vals.push_back(value(sim, a, k + 2 + c, "a value for " + name));
+      std::vector<double>& col = at.column(h);
+      each([&](std::size_t i) {
+        for (int c = 0; c < stride; ++c) col[i * stride + c] = vals[c].at(i);
+      });
+      k += 2 + stride;
     } else {
       a.fail(k,
              "a set keyword: type, type/fraction, x, y, z, vx, vy, vz, omegax, omegay, omegaz, diameter, "
-             "density, mass, image");
+             "density, mass, image, property/atom");
     }
     sim.print("  " + std::to_string(count) + " settings made for " + key);
   }

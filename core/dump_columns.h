@@ -14,17 +14,17 @@
 namespace sable {
 
 struct AtomColumn {
-  enum Kind { ID, TYPE, MASS, X, XS, XU, XSU, IMAGE, V, F, OMEGA, TORQUE, RADIUS, DIAMETER, DENSITY, MOL, COMPUTE, VARIABLE };
+  enum Kind { ID, TYPE, MASS, X, XS, XU, XSU, IMAGE, V, F, OMEGA, TORQUE, RADIUS, DIAMETER, DENSITY, MOL, COMPUTE, VARIABLE, FIX };
   Kind kind = ID;
-  int comp = 0;       // xyz component, or compute column (1-based; 0 = per-atom vector)
+  int comp = 0;       // xyz component, or compute/fix column (1-based; 0 = per-atom vector)
   std::string name;   // the word as written in the deck
-  std::string ref;    // compute ID or variable name
+  std::string ref;    // compute ID or variable name; FIX: the Atoms column f_ID
   bool integer() const { return kind == ID || kind == TYPE || kind == IMAGE || kind == MOL; }
 };
 
 inline const char* atom_column_words() {
   return "id, type, mass, x, y, z, xs, ys, zs, xu, yu, zu, xsu, ysu, zsu, ix, iy, iz, vx, vy, vz, fx, fy, fz, "
-         "omegax, omegay, omegaz, tqx, tqy, tqz, radius, diameter, density, mol, c_ID, c_ID[N], v_name";
+         "omegax, omegay, omegaz, tqx, tqy, tqz, radius, diameter, density, mol, c_ID, c_ID[N], f_ID, f_ID[N], v_name";
 }
 
 // Parses word i of `a` as a per-atom quantity. Unknown words and references to
@@ -60,10 +60,25 @@ inline AtomColumn parse_atom_column(Simulation& sim, const Args& a, std::size_t 
     }
   char kind;
   int index;
-  if (!parse_reference(w, kind, c.ref, index)) a.fail(i, std::string("a per-atom attribute: ") + atom_column_words());
+  // LIGGGHTS writes a fix's per-atom scalar as f_ID[0] too (f_Temp[0]).
+  const bool zero = w.rfind("f_", 0) == 0 && w.size() > 5 && w.ends_with("[0]");
+  if (!parse_reference(zero ? w.substr(0, w.size() - 3) : w, kind, c.ref, index))
+    a.fail(i, std::string("a per-atom attribute: ") + atom_column_words());
   c.comp = index;
-  if (kind == 'f')
-    a.fail(i, "a per-atom attribute (f_ID: no sable fix provides per-atom values yet; use c_ID or v_name)");
+  if (kind == 'f') {
+    // A fix's per-atom values are the Atoms column f_ID (fix property/atom, heat/gran: f_Temp ...).
+    const int h = sim.atoms.find_column("f_" + c.ref);
+    if (h < 0)
+      a.fail(i, "a per-atom attribute (no fix '" + c.ref +
+                    "' with per-atom values: fix property/atom and fix heat/gran (Temp, heatFlux, heatSource) give them)");
+    const int stride = sim.atoms.column_stride(h);
+    if (index == 0 && stride > 1) a.fail(i, "f_" + c.ref + "[N] (it has " + std::to_string(stride) + " components)");
+    if (index > stride)
+      a.fail(i, "f_" + c.ref + (stride > 1 ? "[1.." + std::to_string(stride) + "]" : " or f_" + c.ref + "[0]"));
+    c.kind = AtomColumn::FIX;
+    c.ref = "f_" + c.ref;
+    return c;
+  }
   if (kind == 'v') {
     if (!sim.variables->exists(c.ref)) a.fail(i, "a defined atom-style variable ('" + c.ref + "' is not defined)");
     if (!sim.variables->is_atom_style(c.ref)) a.fail(i, "an atom-style variable ('" + c.ref + "' is not atom-style)");
@@ -129,6 +144,15 @@ inline void gather_atom_column(Simulation& sim, const AtomColumn& c, const std::
       if (cp->peratom.size() != a.n * nc) cp->compute_peratom();
       const std::size_t col = std::max(0, k - 1);
       each([&](std::size_t i) { return cp->peratom[i * nc + col]; });
+      break;
+    }
+    case AtomColumn::FIX: {
+      const int h = a.find_column(c.ref);
+      if (h < 0) fail("'" + c.name + "': per-atom values '" + c.ref + "' no longer exist");
+      const int stride = a.column_stride(h);
+      const std::vector<double>& col = a.column(h);
+      const int off = std::max(0, k - 1);
+      each([&](std::size_t i) { return col[i * stride + off]; });
       break;
     }
     case AtomColumn::VARIABLE: {

@@ -55,6 +55,13 @@ class SimContext : public ExprContext {
       out = index == 0 ? c->scalar() : c->vector(index);
       return true;
     }
+    if (atom != Atoms::npos && !column) {  // a fix's per-atom values: the Atoms column f_ID (fix heat/gran's Temp ...)
+      const int h = sim.atoms.find_column("f_" + id);
+      if (h >= 0 && index <= sim.atoms.column_stride(h)) {
+        out = sim.atoms.column(h)[atom * sim.atoms.column_stride(h) + std::max(0, index - 1)];
+        return true;
+      }
+    }
     Fix* f = sim.find_fix(id);
     if (f && column) {
       if (index > f->array_rows || column > f->array_cols) return false;

@@ -14,7 +14,9 @@ folder into OUT/<name>/<code>_s<seed>/ and run there as written, except for:
     (after a `run 0` when the deck's last run is followed by write_restart)
     (OBSERVABLE lines as in compare.py): atoms, centre of mass, highest grain,
     kinetic energy at the end; the run-averaged kinetic energy comes from the
-    deck's own thermo table (mean of the `ke` column).
+    deck's own thermo table (mean of the `ke` column); decks with fix heat/gran
+    also print the mean, standard deviation, lowest and highest grain
+    temperature (HEAT_OBSERVE).
 Decks that chain (a restart written by the one before) run in one folder in
 order. Per tutorial and code the table gives: runs unchanged (yes/no and the
 first error), then per observable the mean ± standard deviation over seeds,
@@ -58,6 +60,10 @@ TUTORIALS = {
     'multisphere': ('multisphere_stone_restitution', ['in.multisphere']),
     'packing': ('packing', ['in.packing']),
     'superquadric': ('superquadric', ['in.particle_particle']),
+    # The ParScale decks need LIGGGHTS' ParScale coupling (fix couple/pascal), which the
+    # Debian LIGGGHTS 3.8 lacks ("Invalid fix style"); heatTransferBed_paScal stops even
+    # earlier there ("invalid radius random style" for `radius gaussian`), and
+    # in.liggghts_run asks for 2 processes (`processors 2 1 *`). Kept to show that.
     'parscale_init_run': ('ParScale/fluidizedBedTempParScale', ['in.liggghts_init', 'in.liggghts_run']),
     'parscale_heatTransferBed': ('ParScale/heatTransferBed_paScal', ['in.liggghts']),
 }
@@ -75,6 +81,26 @@ print "OBSERVABLE ycm ${tut_ycm}"
 print "OBSERVABLE zcm ${tut_zcm}"
 print "OBSERVABLE zmax ${tut_zmax}"
 print "OBSERVABLE ke_end ${tut_ke}"
+"""
+# Decks with grain temperatures (fix heat/gran) also give the mean, standard deviation,
+# lowest and highest grain temperature. LIGGGHTS evaluates a compute in a variable
+# after the last run only if it ran at that step: a `run 0` whose thermo prints them
+# does (it moves nothing, and repeats the last step, so the thermo series keep their values).
+HEAT_OBSERVE = """variable tut_T2 atom f_Temp*f_Temp
+compute tut_T all reduce ave f_Temp
+compute tut_T2 all reduce ave v_tut_T2
+compute tut_Tmin all reduce min f_Temp
+compute tut_Tmax all reduce max f_Temp
+thermo_style custom step c_tut_T c_tut_T2 c_tut_Tmin c_tut_Tmax
+run 0
+variable tut_T equal c_tut_T
+variable tut_Tsd equal sqrt(abs(c_tut_T2-c_tut_T*c_tut_T))
+variable tut_Tmin equal c_tut_Tmin
+variable tut_Tmax equal c_tut_Tmax
+print "OBSERVABLE T_mean ${tut_T}"
+print "OBSERVABLE T_std ${tut_Tsd}"
+print "OBSERVABLE T_min ${tut_Tmin}"
+print "OBSERVABLE T_max ${tut_Tmax}"
 """
 SEED_RE = re.compile(r'(insert/\S+\s+seed\s+)(\d+)')
 
@@ -106,6 +132,8 @@ def prepare(name, code, seed, out):
             # in variables until a run: `run 0` makes them current (no step; its thermo row repeats the last).
             refresh = 'run 0\n' if 'write_restart' in text.split('\nrun')[-1] else ''
             text = text.rstrip('\n') + '\n' + refresh + OBSERVE
+            if re.search(r'^\s*fix\s+\S+\s+\S+\s+heat/gran', text, re.M):
+                text += HEAT_OBSERVE
         open(os.path.join(run, deck), 'w').write(text)
     return run, decks
 
