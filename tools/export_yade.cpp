@@ -24,7 +24,9 @@
 #include "core/input.h"
 #include "core/mesh.h"
 #include "core/simulation.h"
+#include "core/thermo.h"
 #include "core/variable.h"
+#include "fixes/fix_ave_time.h"
 #include "tools/yade_clumps.h"
 
 namespace sable {
@@ -48,7 +50,7 @@ std::string quoted(const std::string& s) {
   std::string o = "'";
   for (char c : s) {
     if (c == '\\' || c == '\'') o += '\\';
-    o += c;
+    o += c == '\n' ? std::string("\\n") : std::string(1, c);
   }
   return o + "'";
 }
@@ -134,6 +136,9 @@ class YadeExporter {
   std::set<std::string> set_force_fixes_;  // aveforce / setforce fix IDs: f_ID[1..3] from the script's _fixf
   std::string force_component(const Args& a, std::size_t i) const;
   void clumps();
+  std::vector<const Fix*> ave_times_;  // fix ave/time: recorders written after the engines
+  void recorders();
+  void recorder(const Fix& f);
   double gravity_[3] = {0, 0, 0};
   bool rotation_ = false;
 };
@@ -375,6 +380,7 @@ void YadeExporter::scene(const Args& run) {
   mesh_facets();
   bodies();
   engines();
+  recorders();
 }
 
 // boundary p on any axis: YADE's cell is periodic on all three, so a fixed axis
@@ -541,6 +547,8 @@ void YadeExporter::fixes() {
       fix_mesh(f);
     } else if (f.style == "move/mesh") {
       fix_move_mesh(f);
+    } else if (f.style == "ave/time") {
+      ave_times_.push_back(&f);  // translated once every wall, mesh and body is known
     } else if (f.style == "freeze") {
       members([&](std::size_t i) { fixed_[i] = 1; });
     } else if (f.style == "addforce") {
@@ -834,6 +842,62 @@ void YadeExporter::engines() {
       << "    PyRunner(command='_thermo_tick()', iterPeriod=1),\n]\n";
 }
 
+// fix ave/time (scalar mode, ave one) as a _AveTime recorder (head()): the
+// same schedule (LIGGGHTS' nextvalid), averages and text file as
+// fixes/fix_ave_time.cpp, its values evaluated on YADE's bodies.
+void YadeExporter::recorders() {
+  for (const Fix* f : ave_times_) recorder(*f);
+}
+
+void YadeExporter::recorder(const Fix& f) {
+  const Args& a = f.args;  // fix ID group ave/time Nevery Nrepeat Nfreq values... keywords...
+  ave::Schedule sched;
+  sched.parse(a, 4);
+  std::size_t i = 7;
+  std::vector<std::string> cols, words;
+  for (char kind; i < a.size(); ++i) {
+    std::string id;
+    int index = 0;
+    if (!parse_reference(a[i], kind, id, index)) break;
+    cols.push_back("lambda: " + translate(a[i], a));
+    words.push_back(a[i]);
+  }
+  ave::Options o;
+  std::vector<long> off;
+  while (i < a.size()) {
+    const std::string& k = a[i];
+    if (k == "mode" && a.word(i + 1, "scalar") != "scalar")
+      a.fail(i + 1, "mode scalar (export-yade translates no vector-mode ave/time)");
+    if (k == "ave" && a.word(i + 1, "one") != "one")
+      a.fail(i + 1, "ave one (export-yade translates no running or window averages)");
+    if (k == "hdf5" || k == "overwrite") a.fail(i, "file F (export-yade writes the text file only, no " + k + ")");
+    if (k == "off") {
+      off.push_back(a.integer(i + 1, "a value number"));
+      i += 2;
+    } else if (!o.parse(a, i, sched, "the first step to average from")) {
+      a.fail(i, "an ave/time keyword export-yade translates: mode scalar, ave one, start, off, file, title1, title2");
+    }
+  }
+  if (o.file.empty()) a.fail_line("export-yade: an ave/time without 'file F' writes nothing YADE can show; not translated");
+  // Header as fix_ave_time.cpp writes it in scalar mode (title3 is for vector mode only).
+  std::string h = o.title_or(0, "# Time-averaged data for fix " + f.id) + "\n";
+  if (o.titled[1]) {
+    h += o.title[1] + "\n";
+  } else {
+    h += "# TimeStep";
+    for (const auto& w : words) h += " " + w;
+    h += "\n";
+  }
+  std::string offs;
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    offs += std::string(std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end() ? "True" : "False") + ", ";
+  py_ << "# " << a.where().file << ":" << a.where().line << ": fix " << f.id << " ave/time\n"
+      << "_recorders.append(_AveTime(" << quoted(o.file) << ", " << quoted(h) << ", " << sched.nevery << ", "
+      << sched.nrepeat << ", " << sched.nfreq << ", " << sched.start << ", [";
+  for (const auto& c : cols) py_ << c << ", ";
+  py_ << "], [" << offs << "]))\n";
+}
+
 // Helpers the script needs before the scene: body lookup, number format, run with thermo rows.
 std::string YadeExporter::head() const {
   std::string cols;
@@ -893,13 +957,55 @@ std::string YadeExporter::head() const {
          "        b.state.vel = c.state.vel + c.state.angVel.cross(b.state.pos - c.state.pos)\n"
          "        b.state.angVel = c.state.angVel\n"
          "    return c.id\n"
+         "class _AveTime:  # fix ave/time, mode scalar, ave one: fixes/fix_ave_time.cpp's schedule, averages and file\n"
+         "    def __init__(self, path, header, nevery, nrepeat, nfreq, start, cols, off):\n"
+         "        self.nevery, self.nrepeat, self.nfreq, self.start = nevery, nrepeat, nfreq, start\n"
+         "        self.cols, self.off, self.irepeat = cols, off, 0\n"
+         "        self.file = open(path, 'w')\n"
+         "        self.file.write(header)\n"
+         "        self.file.flush()\n"
+         "        self.nvalid = self.first_after(_step[0])\n"
+         "    def first_after(self, step):  # LIGGGHTS' nextvalid()\n"
+         "        n = (step // self.nfreq) * self.nfreq + self.nfreq\n"
+         "        while n < self.start:\n"
+         "            n += self.nfreq\n"
+         "        if n - self.nfreq == step and self.nrepeat == 1:\n"
+         "            n = step\n"
+         "        else:\n"
+         "            n -= (self.nrepeat - 1) * self.nevery\n"
+         "        return n + self.nfreq if n < step else n\n"
+         "    def init(self):  # each run's start\n"
+         "        if self.nvalid < _step[0]:\n"
+         "            self.irepeat, self.nvalid = 0, self.first_after(_step[0])\n"
+         "    def tick(self):  # end of step _step[0] (and each run's set-up)\n"
+         "        s = _step[0]\n"
+         "        if s != self.nvalid:\n"
+         "            return\n"
+         "        if self.irepeat == 0:\n"
+         "            self.sum = [0.0] * len(self.cols)\n"
+         "        for j, c in enumerate(self.cols):\n"
+         "            self.sum[j] = c() if self.off[j] else self.sum[j] + c()\n"
+         "        self.irepeat += 1\n"
+         "        if self.irepeat < self.nrepeat:\n"
+         "            self.nvalid += self.nevery\n"
+         "            return\n"
+         "        self.irepeat, self.nvalid = 0, s + self.nfreq - (self.nrepeat - 1) * self.nevery\n"
+         "        out = [x if off else x / self.nrepeat for x, off in zip(self.sum, self.off)]\n"
+         "        self.file.write('%d' % s + ''.join(' %g' % x for x in out) + '\\n')\n"
+         "        self.file.flush()\n"
+         "_recorders = []\n"
          "def _row():\n    print(' '.join('%.10g' % c() for c in _thermo['cols']), flush=True)\n"
          "def _thermo_tick():\n"
          "    _step[0] = O.iter + 1  # this engine runs after NewtonIntegrator, before O.iter counts the step\n"
+         "    for r in _recorders:\n"
+         "        r.tick()\n"
          "    if _thermo['every'] and (_step[0] % _thermo['every'] == 0 or _step[0] == _thermo['last']):\n"
          "        _row()\n"
          "def _run(n, every, deck):\n"
          "    _thermo.update(every=every, cols=_thermo_cols, last=O.iter + n)\n"
+         "    for r in _recorders:  # sable: init() and setup() of fix ave/time\n"
+         "        r.init()\n"
+         "        r.tick()\n"
          "    print(" + quoted(cols) + ", flush=True)\n"
          "    _row()\n"
          "    O.run(n, True)\n"
