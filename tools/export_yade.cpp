@@ -859,7 +859,6 @@ void YadeExporter::recorder(const Fix& f) {
     std::string id;
     int index = 0;
     if (!parse_reference(a[i], kind, id, index)) break;
-    cols.push_back("lambda: " + translate(a[i], a));
     words.push_back(a[i]);
   }
   ave::Options o;
@@ -879,6 +878,7 @@ void YadeExporter::recorder(const Fix& f) {
     }
   }
   if (o.file.empty()) a.fail_line("export-yade: an ave/time without 'file F' writes nothing YADE can show; not translated");
+  for (const auto& w : words) cols.push_back("lambda: " + translate(w, a));  // after the options: those errors first
   // Header as fix_ave_time.cpp writes it in scalar mode (title3 is for vector mode only).
   std::string h = o.title_or(0, "# Time-averaged data for fix " + f.id) + "\n";
   if (o.titled[1]) {

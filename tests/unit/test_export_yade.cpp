@@ -5,7 +5,9 @@
 // YADE results in reference_runs/reference/yade_*/yade/).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -410,4 +412,103 @@ TEST(ExportYade, WallsAndCellLongTrianglesInAPeriodicBoxAreRefused) {
   const std::string m = exported(tmp, mdeck);
   EXPECT_NE(m.find("deck.in:19"), std::string::npos) << m;
   EXPECT_NE(m.find("triangle 1 of this mesh spans x across 0.99 of the periodic box"), std::string::npos) << m;
+}
+
+// ------------------------------------------------------------------ fix ave/time
+namespace {
+
+std::string file_text(const std::string& path) {
+  std::stringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+// Two ave/time recorders (averaged with an `off` value and a title; one sample
+// from step 0) over two runs, writing to PREFIX_a.txt and PREFIX_b.txt.
+std::string ave_time_deck(const std::string& prefix) {
+  return kHead + "variable q equal step*1.5+0.25\nvariable p equal 1/(step+3)\n"
+         "fix a all ave/time 3 4 21 v_q v_p off 2 file " + prefix + "_a.txt title1 \"# mine\"\n"
+         "fix b all ave/time 5 1 10 v_p file " + prefix + "_b.txt\n"
+         "run 100\nrun 50\n";
+}
+
+std::string python() {
+  for (const char* c : {"/usr/bin/python3", "python3"})
+    if (std::system((std::string(c) + " -c 'pass' > /dev/null 2>&1").c_str()) == 0) return c;
+  return "";
+}
+
+}  // namespace
+
+TEST(ExportYade, AveTimeBecomesARecorderWritingSablesFile) {
+  TempDir tmp;
+  const std::string s = exported(tmp, ave_time_deck(tmp / "yade"));
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  // The exporter ran the deck's set-up in sable, whose fix wrote its header: the recorder writes the same.
+  EXPECT_EQ(file_text(tmp / "yade_a.txt"), "# mine\n# TimeStep v_q v_p\n");
+  EXPECT_NE(s.find("_recorders.append(_AveTime('" + tmp / "yade_a.txt" + "', '# mine\\n# TimeStep v_q v_p\\n', 3, 4, 21, 0, "
+                   "[lambda: (_step[0]*1.5+0.25), lambda: (1/(_step[0]+3)), ], [False, True, ]))"),
+            std::string::npos) << s;
+  EXPECT_NE(s.find("'# Time-averaged data for fix b\\n# TimeStep v_p\\n', 5, 1, 10, 0, "), std::string::npos) << s;
+}
+
+// Without YADE: the script's own recorder code (its helpers, recorders and
+// runs, YADE's O stubbed: values of `step` only) run in Python must write
+// byte for byte the files sable's fix ave/time writes for the same deck.
+TEST(ExportYade, AveTimeRecorderInPythonWritesWhatSableWrites) {
+  const std::string py = python();
+  if (py.empty()) GTEST_SKIP() << "no python3";
+  TempDir tmp;
+  const std::string s = exported(tmp, ave_time_deck(tmp / "yade"));
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  {
+    sable::test::Deck d;
+    d(ave_time_deck(tmp / "sable"));
+  }
+  std::string prog =
+      "import sys, types\nsys.modules['yade'] = types.ModuleType('yade')\nsys.modules['yade'].utils = None\n"
+      "class _O:\n    iter = 0\n    def run(self, n, wait):\n        for k in range(n):\n"
+      "            _thermo_tick()\n            self.iter += 1\nO = _O()\n";
+  std::istringstream lines(s);
+  bool head = true;
+  for (std::string l; std::getline(lines, l);) {
+    if (head || l.rfind("_recorders.append(", 0) == 0 || l.rfind("O.dt = ", 0) == 0 || l.rfind("_thermo_cols = ", 0) == 0 ||
+        l.rfind("_run(", 0) == 0)
+      prog += l + "\n";
+    if (l.find("Loop time of run %d steps (YADE)") != std::string::npos) head = false;  // the helpers end here
+  }
+  std::ofstream(tmp / "drive.py") << prog;
+  ASSERT_EQ(std::system((py + " " + tmp / "drive.py" + " > " + tmp / "drive.out 2>&1").c_str()), 0)
+      << file_text(tmp / "drive.out");
+  for (const char* f : {"_a.txt", "_b.txt"}) {
+    const std::string want = file_text(tmp / ("sable" + std::string(f)));
+    EXPECT_GT(std::count(want.begin(), want.end(), '\n'), 8) << want;
+    EXPECT_EQ(file_text(tmp / ("yade" + std::string(f))), want) << f;
+  }
+}
+
+TEST(ExportYade, AveTimeValueItCannotEvaluateNamesTheLine) {
+  TempDir tmp;
+  const std::string e = exported(tmp, kHead + "compute k all ke\nfix a all ave/time 1 1 10 c_k file " + tmp / "k.txt" + "\nrun 10\n");
+  EXPECT_NE(e.find("deck.in:20: 'fix a all ave/time"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot translate 'c_k'"), std::string::npos) << e;
+}
+
+TEST(ExportYade, AveTimeOptionsNotTranslatedAreRefused) {
+  const std::string wall = "fix floor all wall/gran model hertz tangential history primitive type 1 zplane -0.005\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"v_q ave running file F", "'running' in"},
+      {"v_q ave window 3 file F", "'window' in"},
+      {"f_floor mode vector file F", "'vector' in"},
+      {"v_q file F hdf5 F.h5", "'hdf5' in"},
+      {"v_q", "without 'file F'"},
+  };
+  for (const auto& [words, want] : cases) {
+    TempDir tmp;
+    std::string w = words;
+    for (std::size_t k; (k = w.find(" F")) != std::string::npos;) w.replace(k, 2, " " + tmp / "x");
+    const std::string e = exported(tmp, kHead + wall + "variable q equal step\nfix a all ave/time 1 1 10 " + w + "\nrun 10\n");
+    EXPECT_NE(e.find("deck.in:21: "), std::string::npos) << words << ": " << e;
+    EXPECT_NE(e.find(want), std::string::npos) << words << ": " << e;
+  }
 }
