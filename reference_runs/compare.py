@@ -26,8 +26,8 @@ def show(path):
 # ---------------------------------------------------------------- deck header
 def parse_header(deck):
     """#@ tolerance PATTERN rel X | abs X | sigma K | none (keys combine),
-    #@ seeds VAR V1 V2 ..., #@ coordination NAME DUMPFILE."""
-    h = {'tol': [], 'seeds': None, 'coord': []}
+    #@ seeds VAR V1 V2 ..., #@ coordination NAME DUMPFILE, #@ avetime NAME FILE."""
+    h = {'tol': [], 'seeds': None, 'coord': [], 'files': []}
     for n, line in enumerate(open(deck), 1):
         if not line.startswith('#@'):
             continue
@@ -41,6 +41,8 @@ def parse_header(deck):
             h['seeds'] = (w[1], w[2:])
         elif w[0] == 'coordination' and len(w) == 3:
             h['coord'].append((w[1], w[2]))
+        elif w[0] == 'avetime' and len(w) == 3:
+            h['files'].append((w[1], w[2]))
         else:
             sys.exit(f'{deck}:{n}: unknown or incomplete directive: {line.strip()}')
     return h
@@ -94,6 +96,26 @@ def read_last_dump(path):
     cols = lines[i + 8].split()[2:]
     data = np.array([[float(v) for v in l.split()] for l in lines[i + 9:i + 9 + n]]).reshape(n, len(cols))
     return {c: data[:, k] for k, c in enumerate(cols)}, box, periodic
+
+
+def ave_time_file(path, name):
+    """A fix ave/time text file (mode scalar) as observables NAME_rows,
+    NAME_first_step, NAME_last_step and per column NAME_COL (last row) and
+    NAME_COL_mean (mean over rows), COL the header word without v_/c_/f_ and
+    [I] as _I; and its columns as series NAME_COL."""
+    lines = open(path).read().splitlines()
+    cols = [c[2:] if c[:2] in ('v_', 'c_', 'f_') else c for c in lines[1].split()[2:]]
+    cols = [c.replace('[', '_').replace(']', '') for c in cols]
+    rows = np.array([[float(x) for x in l.split()] for l in lines[2:] if l.strip()]).reshape(-1, len(cols) + 1)
+    obs = {f'{name}_rows': float(len(rows))}
+    if len(rows):
+        obs.update({f'{name}_first_step': rows[0, 0], f'{name}_last_step': rows[-1, 0]})
+    series = {}
+    for j, c in enumerate(cols, 1):
+        if len(rows):
+            obs.update({f'{name}_{c}': float(rows[-1, j]), f'{name}_{c}_mean': float(rows[:, j].mean())})
+        series[f'{name}_{c}'] = [rows[:, 0].tolist(), rows[:, j].tolist()]
+    return obs, series
 
 
 def coordination(path):
@@ -170,6 +192,14 @@ def run_once(code, deck, rundir, variables, h, args):
     for name, dump in h['coord']:
         path = os.path.join(rundir, dump)
         obs[name] = coordination(path) if rc == 0 and os.path.exists(path) else math.nan
+    for name, f in h['files']:
+        path = os.path.join(rundir, f)
+        if rc == 0 and os.path.exists(path):
+            o, s = ave_time_file(path, name)
+            obs.update(o)
+            series.update(s)
+        else:
+            obs[name + '_rows'] = math.nan
     error = None if rc == 0 else f'exit status {rc}: ' + ' | '.join(text.strip().splitlines()[-3:])
     return obs, series, error, '\n'.join(text.splitlines()[-40:])
 

@@ -26,7 +26,7 @@ if command -v yade >/dev/null; then yref=yade; else
   yref=yade-stored
   echo "yade not found (apt-get install yade); comparing against the stored YADE results"
 fi
-for deck in yade_collisions_hertz yade_linear_2d yade_wall yade_lid_2d yade_aveforce_lid yade_lid_rigid_2d yade_rigid_tumble yade_mesh_ramp yade_mesh_paddle yade_mesh_pusher yade_periodic yade_periodic_rigid; do
+for deck in yade_collisions_hertz yade_linear_2d yade_wall yade_wall_avetime yade_lid_2d yade_aveforce_lid yade_lid_rigid_2d yade_rigid_tumble yade_mesh_ramp yade_mesh_paddle yade_mesh_pusher yade_periodic yade_periodic_rigid; do
   "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$yref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
