@@ -574,7 +574,7 @@ void FixInsert::insert() {
   double filled = 0;
   const long want = wanted(filled);
   if (want <= 0) return;
-  const auto grains = dist_->draw(want, exact_);
+  const auto grains = dist_->draw(drawable(want), exact_);
   std::vector<double> pos;
   const std::size_t placed = place(grains, filled, pos);
   Atoms& at = sim.atoms;
@@ -608,13 +608,26 @@ void FixInsert::insert() {
                   id.c_str(), placed, mass_now, sim.step, ninserted_, mass_inserted_);
     sim.print(buf);
   }
-  if (placed < grains.size()) {
+  if (static_cast<long>(placed) < want) {
     std::snprintf(buf, sizeof buf,
-                  "Particle insertion: Less insertions than requested: fix %s %s placed %zu of %zu grains "
+                  "Particle insertion: Less insertions than requested: fix %s %s placed %zu of %ld grains "
                   "at step %ld (%ld tries per grain); lower the target, enlarge the region or raise maxattempt",
-                  style.c_str(), id.c_str(), placed, grains.size(), sim.step, maxattempt_);
+                  style.c_str(), id.c_str(), placed, want, sim.step, maxattempt_);
     sim.warn(buf);
   }
+}
+
+// The most grains worth drawing: twice what grains of the smallest template would
+// fill packed solid in the insertion volume (grown by a grain on every side: only
+// centres must be inside it). A target beyond that (a fuzzed count of 2^31) would
+// otherwise draw and try millions of grains in vain; the shortfall is warned about.
+long FixInsert::drawable(long want) const {
+  double space = 1, smallest = INFINITY;
+  for (int k = 0; k < dim(); ++k) space *= shi_[k] - slo_[k] + 2 * dist_->max_radius;
+  for (const auto* t : dist_->templates) smallest = std::min(smallest, t->volume_expect());
+  if (!(smallest > 0) || !(space > 0)) return want;
+  const double most = std::ceil(2.0 * space / smallest);
+  return most < static_cast<double>(want) ? static_cast<long>(most) : want;
 }
 
 void FixInsert::draw_velocity(double* v) {

@@ -69,6 +69,7 @@ class FixInsert : public Fix {
 
   int dim() const;
   double grain_volume(double r) const;
+  long drawable(long want) const;  // at most what could ever fit (see fix_insert.cpp)
   // Grains (count, volume, mass) whose centre is in the region, any group; a
   // multisphere clump counts once, by its centre of mass (LIGGGHTS).
   void region_content(long& np, double& vol, double& mass) const;

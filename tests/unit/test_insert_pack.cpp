@@ -339,6 +339,20 @@ TEST(InsertPack, WarnsWhenTheRegionIsTooFull) {
   EXPECT_NE(out.find("of 500 grains"), std::string::npos) << out;
 }
 
+// A target far beyond what the region could ever hold (the 1-h fuzz's 2^31) draws no
+// more grains than twice what would fill the region packed solid: the run goes on at
+// once with the region full and the shortfall warned about, against the full target.
+TEST(InsertPack, AbsurdTargetDrawsOnlyWhatCouldFit) {
+  Deck d;
+  const std::string out = sable::test::printed(
+      box(0.02) + kOneTemplate +
+          "fix ins all insert/pack seed 32452867 distributiontemplate pdd1 insert_every once particles_in_region "
+          "2147483648 region box\nrun 1",
+      d);
+  EXPECT_GT(d->atoms.n, 0u);
+  EXPECT_NE(out.find("of 2147483648 grains"), std::string::npos) << out;
+}
+
 TEST(ParticleTemplate, SeedsAndSyntaxErrors) {
   Deck d;
   d(box(0.1));
