@@ -280,9 +280,22 @@ void Neighbor::prescan_range(const Atoms& atoms, int t, std::size_t lo, std::siz
 }
 
 // One atom's entries by partner index, then image code (insertion sort: a
-// few entries). The threaded force pass relies on it: the entries whose
-// partner lies in a later thread's range are then the atom's last ones.
+// few entries; a full sort when a cutoff as wide as the box gives each atom
+// thousands, which insertion sort would crawl through). The threaded force pass
+// relies on it: the entries whose partner lies in a later thread's range are
+// then the atom's last ones.
 static void sort_entries(int* j, std::uint8_t* shift, std::size_t n) {
+  if (n > 64) {
+    thread_local std::vector<std::int64_t> key;
+    key.resize(n);
+    for (std::size_t a = 0; a < n; ++a) key[a] = (static_cast<std::int64_t>(j[a]) << 8) | shift[a];
+    std::sort(key.begin(), key.end());
+    for (std::size_t a = 0; a < n; ++a) {
+      j[a] = static_cast<int>(key[a] >> 8);
+      shift[a] = static_cast<std::uint8_t>(key[a] & 0xff);
+    }
+    return;
+  }
   for (std::size_t a = 1; a < n; ++a) {
     const int jj = j[a];
     const std::uint8_t sh = shift[a];

@@ -205,6 +205,7 @@ def make_mutant(seeds, commands, words, master_seed, k, cap):
     path, lines = rng.choice(seeds)
     lines = cap_runs(list(lines), cap)
     op = Mutator(rng, commands, words).mutate(lines, rng.choice([1, 1, 1, 2, 3]))
+    lines = cap_runs(lines, cap)  # a mutated `run N` is capped too (an uncapped `run 2^31 upto` is no hang of sable's)
     return path, "\n".join(lines) + "\n", op
 
 
