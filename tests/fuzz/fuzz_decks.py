@@ -191,9 +191,11 @@ def cap_runs(lines, cap):
         m = re.match(r"^(\s*run\s+)(\S+)(.*)$", l)
         if m:
             try:
-                n = int(float(m.group(2)))
-                if 0 <= n <= 1e15:
-                    l = "%s%d%s" % (m.group(1), min(n, cap), m.group(3))
+                v = float(m.group(2))
+                if 0 <= v <= 1e15:
+                    l = "%s%d%s" % (m.group(1), min(int(v), cap), m.group(3))
+                elif v > 1e15:  # a mutated count (inf, 2^63): as long as the cap
+                    l = "%s%d%s" % (m.group(1), cap, m.group(3))
             except ValueError:
                 l = "%s%d%s" % (m.group(1), cap, m.group(3))
         out.append(l)
