@@ -59,12 +59,14 @@ TUTORIALS = {
     'movingMeshGran': ('movingMeshGran', ['in.movingMeshGran']),
     'multisphere': ('multisphere_stone_restitution', ['in.multisphere']),
     'packing': ('packing', ['in.packing']),
-    'superquadric': ('superquadric', ['in.particle_particle']),
+    'superquadric': ('superquadric', ['in.particle_particle']),  # Debian's LIGGGHTS 3.8: "Invalid atom style"
     # The ParScale decks need LIGGGHTS' ParScale coupling (fix couple/pascal), which the
     # Debian LIGGGHTS 3.8 lacks ("Invalid fix style"); heatTransferBed_paScal stops even
     # earlier there ("invalid radius random style" for `radius gaussian`), and
     # in.liggghts_run asks for 2 processes (`processors 2 1 *`). Kept to show that.
     'parscale_init_run': ('ParScale/fluidizedBedTempParScale', ['in.liggghts_init', 'in.liggghts_run']),
+    # Its first deck alone runs in LIGGGHTS 3.8 (10 grains settling, fix momentum): counted.
+    'parscale_init': ('ParScale/fluidizedBedTempParScale', ['in.liggghts_init']),
     'parscale_heatTransferBed': ('ParScale/heatTransferBed_paScal', ['in.liggghts']),
 }
 OBSERVE = """
