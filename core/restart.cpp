@@ -135,7 +135,12 @@ std::string fixes_section(const Simulation& sim, std::size_t& nstates) {
 }
 
 // Write to a temporary file next to `path`, then rename: readers see the old file or the new one.
+// A missing folder on the way is made, as LIGGGHTS does (the ParScale tutorial writes
+// post/restart/ into a folder that has only post/).
 void write_atomically(const std::string& path, const std::string& bytes) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !std::filesystem::exists(parent, ec)) std::filesystem::create_directories(parent, ec);
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) fail("cannot write restart file '" + path + "': " + std::strerror(errno));

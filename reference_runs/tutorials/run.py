@@ -88,6 +88,29 @@ print "OBSERVABLE ke_end ${tut_ke}"
 # lowest and highest grain temperature. LIGGGHTS evaluates a compute in a variable
 # after the last run only if it ran at that step: a `run 0` whose thermo prints them
 # does (it moves nothing, and repeats the last step, so the thermo series keep their values).
+# LIGGGHTS refuses group functions in variables beside fix multisphere ("By default
+# variable command 'group' may not be used together with fix multisphere"): there the
+# centre is the plain mean of the sphere centres, from compute reduce, in both codes.
+MS_OBSERVE = """
+# --- appended by reference_runs/tutorials/run.py: observables only (multisphere deck) ---
+compute tut_p all property/atom x y z
+compute tut_m all reduce ave c_tut_p[1] c_tut_p[2] c_tut_p[3]
+compute tut_zmax all reduce max c_tut_p[3]
+thermo_style custom step atoms ke c_tut_m[1] c_tut_m[2] c_tut_m[3] c_tut_zmax
+run 0
+variable tut_atoms equal atoms
+variable tut_xcm equal c_tut_m[1]
+variable tut_ycm equal c_tut_m[2]
+variable tut_zcm equal c_tut_m[3]
+variable tut_zmax equal c_tut_zmax
+variable tut_ke equal ke
+print "OBSERVABLE atoms ${tut_atoms}"
+print "OBSERVABLE xcm ${tut_xcm}"
+print "OBSERVABLE ycm ${tut_ycm}"
+print "OBSERVABLE zcm ${tut_zcm}"
+print "OBSERVABLE zmax ${tut_zmax}"
+print "OBSERVABLE ke_end ${tut_ke}"
+"""
 HEAT_OBSERVE = """variable tut_T2 atom f_Temp*f_Temp
 compute tut_T all reduce ave f_Temp
 compute tut_T2 all reduce ave v_tut_T2
@@ -133,7 +156,8 @@ def prepare(name, code, seed, out):
             # After write_restart (its system init) LIGGGHTS refuses thermo keywords
             # in variables until a run: `run 0` makes them current (no step; its thermo row repeats the last).
             refresh = 'run 0\n' if 'write_restart' in text.split('\nrun')[-1] else ''
-            text = text.rstrip('\n') + '\n' + refresh + OBSERVE
+            multisphere = re.search(r'^\s*fix\s+\S+\s+\S+\s+multisphere\b', text, re.M)
+            text = text.rstrip('\n') + '\n' + refresh + (MS_OBSERVE if multisphere else OBSERVE)
             if re.search(r'^\s*fix\s+\S+\s+\S+\s+heat/gran', text, re.M):
                 text += HEAT_OBSERVE
         open(os.path.join(run, deck), 'w').write(text)

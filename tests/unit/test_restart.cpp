@@ -166,6 +166,18 @@ TEST(Restart, SplitRunContinuesBitIdentically) {
   expect_same_state(*a, *g);
 }
 
+// A folder missing on the way to the file is made (as LIGGGHTS does), and the file reads back.
+TEST(Restart, MakesMissingFolders) {
+  TempDir tmp;
+  const std::string file = tmp / "post/restart/pour.restart";
+  Deck b;
+  b(kHead)(kBody)("run 10")("write_restart " + file);
+  Deck c;
+  c("units si\natom_style granular\nread_restart " + file);
+  EXPECT_EQ(c->step, 10);
+  EXPECT_EQ(c->atoms.n, b->atoms.n);
+}
+
 // The run continues bit for bit also when it is split twice and the second file
 // is written by a restarted run (state that passes through two restarts).
 TEST(Restart, TwoRestartsInARow) {
