@@ -69,6 +69,14 @@ TUTORIALS = {
     'parscale_init': ('ParScale/fluidizedBedTempParScale', ['in.liggghts_init']),
     'parscale_heatTransferBed': ('ParScale/heatTransferBed_paScal', ['in.liggghts']),
 }
+# The observables' print lines, after the variables tut_* that each deck kind defines.
+OBSERVE_PRINTS = """print "OBSERVABLE atoms ${tut_atoms}"
+print "OBSERVABLE xcm ${tut_xcm}"
+print "OBSERVABLE ycm ${tut_ycm}"
+print "OBSERVABLE zcm ${tut_zcm}"
+print "OBSERVABLE zmax ${tut_zmax}"
+print "OBSERVABLE ke_end ${tut_ke}"
+"""
 OBSERVE = """
 # --- appended by reference_runs/tutorials/run.py: observables only ---
 variable tut_atoms equal count(all)
@@ -77,17 +85,7 @@ variable tut_ycm equal xcm(all,y)
 variable tut_zcm equal xcm(all,z)
 variable tut_zmax equal bound(all,zmax)
 variable tut_ke equal ke
-print "OBSERVABLE atoms ${tut_atoms}"
-print "OBSERVABLE xcm ${tut_xcm}"
-print "OBSERVABLE ycm ${tut_ycm}"
-print "OBSERVABLE zcm ${tut_zcm}"
-print "OBSERVABLE zmax ${tut_zmax}"
-print "OBSERVABLE ke_end ${tut_ke}"
-"""
-# Decks with grain temperatures (fix heat/gran) also give the mean, standard deviation,
-# lowest and highest grain temperature. LIGGGHTS evaluates a compute in a variable
-# after the last run only if it ran at that step: a `run 0` whose thermo prints them
-# does (it moves nothing, and repeats the last step, so the thermo series keep their values).
+""" + OBSERVE_PRINTS
 # LIGGGHTS refuses group functions in variables beside fix multisphere ("By default
 # variable command 'group' may not be used together with fix multisphere"): there the
 # centre is the plain mean of the sphere centres, from compute reduce, in both codes.
@@ -104,13 +102,11 @@ variable tut_ycm equal c_tut_m[2]
 variable tut_zcm equal c_tut_m[3]
 variable tut_zmax equal c_tut_zmax
 variable tut_ke equal ke
-print "OBSERVABLE atoms ${tut_atoms}"
-print "OBSERVABLE xcm ${tut_xcm}"
-print "OBSERVABLE ycm ${tut_ycm}"
-print "OBSERVABLE zcm ${tut_zcm}"
-print "OBSERVABLE zmax ${tut_zmax}"
-print "OBSERVABLE ke_end ${tut_ke}"
-"""
+""" + OBSERVE_PRINTS
+# Decks with grain temperatures (fix heat/gran) also give the mean, standard deviation,
+# lowest and highest grain temperature. LIGGGHTS evaluates a compute in a variable
+# after the last run only if it ran at that step: a `run 0` whose thermo prints them
+# does (it moves nothing, and repeats the last step, so the thermo series keep their values).
 HEAT_OBSERVE = """variable tut_T2 atom f_Temp*f_Temp
 compute tut_T all reduce ave f_Temp
 compute tut_T2 all reduce ave v_tut_T2
