@@ -1,14 +1,17 @@
 // dump ID group mesh/vtk N file [output face] [ID-KEYWORDS ...] [MESHID ...]
+// dump ID group mesh/gran/VTK N file [ID-KEYWORDS ...] [MESHID ...]
 // The current triangles of the listed fix mesh/surface (all when none is
 // listed) as legacy ASCII VTK POLYDATA, one file per snapshot ('*' in the name
 // becomes the step; without '*' each snapshot overwrites the file), with cell
 // data: the mesh's index in the list and its material type, and per LIGGGHTS'
-// dump identifiers: `id` (the triangle's index in its mesh), `stress` (normal
-// stress f.n/A along the triangle's normal and shear stress |f - (f.n)n|/A of
-// the grains' force f on it in the last force pass), `stresscomponents` (f/A),
-// `vel` (the wall velocity at its centroid), `area`. LIGGGHTS' `output face` is
-// what is written; other outputs and identifiers (wear, owner, aedges, acorners,
-// nneighs) are refused. The group is ignored.
+// dump identifiers: `id` (the triangle's index in its mesh), `stress`
+// (normal_stress_average |f.n|/A and shear_stress_average |f - (f.n)n|/A of the
+// grains' force f on the triangle in the last force pass, LIGGGHTS 3.8's names and
+// values), `stresscomponents` (f/A), `vel` (the wall velocity at its centroid),
+// `area`, `wear` (the mesh's Finnie wear, fix mesh/surface ... wear finnie; 0
+// without). LIGGGHTS 3.8 writes the same fields for both styles. LIGGGHTS'
+// `output face` is what is written; other outputs and identifiers (owner, aedges,
+// acorners, nneighs) are refused. The group is ignored.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,11 +44,13 @@ class DumpMeshVtk : public Dump {
         vel_ = true;
       } else if (w == "area") {
         area_ = true;
-      } else if (w == "wear" || w == "owner" || w == "aedges" || w == "acorners" || w == "nneighs") {
-        a.fail(i, "a dump identifier sable writes: id, stress, stresscomponents, vel, area ('" + w + "' is not supported)");
+      } else if (w == "wear") {
+        wear_ = true;
+      } else if (w == "owner" || w == "aedges" || w == "acorners" || w == "nneighs") {
+        a.fail(i, "a dump identifier sable writes: id, stress, stresscomponents, vel, area, wear ('" + w + "' is not supported)");
       } else {
         if (!dynamic_cast<MeshHolder*>(s.find_fix(w)))
-          a.fail(i, "a dump identifier (id, stress, stresscomponents, vel, area) or the ID of a fix mesh/surface");
+          a.fail(i, "a dump identifier (id, stress, stresscomponents, vel, area, wear) or the ID of a fix mesh/surface");
         ids_.push_back(w);
       }
     }
@@ -59,13 +64,13 @@ class DumpMeshVtk : public Dump {
     for (auto& f : sim.fixes)
       if (auto* m = dynamic_cast<MeshHolder*>(f.get()))
         if (ids_.empty() || std::find(ids_.begin(), ids_.end(), f->id) != ids_.end()) meshes_.push_back(m);
-    if (meshes_.empty()) args.fail_line("dump mesh/vtk: no fix mesh/surface to write");
+    if (meshes_.empty()) args.fail_line("dump " + style + ": no fix mesh/surface to write");
   }
 
  protected:
   void write_snapshot(long step, const std::string& path, bool) override {
     FILE* f = std::fopen(path.c_str(), "wb");  // one snapshot per file: VTK holds one
-    if (!f) fail("dump mesh/vtk: cannot open '" + path + "' for writing");
+    if (!f) fail("dump " + style + ": cannot open '" + path + "' for writing");
     std::size_t ntri = 0;
     for (MeshHolder* m : meshes_) {
       m->update_pose();
@@ -90,13 +95,13 @@ class DumpMeshVtk : public Dump {
     for (MeshHolder* m : meshes_)
       for (std::size_t t = 0; t < m->mesh().ntri(); ++t) std::fprintf(f, "%d\n", m->wall_type());
     write_fields(f);
-    if (std::fclose(f) != 0) fail("dump mesh/vtk: writing '" + path + "' failed");
+    if (std::fclose(f) != 0) fail("dump " + style + ": writing '" + path + "' failed");
   }
 
  private:
   std::vector<std::string> ids_;
   std::vector<MeshHolder*> meshes_;
-  bool id_ = false, stress_ = false, components_ = false, vel_ = false, area_ = false;
+  bool id_ = false, stress_ = false, components_ = false, vel_ = false, area_ = false, wear_ = false;
 
   // fn(mesh, triangle) -> the values of one cell, for every triangle of every mesh.
   template <class Fn>
@@ -119,15 +124,18 @@ class DumpMeshVtk : public Dump {
         const Vec3d n = m.dir_to_world({m.normal[3 * t], m.normal[3 * t + 1], m.normal[3 * t + 2]});
         return fo[0] * n[0] + fo[1] * n[1] + fo[2] * n[2];
       };
-      cells(f, "SCALARS normal_stress double 1\nLOOKUP_TABLE default\n", [&](const TriMesh& m, int t) {
-        std::fprintf(f, "%.15g\n", normal_part(m, t, load(m, t)) / m.area(t));
+      cells(f, "SCALARS normal_stress_average double 1\nLOOKUP_TABLE default\n", [&](const TriMesh& m, int t) {
+        std::fprintf(f, "%.15g\n", std::fabs(normal_part(m, t, load(m, t))) / m.area(t));
       });
-      cells(f, "SCALARS shear_stress double 1\nLOOKUP_TABLE default\n", [&](const TriMesh& m, int t) {
+      cells(f, "SCALARS shear_stress_average double 1\nLOOKUP_TABLE default\n", [&](const TriMesh& m, int t) {
         const Vec3d fo = load(m, t);
         const double fn = normal_part(m, t, fo), f2 = fo[0] * fo[0] + fo[1] * fo[1] + fo[2] * fo[2];
         std::fprintf(f, "%.15g\n", std::sqrt(std::max(0.0, f2 - fn * fn)) / m.area(t));
       });
     }
+    if (wear_)
+      cells(f, "SCALARS wear double 1\nLOOKUP_TABLE default\n",
+            [&](const TriMesh& m, int t) { std::fprintf(f, "%.15g\n", m.wear.empty() ? 0.0 : m.wear[t]); });
     if (components_)
       cells(f, "VECTORS stress double\n", [&](const TriMesh& m, int t) {
         const Vec3d fo = load(m, t);
@@ -148,5 +156,6 @@ class DumpMeshVtk : public Dump {
 };
 
 SABLE_DUMP("mesh/vtk", DumpMeshVtk);
+SABLE_DUMP("mesh/gran/VTK", DumpMeshVtk);
 
 }  // namespace sable

@@ -96,6 +96,9 @@ class Fix {
   // body's summed force (as the last step applied it), for per-body statistics.
   virtual int body_of(std::size_t /*i*/) const { return -1; }
   virtual const double* body_force(int /*body*/) const { return nullptr; }
+  // Bodies whose member grains carry the body's mass (fix multisphere): true and
+  // their 1/2 M vcm^2, which thermo ke counts once per body in place of the members'.
+  virtual bool body_kinetic_energy(double& /*ke*/) const { return false; }
 
   // Grains of this fix's group count as infinitely heavy in contacts (LIGGGHTS fix freeze).
   virtual bool freezes_group() const { return false; }

@@ -102,6 +102,9 @@ class TriMesh {
   // ---- force and torque of the grains on the mesh (this pass), and per triangle
   Vec3d force{0, 0, 0}, torque{0, 0, 0};
   std::vector<double> tri_force;  // 3 per triangle (dump mesh/vtk stress, stresscomponents)
+  // LIGGGHTS' `wear finnie`: per triangle, the Finnie eroded mass per area summed
+  // over the run (fix wall/gran mesh adds it); empty when the mesh has no wear model.
+  std::vector<double> wear;
   void clear_load();
   void add_load(const Vec3d& pw, const Vec3d& f, int t);  // force f on triangle t at world point pw
   double area(int t) const;

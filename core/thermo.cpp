@@ -1,5 +1,6 @@
 #include "core/thermo.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 
@@ -37,10 +38,21 @@ bool parse_reference(const std::string& w, char& kind, std::string& id, int& ind
 
 Thermo::Thermo(Simulation& sim) : sim_(sim) {}
 
+// Translational: 1/2 m v^2 per grain, and 1/2 M vcm^2 once per body whose members
+// carry the body's mass (fix multisphere, as LIGGGHTS 3.8 prints it).
 double Thermo::kinetic_energy() const {
   const Atoms& a = sim_.atoms;
   double ke = 0.0;
+  std::vector<const Fix*> owners;
+  for (const auto& f : sim_.fixes) {
+    double k;
+    if (f->body_kinetic_energy(k)) {
+      ke += k;
+      owners.push_back(f.get());
+    }
+  }
   for (std::size_t i = 0; i < a.n; ++i) {
+    if (std::any_of(owners.begin(), owners.end(), [i](const Fix* f) { return f->body_of(i) >= 0; })) continue;
     const double* v = &a.v[3 * i];
     ke += 0.5 * a.rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }

@@ -29,7 +29,7 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
   }
   double curvature = 0.256235, precision = 1e-8;  // LIGGGHTS 3.8 defaults (fix mesh/surface doc)
   Vec3d ref{0, 0, 0};
-  bool have_type = false;
+  bool have_type = false, wear = false;
   for (std::size_t i = 6; i < a.size();) {
     const std::string& k = a[i];
     auto vec = [&](std::size_t at, const std::string& what) {
@@ -73,6 +73,11 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
     } else if (k == "stress") {
       a.yes_no(i + 1, "on or off");  // forces are always tracked
       i += 2;
+    } else if (k == "wear") {
+      const std::string& w = a.word(i + 1, "finnie or off");
+      if (w != "finnie" && w != "off") a.fail(i + 1, "finnie or off (the wear models of LIGGGHTS 3.8)");
+      wear = w == "finnie";
+      i += 2;
     } else if (k == "verbose") {
       a.yes_no(i + 1, "yes or no");
       i += 2;
@@ -81,7 +86,7 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
       i += 2;
     } else {
       a.fail(i, "a mesh/surface keyword: type, scale, move, rotate, curvature, precision, surface_vel, "
-                "reference_point, stress, verbose, heal");
+                "reference_point, stress, wear, verbose, heal");
     }
   }
   if (!have_type) a.fail(a.size(), "'type T' (the mesh's material type)");
@@ -91,6 +96,7 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
     a.fail_line(path + ": " + e.what());
   }
   mesh_.ref_body = ref;
+  if (wear) mesh_.wear.assign(mesh_.ntri(), 0.0);
 }
 
 void FixMeshSurface::update_pose() { mesh_.advance_to(sim.step, sim.dt); }
@@ -100,6 +106,7 @@ bool FixMeshSurface::write_state(std::string& out) const {
   p.put(mesh_.R);
   p.put(mesh_.T);
   p.put<std::int64_t>(mesh_.pose_step);
+  p.put_vector(mesh_.wear);
   out = p.bytes;
   return true;
 }
@@ -110,6 +117,8 @@ void FixMeshSurface::read_state(const std::string& in) {
   std::copy(R.begin(), R.end(), mesh_.R);
   mesh_.T = u.get<Vec3d>();
   mesh_.pose_step = u.get<std::int64_t>();
+  const std::vector<double> wear = u.get_vector<double>();
+  if (wear.size() == mesh_.wear.size()) mesh_.wear = wear;  // wear off in the restarted deck: not kept
 }
 
 double FixMeshSurface::compute_vector(int i) {

@@ -2,6 +2,7 @@
 // fix ID group mesh/surface file F type T [scale s] [move dx dy dz]
 //     [rotate axis ax ay az angle deg] [curvature c] [precision p] [heal no]
 //     [verbose yes|no] [surface_vel vx vy vz] [reference_point x y z] [stress on|off]
+//     [wear finnie|off]
 // fix ID group mesh/surface/stress ...  (the same; LIGGGHTS' stress module)
 // A triangle mesh of material type T read from an ASCII or binary STL file
 // (a relative name: from the working directory, else next to the deck).
@@ -15,6 +16,9 @@
 // Outputs: f_ID[1..3] total force of the grains on the mesh, f_ID[4..6]
 // their torque about the reference point (which moves with the mesh),
 // f_ID[7..9] the reference point. sable gives them for mesh/surface too.
+// wear finnie (LIGGGHTS' stress module; needs property/global k_finnie
+// peratomtypepair): per triangle, the eroded mass per area of Finnie's model as
+// LIGGGHTS 3.8 sums it (fix wall/gran mesh), for dump mesh/vtk and mesh/gran/VTK.
 #include "core/fix.h"
 #include "core/mesh.h"
 

@@ -31,6 +31,7 @@ class FixMultisphere : public Fix {
   int body_of(std::size_t i) const override { return set_.body_of_atom(i); }
   const double* body_force(int b) const override { return set_.bodies[b].force.data(); }
   bool turns_grains() const override { return true; }  // bodies inserted later may turn
+  bool body_kinetic_energy(double& ke) const override { ke = kinetic_energy(); return true; }
   bool write_state(std::string& out) const override;
   void read_state(const std::string& in) override;
 

@@ -87,6 +87,8 @@ class FixWallGranMesh : public Fix {
     std::vector<double> hist;
   };
   std::vector<Kept> prev_;
+  std::vector<double> k_finnie_;  // ntypes x ntypes (wear finnie), else empty
+  void find_k_finnie();
   // Records of the last records() call (all meshes, in order).
   struct Rec {
     std::vector<double> vwall, point;
@@ -119,12 +121,13 @@ class FixWallGranMesh : public Fix {
     TriMesh::Scratch seen;
     struct PerMesh {
       std::vector<Hit> hits;
-      std::vector<double> hist, force, cols;
+      std::vector<double> hist, force, cols, wear;  // wear: per contact, this step's (wear finnie)
       std::vector<int> atoms, rows;
     };
     std::vector<PerMesh> mesh;
   };
   std::vector<Part> parts_;
+  void contact_wear(int m, Part::PerMesh& pm);
   Part serial_;  // refresh_near and records
   bool pass_update_ = true;
   void touches(int m, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p);

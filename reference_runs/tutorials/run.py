@@ -175,6 +175,24 @@ def observables(text, ok):
     return obs
 
 
+def vtk_field(text, name):
+    """A cell field of a mesh VTK file, LIGGGHTS' (FIELD arrays) or sable's (SCALARS) layout."""
+    m = re.search(r'^(?:SCALARS )?' + name + r' .*\n(?:LOOKUP_TABLE default\n)?((?:[-+0-9.eE ]+\n)+)', text, re.M)
+    return [float(x) for x in m.group(1).split()] if m else None
+
+
+def mesh_observables(run):
+    """Decks dumping mesh wear (chute_wear): the summed and largest triangle wear of the
+    last mesh snapshot in post/ (per area, LIGGGHTS' `wear finnie`)."""
+    post = os.path.join(run, 'post')
+    snaps = [f for f in os.listdir(post) if re.fullmatch(r'mesh_\d+\.vtk', f)] if os.path.isdir(post) else []
+    if not snaps:
+        return {}
+    last = max(snaps, key=lambda f: int(re.search(r'\d+', f).group()))
+    wear = vtk_field(open(os.path.join(post, last)).read(), 'wear')
+    return {'wear_sum': float(sum(wear)), 'wear_max': float(max(wear))} if wear else {}
+
+
 def run_one(name, code, seed, args):
     """Run the tutorial's decks in order; return the result record (also result.json)."""
     path = os.path.join(args.out, name, f'{code}_s{seed}', 'result.json')
@@ -208,6 +226,8 @@ def run_one(name, code, seed, args):
             break
     open(os.path.join(run, 'screen.txt'), 'w').write(text)
     rec['observables'] = observables(text, rec['ok'])
+    if rec['ok']:
+        rec['observables'].update(mesh_observables(run))
     print(f'[{name} {code} s{seed}] {"ok" if rec["ok"] else "FAILED: " + rec["error"]} '
           f'({rec["wall_s"]:.0f} s)', flush=True)
     json.dump(rec, open(path, 'w'), indent=1, allow_nan=True)

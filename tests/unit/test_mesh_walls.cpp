@@ -422,9 +422,9 @@ TEST(MeshWall, DumpMeshVtkWritesPolydata) {
 }
 
 // dump mesh/vtk's LIGGGHTS identifiers: a grain resting on triangle 0 of a two-triangle
-// floor (h 5 mm, area 2 h^2 each) loads it with its weight: normal stress -m g / A along
-// the +z normal, no shear, stress components (0, 0, -m g / A); triangle 1 carries nothing
-// (0.1 %: residual oscillation, as GrainsOnFloorFeelTheirWeight).
+// floor (h 5 mm, area 2 h^2 each) loads it with its weight: normal_stress_average m g / A
+// (LIGGGHTS 3.8 writes |f.n| / A), no shear, stress components (0, 0, -m g / A);
+// triangle 1 carries nothing (0.1 %: residual oscillation, as GrainsOnFloorFeelTheirWeight).
 TEST(MeshWall, DumpMeshVtkStressOfARestingGrain) {
   Deck d;
   d(head());
@@ -451,11 +451,11 @@ fix i all nve/sphere)");
   const auto area = after("SCALARS area double 1\nLOOKUP_TABLE default\n", 2);
   ASSERT_EQ(area.size(), 2u) << text;
   EXPECT_NEAR(area[0], A, 1e-15);
-  const auto sn = after("SCALARS normal_stress double 1\nLOOKUP_TABLE default\n", 2);
+  const auto sn = after("SCALARS normal_stress_average double 1\nLOOKUP_TABLE default\n", 2);
   ASSERT_EQ(sn.size(), 2u) << text;
-  EXPECT_NEAR(sn[0], -s, 1e-3 * s);
+  EXPECT_NEAR(sn[0], s, 1e-3 * s);
   EXPECT_EQ(sn[1], 0.0);
-  const auto st = after("SCALARS shear_stress double 1\nLOOKUP_TABLE default\n", 2);
+  const auto st = after("SCALARS shear_stress_average double 1\nLOOKUP_TABLE default\n", 2);
   ASSERT_EQ(st.size(), 2u) << text;
   EXPECT_NEAR(st[0], 0.0, 1e-3 * s);
   const auto sc = after("VECTORS stress double\n", 6);
@@ -467,13 +467,67 @@ fix i all nve/sphere)");
   for (double x : v) EXPECT_EQ(x, 0.0);
 }
 
-// Identifiers sable does not write are refused at the dump line.
-TEST(MeshWall, DumpMeshVtkRefusesWear) {
+// Identifiers sable does not write are refused at the dump line; wear finnie
+// without its k_finnie property is refused at the run.
+TEST(MeshWall, DumpMeshVtkRefusesOwner) {
   Deck d;
   d(head());
   d("fix plate all mesh/surface file " + stl("wplate.stl", floor2(0.005)) + " type 1");
-  EXPECT_NE(sable::test::error_of(d, "dump v all mesh/vtk 10 x.vtk wear plate\n").find("'wear' is not supported"),
+  EXPECT_NE(sable::test::error_of(d, "dump v all mesh/vtk 10 x.vtk owner plate\n").find("'owner' is not supported"),
             std::string::npos);
+  d("fix plate2 all mesh/surface/stress file " + stl("wplate2.stl", floor2(0.005)) + " type 1 wear finnie");
+  d("fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate2");
+  EXPECT_NE(sable::test::error_of(d, "run 1\n").find("k_finnie"), std::string::npos);
+}
+
+// Finnie wear (fix mesh/surface/stress ... wear finnie) of one grain (d 10 mm, 2500
+// kg/m^3, E 5 MPa, e 0.5, k_finnie 1) hitting a two-triangle plate obliquely at
+// (vx, 0, -vz), against LIGGGHTS 3.8 (the same deck, dump mesh/gran/VTK ... wear, its
+// triangle's value after the bounce): with and without friction and across both
+// branches of f(gamma). A plate moving with the grain's tangential velocity wears nothing
+// (the velocity is relative to the wall; LIGGGHTS: 1.6e-33).
+TEST(MeshWall, FinnieWearMatchesLiggghts) {
+  struct Case { double vx, vz, mu, liggghts; };
+  const Case cases[] = {{1, 1, 0, 0.13466061625}, {1, 1, 0.5, 0.10674340948}, {3, 1, 0, 0.34121948025},
+                        {3, 1, 0.5, 0.39550601854}, {0.3, 1, 0, 0.028419959625}};
+  const std::string plate = stl("fplate.stl", floor2(0.05));
+  auto run = [&](const Case& c, const std::string& move) {
+    Deck d;
+    d("units si\natom_style granular\nboundary f f f\nregion box block -0.1 0.1 -0.1 0.1 -0.05 0.1 units box\n"
+      "create_box 1 box\nneighbor 0.001 bin\nneigh_modify delay 0\n"
+      "fix m1 all property/global youngsModulus peratomtype 5e6\n"
+      "fix m2 all property/global poissonsRatio peratomtype 0.45\n"
+      "fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5\n"
+      "fix m4 all property/global coefficientFriction peratomtypepair 1 " + std::to_string(c.mu) + "\n"
+      "fix m5 all property/global k_finnie peratomtypepair 1 1.0\n"
+      "pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 1e-6\n"
+      "fix cad all mesh/surface/stress file " + plate + " type 1 wear finnie\n" + move +
+      "fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes cad\n"
+      "create_atoms 1 single -0.01 0 0.0052 units box\nset atom 1 diameter 0.01 density 2500\n"
+      "velocity all set " + std::to_string(c.vx) + " 0 " + std::to_string(-c.vz) + " units box\n"
+      "fix integr all nve/sphere\ndump dw all mesh/gran/VTK 4000 " + ::testing::TempDir() + "wear_*.vtk stress wear cad\n"
+      "run 4000");
+    auto* m = dynamic_cast<sable::MeshHolder*>(d->find_fix("cad"));
+    return m->mesh().wear;
+  };
+  for (const Case& c : cases) {
+    const std::vector<double> w = run(c, "");
+    ASSERT_EQ(w.size(), 2u);
+    EXPECT_EQ(w[0], 0.0);
+    EXPECT_NEAR(w[1] / c.liggghts, 1, 1e-7) << c.vx << " " << c.mu;
+    std::ifstream f(::testing::TempDir() + "wear_4000.vtk");
+    std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const std::string head = "SCALARS wear double 1\nLOOKUP_TABLE default\n";
+    const auto at = text.find(head);
+    ASSERT_NE(at, std::string::npos) << text;
+    std::istringstream is(text.substr(at + head.size()));
+    double w0 = -1, w1 = -1;
+    is >> w0 >> w1;
+    EXPECT_EQ(w0, 0.0);
+    EXPECT_NEAR(w1, w[1], 1e-14 * w[1]);
+  }
+  const std::vector<double> w = run(cases[0], "fix mv all move/mesh mesh cad linear 1.0 0 0\n");
+  EXPECT_NEAR(w[1], 0, 1e-12 * cases[0].liggghts);
 }
 
 // unfix of a move/mesh stops that motion; the mesh stays where it got to:
