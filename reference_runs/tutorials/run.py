@@ -37,7 +37,10 @@ sys.path.insert(0, os.path.dirname(HERE))
 import compare  # noqa: E402  (parse_screen: OBSERVABLE lines and thermo tables)
 
 SOURCE = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public'
-SEEDS = [49979687, 67867967, 86028121, 104395301, 122949823]
+SEEDS = [49979687, 67867967, 86028121, 104395301, 122949823, 141650939, 160481183, 179424673,
+         198491317, 217645177, 236887691, 256203161, 330000647, 340000673, 350000671, 360000689,
+         370000711, 380000723, 390000749, 400000789, 410000797, 420000809, 430000853, 440000837,
+         450000893, 460000903, 470000933, 480000929, 490000939, 500000951, 510001001, 520001039]
 # name: (folder, decks run in order in one folder). The SPH decks are left out (issue 24).
 TUTORIALS = {
     'chute_wear': ('chute_wear', ['in.chute_wear']),
