@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -19,6 +20,7 @@
 
 #include "core/args.h"
 #include "core/atoms.h"
+#include "core/dump.h"
 #include "core/error.h"
 #include "core/global_property.h"
 #include "core/input.h"
@@ -139,6 +141,12 @@ class YadeExporter {
   std::vector<const Fix*> ave_times_;  // fix ave/time: recorders written after the engines
   void recorders();
   void recorder(const Fix& f);
+  // dump custom: a _DumpCustom recorder (head()); dump_modify lines kept per dump ID.
+  std::set<std::string> dumps_done_;
+  std::map<std::string, std::vector<Args>> dump_mods_;
+  std::string boundary_;  // the boundary command's styles, as written
+  void dump_recorders();
+  void dump_recorder(const Dump& d);
   double gravity_[3] = {0, 0, 0};
   bool rotation_ = false;
 };
@@ -174,7 +182,13 @@ void YadeExporter::record(const Args& a) {
     thermo_cols_.assign(a.words().begin() + 2, a.words().end());
   }
   if (c == "thermo") thermo_every_ = a.integer(1, "a thermo interval");
-  static const std::set<std::string> after_ok{"variable", "thermo_style", "thermo", "thermo_modify"};
+  if (c == "boundary") boundary_ = a.joined(1);
+  if (c == "dump_modify" && a.size() >= 2) dump_mods_[a[1]].push_back(a);
+  if (c == "undump" && a.size() >= 2 && dumps_done_.erase(a[1]))
+    py_ << "_recorders = [r for r in _recorders if getattr(r, 'name', None) != " << quoted(a[1]) << "]  # "
+        << a.where().file << ":" << a.where().line << ": undump\n";
+  static const std::set<std::string> after_ok{"variable", "thermo_style", "thermo", "thermo_modify", "dump",
+                                              "dump_modify", "undump"};
   if (scene_done_ && !after_ok.count(c))
     a.fail_line("export-yade: '" + c + "' after the first run changes the scene, which is translated once; not translated to YADE");
 }
@@ -185,6 +199,7 @@ void YadeExporter::cmd_run(const Args& a) {
     if (a[i] != "pre" && a[i] != "post") a.fail(i, "pre or post (export-yade translates `run N` only)");
   if (!scene_done_) scene(a);
   scene_done_ = true;
+  dump_recorders();  // dumps defined since the last run
   std::vector<std::string> cols;
   for (const auto& c : thermo_cols_) cols.push_back("lambda: " + translate(c, a));
   py_ << "\n# " << a.where().file << ":" << a.where().line << ": run " << n << "\n";
@@ -371,7 +386,6 @@ double YadeExporter::pair_value(const std::string& prop, int i, int j, const Arg
 
 void YadeExporter::scene(const Args& run) {
   if (!sim_.pair) run.fail_line("export-yade needs a pair_style before the first run");
-  for (const auto& d : sim_.dumps) d->args.fail_line("export-yade: dumps are not translated to YADE");
   pair_model();
   periodic_cell();
   fixes();
@@ -789,14 +803,14 @@ void YadeExporter::bodies() {
     for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
     py_ << ", " << (fixed_[i] ? "True" : "False") << ", '" << uniq << "'),\n";
   }
-  py_ << "]\n_aid, _m = {}, {}\n"
+  py_ << "]\n_aid, _m, _type = {}, {}, {}\n"
          "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
          "    b = utils.sphere((x, y, z), r, material=_mats[t - 1], fixed=fixed)\n"
          "    b.state.mass, b.state.inertia = m, Vector3(I, I, I)\n"
          "    b.state.vel, b.state.angVel = Vector3(vx, vy, vz), Vector3(wx, wy, wz)\n"
          "    b.state.blockedDOFs = dofs\n"
          "    _aid[i] = O.bodies.append(b)\n"
-         "    _m[i] = m\n";
+         "    _m[i], _type[i] = m, t\n";
   for (const auto& m : moves_) py_ << m << "\n";
   clumps();
 }
@@ -898,6 +912,106 @@ void YadeExporter::recorder(const Fix& f) {
   py_ << "], [" << offs << "]))\n";
 }
 
+void YadeExporter::dump_recorders() {
+  for (const auto& d : sim_.dumps)
+    if (!dumps_done_.count(d->id)) dump_recorder(*d);
+}
+
+namespace {
+
+// A dump_modify format of one column as Python's % operator takes it: C's
+// length modifiers dropped (%ld -> %d); sable checked the conversion at its line.
+std::string python_format(const std::string& spec) {
+  std::string out;
+  for (std::size_t i = 0; i < spec.size(); ++i) {
+    out += spec[i];
+    if (spec[i] != '%' || i + 1 >= spec.size()) continue;
+    if (spec[i + 1] == '%') {
+      out += spec[++i];
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < spec.size() && std::strchr("-+ #0123456789.", spec[j])) out += spec[j++];
+    while (j < spec.size() && std::strchr("lhqjzt", spec[j])) ++j;
+    i = j - 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+// dump ID group custom N file columns...: a _DumpCustom recorder (head()) writing
+// core/dump_custom.cpp's text on YADE's bodies: the same schedule, header,
+// box, %g / %d values with a trailing space (or the dump_modify format), rows in
+// id order (sable: memory order unless dump_modify sort id). Forces add m g to
+// YADE's contact forces (sable's f holds fix gravity's).
+void YadeExporter::dump_recorder(const Dump& d) {
+  const Args& a = d.args;  // dump ID group custom N file cols... (a[0]: the command)
+  if (d.style != "custom")
+    a.fail(3, "dump custom (export-yade translates text dumps only; '" + d.style + "' is not translated)");
+  if (boundary_.find_first_of("sm") != std::string::npos)
+    a.fail_line("export-yade: a dump with shrink-wrapped boundaries (boundary " + boundary_ +
+                ") writes a box YADE does not have; not translated");
+  static const std::map<std::string, std::string> kCol{
+      {"id", "i"}, {"type", "_type[i]"}, {"mass", "_m[i]"}, {"radius", "_b(i).shape.radius"},
+      {"diameter", "2 * _b(i).shape.radius"}, {"x", "_pos(i, 0)"}, {"y", "_pos(i, 1)"}, {"z", "_pos(i, 2)"},
+      {"vx", "_b(i).state.vel[0]"}, {"vy", "_b(i).state.vel[1]"}, {"vz", "_b(i).state.vel[2]"},
+      {"omegax", "_b(i).state.angVel[0]"}, {"omegay", "_b(i).state.angVel[1]"}, {"omegaz", "_b(i).state.angVel[2]"}};
+  std::vector<std::string> cols, fmts;
+  for (std::size_t k = 6; k < a.size(); ++k) {
+    const std::string& w = a[k];
+    const bool force = w == "fx" || w == "fy" || w == "fz";
+    if (!force && !kCol.count(w))
+      a.fail(k, "a dump column export-yade translates: id, type, mass, radius, diameter, x, y, z, vx, vy, vz, fx, fy, "
+                "fz, omegax, omegay, omegaz");
+    const int c = force ? w[1] - 'x' : 0;
+    cols.push_back(force ? "O.forces.f(_bid(i), sync=True)[" + std::to_string(c) + "] + _m[i] * " + num(gravity_[c])
+                         : kCol.at(w));
+    fmts.push_back(w == "id" || w == "type" ? "%d " : "%g ");
+  }
+  for (const Args& m : dump_mods_[d.id]) {
+    for (std::size_t k = 2; k < m.size();) {
+      if (m[k] == "sort" && m.word(k + 1, "id") == "id") {
+        k += 2;
+      } else if (m[k] == "format") {
+        const std::size_t at = m.word(k + 1, "a format string") == "line" ? k + 2 : k + 1;
+        std::istringstream words(m.word(at, "a format string"));
+        for (std::size_t c = 0; c < fmts.size(); ++c) {
+          std::string w;
+          words >> w;
+          fmts[c] = python_format(w) + " ";
+        }
+        k = at + 1;
+      } else {
+        m.fail(k, "a dump_modify keyword export-yade translates: format \"...\" (or format line \"...\"), sort id");
+      }
+    }
+  }
+  const std::vector<std::size_t> members = [&] {
+    std::vector<std::size_t> v;
+    for (std::size_t i = 0; i < sim_.atoms.n; ++i)
+      if (sim_.atoms.mask[i] & d.groupbit) v.push_back(i);
+    return v;
+  }();
+  const Domain& dom = sim_.domain;
+  char box[256];
+  std::snprintf(box, sizeof box, "ITEM: BOX BOUNDS %s %s %s\n%g %g\n%g %g\n%g %g\n", dom.periodic[0] ? "pp" : "ff",
+                dom.periodic[1] ? "pp" : "ff", dom.periodic[2] ? "pp" : "ff", dom.lo[0], dom.hi[0], dom.lo[1], dom.hi[1],
+                dom.lo[2], dom.hi[2]);
+  std::string head;
+  for (std::size_t k = 6; k < a.size(); ++k) head += a[k] + " ";
+  py_ << "# " << a.where().file << ":" << a.where().line << ": dump " << d.id << " custom\n"
+      << "_recorders.append(_DumpCustom(" << quoted(d.id) << ", " << quoted(d.file) << ", " << d.every << ", [";
+  std::vector<long> ids;
+  for (std::size_t i : members) ids.push_back(sim_.atoms.id[i]);
+  std::sort(ids.begin(), ids.end());
+  for (long i : ids) py_ << i << ", ";
+  py_ << "], " << quoted(box) << ", " << quoted("ITEM: ATOMS " + head + "\n") << ", [";
+  for (std::size_t c = 0; c < cols.size(); ++c) py_ << "(" << quoted(fmts[c]) << ", lambda i: " << cols[c] << "), ";
+  py_ << "]))\n";
+  dumps_done_.insert(d.id);
+}
+
 // Helpers the script needs before the scene: body lookup, number format, run with thermo rows.
 std::string YadeExporter::head() const {
   std::string cols;
@@ -992,6 +1106,28 @@ std::string YadeExporter::head() const {
          "        self.irepeat, self.nvalid = 0, s + self.nfreq - (self.nrepeat - 1) * self.nevery\n"
          "        out = [x if off else x / self.nrepeat for x, off in zip(self.sum, self.off)]\n"
          "        self.file.write('%d' % s + ''.join(' %g' % x for x in out) + '\\n')\n"
+         "        self.file.flush()\n"
+         "class _DumpCustom:  # dump custom: core/dump_custom.cpp's schedule and text\n"
+         "    def __init__(self, name, path, every, ids, box, head, cols):\n"
+         "        self.name, self.path, self.every, self.ids, self.box, self.head, self.cols = name, path, every, ids, box, head, cols\n"
+         "        self.last, self.file = -1, None\n"
+         "    def init(self):\n"
+         "        pass\n"
+         "    def tick(self):\n"
+         "        s = _step[0]\n"
+         "        if s % self.every or s == self.last:\n"
+         "            return\n"
+         "        self.last = s\n"
+         "        text = 'ITEM: TIMESTEP\\n%d\\nITEM: NUMBER OF ATOMS\\n%d\\n' % (s, len(self.ids)) + self.box + self.head\n"
+         "        for i in self.ids:\n"
+         "            text += ''.join(f % (int(c(i)) if f.endswith('d ') else c(i)) for f, c in self.cols) + '\\n'\n"
+         "        if '*' in self.path:\n"
+         "            with open(self.path.replace('*', str(s)), 'w') as f:\n"
+         "                f.write(text)\n"
+         "            return\n"
+         "        if self.file is None:\n"
+         "            self.file = open(self.path, 'w')\n"
+         "        self.file.write(text)\n"
          "        self.file.flush()\n"
          "_recorders = []\n"
          "def _row():\n    print(' '.join('%.10g' % c() for c in _thermo['cols']), flush=True)\n"

@@ -512,3 +512,113 @@ TEST(ExportYade, AveTimeOptionsNotTranslatedAreRefused) {
     EXPECT_NE(e.find(want), std::string::npos) << words << ": " << e;
   }
 }
+
+namespace {
+
+// Three resting grains (no gravity, no contact): what YADE's bodies would hold at
+// every step is their initial state, so a stub of YADE's bodies gives sable's values.
+std::string dump_deck(const std::string& dir) {
+  return R"(units si
+atom_style granular
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 2 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 1e7 2e7
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.25
+fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.6 0.6 0.7
+fix m4 all property/global coefficientFriction peratomtypepair 2 0.4 0.3 0.3 0.2
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+create_atoms 1 single 0.004 0 0.0011 units box
+create_atoms 2 single -0.003 0.002 0.0012 units box
+create_atoms 1 single 0 -0.005 -0.004 units box
+set group all diameter 0.002 density 2500
+fix integr all nve/sphere
+dump a all custom 4 )" + dir + R"(_a.txt id type x y z vx fz omegay radius mass
+dump_modify a sort id
+run 10
+dump b all custom 5 )" + dir + R"(_b*.txt id x diameter
+dump_modify b sort id format "%ld %.10e %.3f"
+run 10
+undump a
+run 5
+)";
+}
+
+}  // namespace
+
+// Without YADE: the script's dump recorders (helpers, recorders, runs; YADE's bodies
+// stubbed with the grains' initial state, which is what they keep here) write byte for
+// byte the files sable's dump custom writes: header, box, columns, %g / %d and
+// dump_modify formats, the schedule across runs (no repeated snapshot at a run's start),
+// multifile names, undump.
+TEST(ExportYade, DumpCustomRecorderInPythonWritesWhatSableWrites) {
+  const std::string py = python();
+  if (py.empty()) GTEST_SKIP() << "no python3";
+  TempDir tmp;
+  const std::string s = exported(tmp, dump_deck(tmp / "yade"));
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  {
+    sable::test::Deck d;
+    d(dump_deck(tmp / "sable"));
+  }
+  std::string prog =
+      "import sys, types\nsys.modules['yade'] = types.ModuleType('yade')\nsys.modules['yade'].utils = None\n"
+      "class _O:\n    iter = 0\n    def run(self, n, wait):\n        for k in range(n):\n"
+      "            _thermo_tick()\n            self.iter += 1\nO = _O()\n"
+      "class _Stub:\n    pass\n"
+      "class _Forces:\n    def f(self, i, sync=True):\n        return (0.0, 0.0, 0.0)\n"
+      "O.forces = _Forces()\n";
+  std::istringstream lines(s);
+  bool head = true, grains = false;
+  for (std::string l; std::getline(lines, l);) {
+    if (l.rfind("_grains = [", 0) == 0) grains = true;
+    if (head || grains || l.rfind("_recorders", 0) == 0 || l.rfind("_thermo_cols = ", 0) == 0 || l.rfind("_run(", 0) == 0)
+      prog += l + "\n";
+    if (grains && l == "]")
+      prog += "O.bodies, _aid, _m, _type = {}, {}, {}, {}\n"
+              "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
+              "    b = _Stub()\n    b.state, b.shape = _Stub(), _Stub()\n"
+              "    b.state.pos, b.state.vel, b.state.angVel, b.shape.radius = (x, y, z), (vx, vy, vz), (wx, wy, wz), r\n"
+              "    O.bodies[i], _aid[i], _m[i], _type[i] = b, i, m, t\n",
+      grains = false;
+    if (l.find("Loop time of run %d steps (YADE)") != std::string::npos) head = false;  // the helpers end here
+  }
+  std::ofstream(tmp / "drive.py") << prog;
+  ASSERT_EQ(std::system((py + " " + tmp / "drive.py" + " > " + tmp / "drive.out 2>&1").c_str()), 0)
+      << file_text(tmp / "drive.out") << prog;
+  for (const char* f : {"_a.txt", "_b10.txt", "_b15.txt", "_b20.txt", "_b25.txt"}) {
+    const std::string want = file_text(tmp / ("sable" + std::string(f)));
+    EXPECT_NE(want.find("ITEM: ATOMS"), std::string::npos) << f;
+    EXPECT_EQ(file_text(tmp / ("yade" + std::string(f))), want) << f;
+  }
+  // dump a: steps 0, 4, 8, 12, 16, 20 (the second run starts at 10, not a multiple of 4;
+  // undumped before the third run): six snapshots.
+  const std::string a = file_text(tmp / "sable_a.txt");
+  std::size_t n = 0;
+  for (std::size_t at = 0; (at = a.find("ITEM: TIMESTEP", at)) != std::string::npos; ++at) ++n;
+  EXPECT_EQ(n, 6u) << a;
+}
+
+TEST(ExportYade, DumpsItCannotTranslateNameTheLine) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"dump v all custom/vtk 10 F_*.vtk id x y z\n", "'custom/vtk' is not translated"},
+      {"compute r all property/atom radius\ndump v all custom 10 F id c_r\n", "expected a dump column export-yade translates"},
+      {"dump v all custom 10 F id x\ndump_modify v thresh x > 0\n", "a dump_modify keyword export-yade translates"},
+  };
+  for (const auto& [lines, want] : cases) {
+    TempDir tmp;
+    std::string l = lines;
+    for (std::size_t k; (k = l.find(" F")) != std::string::npos;) l.replace(k, 2, " " + tmp / "d");
+    const std::string e = exported(tmp, kHead + l + "run 10\n");
+    EXPECT_NE(e.find("deck.in:"), std::string::npos) << lines << ": " << e;
+    EXPECT_NE(e.find(want), std::string::npos) << lines << ": " << e;
+  }
+  TempDir tmp;
+  std::string deck = kHead;
+  deck.replace(deck.find("boundary f f f"), 14, "boundary f f m");
+  const std::string e = exported(tmp, deck + "dump v all custom 10 " + tmp / "d.txt" + " id x\nrun 10\n");
+  EXPECT_NE(e.find("shrink-wrapped boundaries (boundary f f m)"), std::string::npos) << e;
+}
