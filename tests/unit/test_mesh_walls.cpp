@@ -366,15 +366,16 @@ dump d all mesh/stl 1000 )" + out + " plate\nrun 1000");
 }
 
 // A run split by write_restart / read_restart continues bit for bit: the
-// mesh's pose (turned by move/mesh) and the contacts' tangential history come
-// back with fix mesh/surface and fix wall/gran defined again.
+// mesh's pose (turned by move/mesh), its wear and the contacts' tangential history
+// come back with fix mesh/surface and fix wall/gran defined again.
 TEST(MeshWall, RestartContinuesBitIdentically) {
   const std::string file = ::testing::TempDir() + "mesh.restart";
   const std::string plate = stl("rplate.stl", floor2(0.02));
   const std::string atoms = head("f f f", "-0.03 0.03 -0.03 0.03 -0.01 0.01") + R"(create_atoms 1 single 0.01 0 0.001 units box
 create_atoms 1 single -0.005 0.008 0.001 units box
 create_atoms 1 single 0 -0.012 0.001 units box)";
-  const std::string body = "timestep 1e-6\nfix plate all mesh/surface/stress file " + plate + " type 1" + R"(
+  const std::string body = "timestep 1e-6\nfix kf all property/global k_finnie peratomtypepair 1 1.0\n"
+                           "fix plate all mesh/surface/stress file " + plate + " type 1 wear finnie" + R"(
 fix spin all move/mesh mesh plate rotate origin 0 0 0 axis 0 0 1 period 0.5
 fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate
 fix g all gravity 9.81 vector 0 0 -1
@@ -403,6 +404,11 @@ neighbor 0.0005 bin)");
     EXPECT_EQ(a->atoms.v[k], c->atoms.v[k]) << k;
   }
   for (int k = 1; k <= 9; ++k) EXPECT_EQ(fv(a, "plate", k), fv(c, "plate", k)) << k;
+  // The mesh's Finnie wear goes on from the restart (grains sliding on the turning plate wear it).
+  auto wear = [](Deck& d) { return dynamic_cast<sable::MeshHolder*>(d->find_fix("plate"))->mesh().wear; };
+  ASSERT_EQ(wear(a).size(), 2u);
+  EXPECT_GT(wear(a)[0] + wear(a)[1], 0.0);
+  EXPECT_EQ(wear(a), wear(c));
 }
 
 // dump mesh/vtk: legacy VTK POLYDATA with the moved triangles (3 points each),
