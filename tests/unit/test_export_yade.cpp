@@ -438,6 +438,27 @@ std::string python() {
   return "";
 }
 
+// A Python program running the script's recorders without YADE: its helpers (up to
+// _run), the recorder, O.dt, thermo and run lines, with YADE's O stubbed (steps only).
+// With `bodies` (Python run after the script's _grains list), stub bodies from that list.
+std::string recorder_drive(const std::string& script, const std::string& bodies = "") {
+  std::string prog =
+      "import sys, types\nsys.modules['yade'] = types.ModuleType('yade')\nsys.modules['yade'].utils = None\n"
+      "class _O:\n    iter = 0\n    def run(self, n, wait):\n        for k in range(n):\n"
+      "            _thermo_tick()\n            self.iter += 1\nO = _O()\n";
+  std::istringstream lines(script);
+  bool head = true, grains = false;
+  for (std::string l; std::getline(lines, l);) {
+    if (!bodies.empty() && l.rfind("_grains = [", 0) == 0) grains = true;
+    if (head || grains || l.rfind("_recorders", 0) == 0 || l.rfind("O.dt = ", 0) == 0 ||
+        l.rfind("_thermo_cols = ", 0) == 0 || l.rfind("_run(", 0) == 0)
+      prog += l + "\n";
+    if (grains && l == "]") prog += bodies, grains = false;
+    if (l.find("Loop time of run %d steps (YADE)") != std::string::npos) head = false;  // the helpers end here
+  }
+  return prog;
+}
+
 }  // namespace
 
 TEST(ExportYade, AveTimeBecomesARecorderWritingSablesFile) {
@@ -465,19 +486,7 @@ TEST(ExportYade, AveTimeRecorderInPythonWritesWhatSableWrites) {
     sable::test::Deck d;
     d(ave_time_deck(tmp / "sable"));
   }
-  std::string prog =
-      "import sys, types\nsys.modules['yade'] = types.ModuleType('yade')\nsys.modules['yade'].utils = None\n"
-      "class _O:\n    iter = 0\n    def run(self, n, wait):\n        for k in range(n):\n"
-      "            _thermo_tick()\n            self.iter += 1\nO = _O()\n";
-  std::istringstream lines(s);
-  bool head = true;
-  for (std::string l; std::getline(lines, l);) {
-    if (head || l.rfind("_recorders.append(", 0) == 0 || l.rfind("O.dt = ", 0) == 0 || l.rfind("_thermo_cols = ", 0) == 0 ||
-        l.rfind("_run(", 0) == 0)
-      prog += l + "\n";
-    if (l.find("Loop time of run %d steps (YADE)") != std::string::npos) head = false;  // the helpers end here
-  }
-  std::ofstream(tmp / "drive.py") << prog;
+  std::ofstream(tmp / "drive.py") << recorder_drive(s);
   ASSERT_EQ(std::system((py + " " + tmp / "drive.py" + " > " + tmp / "drive.out 2>&1").c_str()), 0)
       << file_text(tmp / "drive.out");
   for (const char* f : {"_a.txt", "_b.txt"}) {
@@ -564,28 +573,14 @@ TEST(ExportYade, DumpCustomRecorderInPythonWritesWhatSableWrites) {
     sable::test::Deck d;
     d(dump_deck(tmp / "sable"));
   }
-  std::string prog =
-      "import sys, types\nsys.modules['yade'] = types.ModuleType('yade')\nsys.modules['yade'].utils = None\n"
-      "class _O:\n    iter = 0\n    def run(self, n, wait):\n        for k in range(n):\n"
-      "            _thermo_tick()\n            self.iter += 1\nO = _O()\n"
-      "class _Stub:\n    pass\n"
-      "class _Forces:\n    def f(self, i, sync=True):\n        return (0.0, 0.0, 0.0)\n"
-      "O.forces = _Forces()\n";
-  std::istringstream lines(s);
-  bool head = true, grains = false;
-  for (std::string l; std::getline(lines, l);) {
-    if (l.rfind("_grains = [", 0) == 0) grains = true;
-    if (head || grains || l.rfind("_recorders", 0) == 0 || l.rfind("_thermo_cols = ", 0) == 0 || l.rfind("_run(", 0) == 0)
-      prog += l + "\n";
-    if (grains && l == "]")
-      prog += "O.bodies, _aid, _m, _type = {}, {}, {}, {}\n"
-              "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
-              "    b = _Stub()\n    b.state, b.shape = _Stub(), _Stub()\n"
-              "    b.state.pos, b.state.vel, b.state.angVel, b.shape.radius = (x, y, z), (vx, vy, vz), (wx, wy, wz), r\n"
-              "    O.bodies[i], _aid[i], _m[i], _type[i] = b, i, m, t\n",
-      grains = false;
-    if (l.find("Loop time of run %d steps (YADE)") != std::string::npos) head = false;  // the helpers end here
-  }
+  const std::string prog = recorder_drive(
+      s, "class _Stub:\n    pass\n"
+         "class _Forces:\n    def f(self, i, sync=True):\n        return (0.0, 0.0, 0.0)\n"
+         "O.forces, O.bodies, _aid, _m, _type = _Forces(), {}, {}, {}, {}\n"
+         "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
+         "    b = _Stub()\n    b.state, b.shape = _Stub(), _Stub()\n"
+         "    b.state.pos, b.state.vel, b.state.angVel, b.shape.radius = (x, y, z), (vx, vy, vz), (wx, wy, wz), r\n"
+         "    O.bodies[i], _aid[i], _m[i], _type[i] = b, i, m, t\n");
   std::ofstream(tmp / "drive.py") << prog;
   ASSERT_EQ(std::system((py + " " + tmp / "drive.py" + " > " + tmp / "drive.out 2>&1").c_str()), 0)
       << file_text(tmp / "drive.out") << prog;
