@@ -23,7 +23,8 @@ using sable::test::TempDir;
 
 namespace {
 
-const std::string kHead = R"(units si
+// Box, two materials, the Hertz law and the step: the decks below add their grains.
+const std::string kScene = R"(units si
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -37,7 +38,8 @@ fix m4 all property/global coefficientFriction peratomtypepair 2 0.4 0.3 0.3 0.2
 pair_style gran model hertz tangential history
 pair_coeff * *
 timestep 1e-6
-create_atoms 1 single 0 0 0.0011 units box
+)";
+const std::string kHead = kScene + R"(create_atoms 1 single 0 0 0.0011 units box
 create_atoms 1 single 0.003 0 0.0011 units box
 set group all diameter 0.002 density 2500 vz -0.5
 fix integr all nve/sphere
@@ -527,20 +529,7 @@ namespace {
 // Three resting grains (no gravity, no contact): what YADE's bodies would hold at
 // every step is their initial state, so a stub of YADE's bodies gives sable's values.
 std::string dump_deck(const std::string& dir) {
-  return R"(units si
-atom_style granular
-boundary f f f
-region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
-create_box 2 box
-neighbor 0.0005 bin
-fix m1 all property/global youngsModulus peratomtype 1e7 2e7
-fix m2 all property/global poissonsRatio peratomtype 0.3 0.25
-fix m3 all property/global coefficientRestitution peratomtypepair 2 0.5 0.6 0.6 0.7
-fix m4 all property/global coefficientFriction peratomtypepair 2 0.4 0.3 0.3 0.2
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 1e-6
-create_atoms 1 single 0.004 0 0.0011 units box
+  return kScene + R"(create_atoms 1 single 0.004 0 0.0011 units box
 create_atoms 2 single -0.003 0.002 0.0012 units box
 create_atoms 1 single 0 -0.005 -0.004 units box
 set group all diameter 0.002 density 2500
