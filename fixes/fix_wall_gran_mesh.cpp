@@ -118,10 +118,9 @@ double finnie_rate(const double v[3], const double c[3], const double f[3], doub
   if (!(vc > 0)) return 0.0;
   const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2], s = vc / c2;
   const double t[3] = {v[0] - s * c[0], v[1] - s * c[1], v[2] - s * c[2]};  // v's part in the surface
-  const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-  const double vn = vc / std::sqrt(c2), vt = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-  const double g = std::atan2(vn, vt);
-  const double fg = 3 * vn > vt ? std::cos(g) * std::cos(g) * 0.33333 : std::sin(2 * g) - 3 * std::sin(g) * std::sin(g);
+  const double vn2 = vc * s, vt2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], v2 = vn2 + vt2;
+  // cos^2 gamma = vt^2 / v^2, sin 2 gamma = 2 vn vt / v^2, sin^2 gamma = vn^2 / v^2.
+  const double fg = 9 * vn2 > vt2 ? 0.33333 * vt2 / v2 : (2 * std::sqrt(vn2 * vt2) - 3 * vn2) / v2;
   return 2 * k * std::sqrt(v2) * fg * std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
 }
 

@@ -183,7 +183,11 @@ void YadeExporter::record(const Args& a) {
   }
   if (c == "thermo") thermo_every_ = a.integer(1, "a thermo interval");
   if (c == "boundary") boundary_ = a.joined(1);
+  if (c == "dump_modify" && a.size() >= 2 && dumps_done_.count(a[1]))
+    a.fail_line("export-yade: dump " + a[1] + " is already a recorder (translated at the run before); "
+                "dump_modify it before its first run");
   if (c == "dump_modify" && a.size() >= 2) dump_mods_[a[1]].push_back(a);
+  if (c == "undump" && a.size() >= 2) dump_mods_.erase(a[1]);  // a dump of that ID defined again starts afresh
   if (c == "undump" && a.size() >= 2 && dumps_done_.erase(a[1]))
     py_ << "_recorders = [r for r in _recorders if getattr(r, 'name', None) != " << quoted(a[1]) << "]  # "
         << a.where().file << ":" << a.where().line << ": undump\n";

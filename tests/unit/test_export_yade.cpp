@@ -591,6 +591,7 @@ TEST(ExportYade, DumpsItCannotTranslateNameTheLine) {
       {"dump v all custom/vtk 10 F_*.vtk id x y z\n", "'custom/vtk' is not translated"},
       {"compute r all property/atom radius\ndump v all custom 10 F id c_r\n", "expected a dump column export-yade translates"},
       {"dump v all custom 10 F id x\ndump_modify v thresh x > 0\n", "a dump_modify keyword export-yade translates"},
+      {"dump v all custom 10 F id x\nrun 10\ndump_modify v format \"%d %.3f\"\n", "dump_modify it before its first run"},
   };
   for (const auto& [lines, want] : cases) {
     TempDir tmp;
