@@ -251,10 +251,15 @@ static double max_of_parts(const std::vector<double>& part) {
 
 bool Neighbor::decide(const Atoms& atoms, long step) {
   if (last_build_step < 0 || xhold_.size() != 3 * atoms.n) return true;
+  if (radii_vary && rhold_.size() != atoms.n) return true;
   const long since = step - last_build_step;
   if (since < delay || (every > 0 && since % every != 0)) return false;
   if (!check) return true;
   positions_scanned_step = step;
+  if (radii_vary) {
+    prescan_.step = -1;
+    return moved_or_grew(atoms);
+  }
   const bool ahead = prescan_.step == step && prescan_.n == atoms.n;  // announced for this step
   const double d2 = ahead ? max_of_parts(prescan_.part) : max_displacement_sq(atoms);
   prescan_.step = -1;
@@ -267,6 +272,27 @@ double Neighbor::max_displacement_sq(const Atoms& atoms) const {
   std::vector<double> part(atom_pass_threads(), 0.0);
   atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { part[t] = range_max_displacement_sq(x, xh, lo, hi); });
   return max_of_parts(part);
+}
+
+// A pair's gap closes by both displacements plus both growths since the build:
+// each grain may use skin/2 of it (LIGGGHTS' rule for varying radii), so grain i
+// triggers a rebuild when |dx_i| > skin/2 - dr_i or |dr_i| > skin/2.
+bool Neighbor::moved_or_grew(const Atoms& atoms) const {
+  const double half = 0.5 * skin;
+  const double* x = atoms.x.data();
+  const double* r = atoms.radius.data();
+  std::vector<char> part(atom_pass_threads(), 0);
+  atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+    bool any = false;
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double dx = x[3 * i] - xhold_[3 * i], dy = x[3 * i + 1] - xhold_[3 * i + 1],
+                   dz = x[3 * i + 2] - xhold_[3 * i + 2];
+      const double dr = r[i] - rhold_[i], room = half - dr;
+      any |= !(std::fabs(dr) <= half) || !(dx * dx + dy * dy + dz * dz <= room * room);  // NaN too
+    }
+    part[t] = any;
+  });
+  return std::find(part.begin(), part.end(), 1) != part.end();
 }
 
 void Neighbor::expect_prescan(const Atoms& atoms, long step) {
@@ -607,9 +633,11 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   // On the per-atom passes' ranges (atom_pass_threaded), not serially.
   ids_.resize(n);
   xhold_.resize(3 * n);
+  rhold_.resize(radii_vary ? n : 0);
   atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) {
     std::copy(atoms.id.begin() + lo, atoms.id.begin() + hi, ids_.begin() + lo);
     std::copy(atoms.x.begin() + 3 * lo, atoms.x.begin() + 3 * hi, xhold_.begin() + 3 * lo);
+    if (radii_vary) std::copy(atoms.radius.begin() + lo, atoms.radius.begin() + hi, rhold_.begin() + lo);
   });
   last_build_step = step;
   ++builds;

@@ -121,6 +121,9 @@ class Neighbor {
   bool sort = true;  // reorder atoms by bin at every build (cache locality)
   long builds = 0;
   long last_build_step = -1;
+  // Set by fixes that change radii (fix adapt): the rebuild check then counts
+  // each grain's growth since the last build with its displacement.
+  bool radii_vary = false;
 
   NeighborList list;
 
@@ -132,6 +135,7 @@ class Neighbor {
   // one there forces a rebuild, which checks the atoms).
   long positions_scanned_step = -1;
   double max_displacement_sq(const Atoms& atoms) const;
+  bool moved_or_grew(const Atoms& atoms) const;
   // The check's scan done ahead, range by range, by the threads that just
   // moved those atoms (Simulation::run's pipelined step): expect_prescan()
   // announces it for `step` (serially), prescan_range() scans [lo, hi) on
@@ -146,6 +150,7 @@ class Neighbor {
 
  private:
   std::vector<double> xhold_;
+  std::vector<double> rhold_;  // radii at the last build (radii_vary only)
   std::vector<long> ids_;  // atom ids at the last build, to read the old list
   double cutoff_ = 0.0;
   std::vector<int> bin_of_, bin_start_, bin_atoms_;  // bin_atoms_: unsorted builds only

@@ -5,7 +5,9 @@
 // atom-style: each its own), times its original diameter with `scale yes`. The
 // mass follows at constant density (as LIGGGHTS does for granular atoms).
 // `reset yes` restores the original diameters and masses after the run.
-// Grown grains need a fresh neighbour list, so each change asks for a rebuild.
+// Diameters change after the positions' update and before the rebuild check (the
+// step's moment LIGGGHTS' pre_force has too: nothing in between reads sizes or
+// masses), so the check counts the growth (Neighbor::radii_vary) before forces.
 #include <cmath>
 
 #include "core/error.h"
@@ -18,7 +20,7 @@ namespace sable {
 class FixAdapt : public Fix {
  public:
   FixAdapt(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = PRE_FORCE;
+    hooks = POST_INTEGRATE;
     const long n = a.integer(4, "the period N (steps, 0: only at the start of each run)");
     if (n < 0) a.fail(4, "a period N >= 0");
     every_ = n;
@@ -43,10 +45,11 @@ class FixAdapt : public Fix {
     atom_style_ = sim.variables->is_atom_style(var_);
     if (!atom_style_ && !sim.variables->is_equal_style(var_))
       args.fail(var_at_, "an equal- or atom-style variable (v_" + var_ + ")");
+    sim.neighbor.radii_vary = true;
     if (scale_ || reset_) remember_originals();
     change();  // as LIGGGHTS: at the start of every run, whatever N
   }
-  void pre_force() override {
+  void post_integrate() override {
     if (every_ > 0 && sim.step % every_ == 0) change();
   }
   void post_run() override {
@@ -88,7 +91,6 @@ class FixAdapt : public Fix {
                   std::to_string(d) + " at step " + std::to_string(sim.step) + " (a diameter must be > 0)");
       at.set_radius_density(i, 0.5 * d, at.density[i]);
     }
-    sim.neighbor.last_build_step = -1;  // the next step rebuilds with the new sizes
   }
 };
 

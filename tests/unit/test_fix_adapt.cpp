@@ -3,6 +3,7 @@
 // density, scale/reset, and a fresh neighbour list for grown grains.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -83,6 +84,65 @@ TEST(FixAdapt, GrownGrainsMeetInTheNeighbourList) {
   EXPECT_LT(at.v[3 * a], 0.0);
   EXPECT_GT(at.v[3 * b], 0.0);
   EXPECT_NEAR(at.v[3 * a], -at.v[3 * b], 1e-12 * std::fabs(at.v[3 * b]));  // momentum: equal masses
+}
+
+// A lattice of 3 mm grains 60 um apart, skin 40 um, grown as in LIGGGHTS' packing
+// tutorial (x 1.001 every 20 steps, 600 steps: diameters +91 um; the contacts form
+// by growth alone, beyond the first list): the rebuilds that fix adapt's growth
+// triggers (Neighbor::grown) miss no contact. The same deck rebuilt at every
+// step ends with the same positions and velocities, to round-off (different
+// summation orders only), with a small fraction of the rebuilds.
+TEST(FixAdapt, GrowthRebuildsOnlyWhenNeededAndMissesNoContact) {
+  auto deck = [](const std::string& neigh) {
+    return std::string(R"(units si
+atom_style granular
+atom_modify map array
+boundary f f f
+region box block 0 0.03 0 0.03 0 0.03 units box
+create_box 1 box
+neighbor 0.00004 bin
+)") + neigh + R"(
+fix m1 all property/global youngsModulus peratomtype 5e6
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+fix w1 all wall/gran model hertz tangential history primitive type 1 xplane 0
+fix w2 all wall/gran model hertz tangential history primitive type 1 xplane 0.03
+lattice sc 0.00306
+region in block 0.002 0.028 0.002 0.028 0.002 0.028 units box
+create_atoms 1 region in
+set group all diameter 0.003 density 2500
+fix i all nve/sphere
+compute rad all property/atom radius
+variable g atom 1.001*2*c_rad
+fix a all adapt 20 atom diameter v_g
+run 600
+)";
+  };
+  Deck lazy, every;
+  lazy(deck("neigh_modify delay 0"));
+  every(deck("neigh_modify every 1 delay 0 check no"));
+  const sable::Atoms &a = lazy->atoms, &b = every->atoms;
+  ASSERT_EQ(a.n, b.n);
+  ASSERT_GT(a.n, 500u);
+  double vmax = 0.0, dv = 0.0, dx = 0.0;
+  for (std::size_t i = 0; i < a.n; ++i) {
+    const std::size_t j = b.index_of(a.id[i]);
+    for (int k = 0; k < 3; ++k) {
+      vmax = std::max(vmax, std::fabs(b.v[3 * j + k]));
+      dv = std::max(dv, std::fabs(a.v[3 * i + k] - b.v[3 * j + k]));
+      dx = std::max(dx, std::fabs(a.x[3 * i + k] - b.x[3 * j + k]));
+    }
+  }
+  EXPECT_GT(vmax, 1e-3) << "the growth must have pushed grains apart (contacts formed)";
+  EXPECT_LT(dv, 1e-9 * vmax);
+  EXPECT_LT(dx, 1e-12);
+  EXPECT_GE(every->neighbor.builds, 600);
+  EXPECT_GE(lazy->neighbor.builds, 3) << "radii +45 um: at least two rebuilds by growth (half skin 20 um)";
+  EXPECT_LT(lazy->neighbor.builds, 30);
 }
 
 TEST(FixAdapt, Errors) {

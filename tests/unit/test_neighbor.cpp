@@ -124,6 +124,33 @@ TEST(Neighbor, RebuildDecisionFollowsHalfSkin) {
   EXPECT_TRUE(s.neighbor.decide(s.atoms, 5));
 }
 
+// With varying radii (fix adapt) a pair's gap also closes by both growths: grain
+// i may move skin/2 - dr_i (LIGGGHTS' rule), and a change of radius beyond skin/2
+// rebuilds alone. Another grain's growth does not shorten i's room.
+TEST(Neighbor, RebuildDecisionCountsEachGrainsGrowth) {
+  Scene s;
+  fill(s, 3, false, false, false, 50, 3);
+  s.neighbor.radii_vary = true;
+  s.neighbor.build(s.atoms, s.domain, nullptr, 0);
+  const double skin = s.neighbor.skin;
+  s.atoms.radius[0] += 0.2 * skin;
+  s.atoms.x[0] += 0.29 * skin;
+  EXPECT_FALSE(s.neighbor.decide(s.atoms, 1));
+  s.atoms.x[0] += 0.02 * skin;  // 0.31 skin + 0.2 skin > skin/2
+  EXPECT_TRUE(s.neighbor.decide(s.atoms, 2));
+  s.atoms.x[0] -= 0.31 * skin;
+  s.atoms.x[3] += 0.45 * skin;  // grain 1 moved 0.45 skin, grain 0 grew 0.2 skin: each within its room
+  EXPECT_FALSE(s.neighbor.decide(s.atoms, 3));
+  s.atoms.x[3] -= 0.45 * skin;
+  s.atoms.radius[0] -= 0.2 * skin;
+  s.atoms.radius[1] -= 0.51 * skin;  // shrunk beyond skin/2
+  EXPECT_TRUE(s.neighbor.decide(s.atoms, 4));
+  s.atoms.radius[1] += 0.51 * skin;
+  EXPECT_FALSE(s.neighbor.decide(s.atoms, 5));
+  s.atoms.radius[2] = std::nan("");
+  EXPECT_TRUE(s.neighbor.decide(s.atoms, 6));
+}
+
 TEST(ContactStore, HistorySurvivesRebuildSortAndPeriodicWrap) {
   // Two touching grains straddling the periodic x boundary, plus a third far away.
   Scene s;
