@@ -33,7 +33,6 @@ class ComputePairGranLocal : public Compute {
     local_cols = static_cast<int>(local_names.size());
   }
   void compute_local() override {
-    if (pair_ != sim.pair.get()) init();  // pair_style redefined since
     pair_->records(groupbit, rec_);
     local.clear();
     const Atoms& at = sim.atoms;

@@ -235,6 +235,7 @@ void cmd_pair_style(Simulation& sim, const Args& a) {
   if (const std::string hint = removed_style_hint("pair_style", a[1]); !make && !hint.empty()) a.fail(1, hint);
   if (!make) a.fail(1, "a pair style: " + PairRegistry::names());
   sim.pair = (*make)(sim, a);
+  ++sim.config_epoch;
 }
 
 void cmd_pair_coeff(Simulation& sim, const Args& a) {

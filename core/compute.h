@@ -47,6 +47,9 @@ class Compute {
   long invoked_step = -1;  // callers use these to avoid recomputing within a step
   // Forget cached values (atoms may have changed between runs at the same step).
   void reset_cache() { invoked_step = scalar_step_ = peratom_step_ = local_step_ = -1; }
+  // init() now (a run's setup); the helpers below re-init when fixes or the pair
+  // style changed since (a compute evaluated in a variable between runs).
+  void init_now();
   // Helpers that recompute only once per step.
   double scalar();
   double vector(int i);
@@ -55,6 +58,8 @@ class Compute {
 
  private:
   long scalar_step_ = -1, peratom_step_ = -1, local_step_ = -1;
+  long init_epoch_ = -1;  // Simulation::config_epoch at the last init()
+  void ready();
   double scalar_cache_ = 0.0;
 };
 

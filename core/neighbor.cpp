@@ -417,12 +417,18 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   cutoff_ = 2.0 * rmax + skin;
 
   // Bins at least one cutoff wide: the 27 (9 in 2D) surrounding bins hold every partner.
-  // In a sparse scene bins grow so that there are at most ~8 per atom.
+  // In a sparse scene bins grow so that there are at most ~8 per atom. An axis
+  // shorter than a bin keeps one and leaves the cap to the others (a tall thin box).
   double binsize = std::max(cutoff_, 1e-300);
-  double cells = 1.0;
-  for (int k = 0; k < domain.dimension; ++k) cells *= domain.length(k) / binsize;
   const double cap = 8.0 * std::max<std::size_t>(n, 128);
-  if (cells > cap) binsize *= std::pow(cells / cap, 1.0 / domain.dimension);
+  for (int pass = 0; pass < 3; ++pass) {
+    double cells = 1.0;
+    int spread = 0;  // axes with more than one bin
+    for (int k = 0; k < domain.dimension; ++k)
+      if (const double c = domain.length(k) / binsize; c > 1.0) cells *= c, ++spread;
+    if (cells <= cap || spread == 0) break;
+    binsize *= std::pow(cells / cap, 1.0 / spread);
+  }
   int nb[3] = {1, 1, 1};
   double inv[3] = {0, 0, 0};
   for (int k = 0; k < domain.dimension; ++k) {

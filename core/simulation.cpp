@@ -83,13 +83,16 @@ void Simulation::add_fix(std::unique_ptr<Fix> f) {
   for (auto& old : fixes)
     if (old->id == f->id) {
       old = std::move(f);
+      ++config_epoch;
       return;
     }
   fixes.push_back(std::move(f));
+  ++config_epoch;
 }
 
 void Simulation::remove_fix(const std::string& id) {
   fixes.erase(std::remove_if(fixes.begin(), fixes.end(), [&](auto& f) { return f->id == id; }), fixes.end());
+  ++config_epoch;
 }
 
 void Simulation::add_compute(std::unique_ptr<Compute> c) {
@@ -398,7 +401,7 @@ void Simulation::setup() {
   for (auto& f : fixes) f->init();
   for (auto& c : computes) {
     c->reset_cache();
-    c->init();
+    c->init_now();
   }
   for (auto& d : dumps) d->init();
   if (pair) pair->init();

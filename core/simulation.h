@@ -60,6 +60,9 @@ class Simulation {
   std::string dt_line = "(default time step)";
   StepPolicy step_policy = StepPolicy::Stop;
   long step = 0;          // current time step
+  // Bumped when a fix or the pair style is added, replaced or removed: computes
+  // evaluated between runs re-init first (Compute::ready), never reading a gone fix.
+  long config_epoch = 0;
   double time = 0.0;      // simulated time
   long run_first = 0, run_last = 0;  // bounds of the current/last run
   bool newton = false;

@@ -52,7 +52,17 @@ Compute::Compute(Simulation& s, const Args& a) : sim(s), args(a) {
   style = a.word(3, "a compute style");
 }
 
+void Compute::init_now() {
+  init();
+  init_epoch_ = sim.config_epoch;
+}
+
+void Compute::ready() {
+  if (init_epoch_ != sim.config_epoch) init_now();
+}
+
 double Compute::scalar() {
+  ready();
   if (scalar_step_ != sim.step || invoked_step != sim.step) {
     scalar_cache_ = compute_scalar();
     scalar_step_ = invoked_step = sim.step;
@@ -63,16 +73,19 @@ double Compute::scalar() {
 double Compute::vector(int i) {
   if (i < 1 || i > vector_size)
     args.fail_line("c_" + id + "[" + std::to_string(i) + "]: index out of range 1.." + std::to_string(vector_size));
+  ready();
   return compute_vector(i);
 }
 
 void Compute::peratom_now() {
+  ready();
   if (peratom_step_ == sim.step && peratom.size() >= sim.atoms.n * std::max(1, peratom_cols)) return;
   compute_peratom();
   peratom_step_ = sim.step;
 }
 
 void Compute::local_now() {
+  ready();
   if (local_step_ == sim.step) return;
   compute_local();
   local_step_ = sim.step;

@@ -117,3 +117,21 @@ pair_style gran model hertz tangential no_history)");
     EXPECT_NE(std::string(e.what()).find("keeps no contact history"), std::string::npos) << e.what();
   }
 }
+
+// Evaluated between runs, the compute re-reads a pair style redefined since its
+// last init (Compute::ready): here the new model keeps no history, which the
+// compute's 'history' column needs, and it says so instead of reading a freed pair.
+TEST(ContactLocal, FollowsAPairStyleRedefinedBetweenRuns) {
+  Deck d;
+  setup(d);
+  d("compute c all pair/gran/local id force history");
+  d("run 2");
+  d("pair_style gran model hertz tangential no_history");
+  d("pair_coeff * *");
+  try {
+    d->find_compute("c")->local_now();
+    FAIL() << "expected an error";
+  } catch (const sable::SableError& e) {
+    EXPECT_NE(std::string(e.what()).find("keeps no contact history"), std::string::npos) << e.what();
+  }
+}

@@ -286,6 +286,23 @@ TEST(Multisphere, RestartContinuesBitIdentically) {
   }
 }
 
+// The body computes read fix multisphere whenever evaluated (Compute::ready):
+// before the first run (no body yet) their energies are 0, and after the fix is
+// unfixed a clear error names the compute. A fuzz mutant (print "$(c_ke)"
+// before any run) crashed: the compute had not looked its fix up yet.
+TEST(Multisphere, EnergyComputesBetweenRuns) {
+  const std::string scene = box("") + tmpl({{{0, 0, 0, kR}}, {{kR, 0, 0, kR}}}, 1000) + insert_at(0, 0, 0.05) +
+                            "compute er all erotate/multisphere\ncompute ke all ke/multisphere\n";
+  Deck d;
+  d(scene + "variable k equal c_ke+c_er\n");
+  double k = -1;
+  ASSERT_TRUE(d->variables->numeric("k", k));
+  EXPECT_EQ(k, 0.0);
+  Deck e;
+  EXPECT_NE(error_of(e, scene + "run 1\nunfix ins\nunfix ms\nprint \"$(c_ke)\"\n").find("needs a fix multisphere"),
+            std::string::npos);
+}
+
 TEST(Multisphere, BadInput) {
   Deck d1;
   EXPECT_NE(error_of(d1, box() + tmpl({{{0, 0, 0, kR}}, {{kR, 0, 0, kR}}}, 1000, " mass 1e-4")).find(

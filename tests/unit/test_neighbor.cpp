@@ -49,6 +49,25 @@ void fill(Scene& s, int dim, bool px, bool py, bool pz, int n, unsigned seed) {
 
 }  // namespace
 
+// Bins of a sparse scene are capped at ~8 per atom. In a tall thin box (4 cm wide,
+// 1e12 m high: a fuzzed deck) the short axes keep one bin each and the cap falls
+// on the tall one; spreading it over all three axes asked for ~1e11 bins.
+TEST(Neighbor, TallThinBoxKeepsTheBinCap) {
+  Scene s;
+  s.domain.lo[0] = s.domain.lo[1] = -0.02;
+  s.domain.hi[0] = s.domain.hi[1] = 0.02;
+  s.domain.lo[2] = 0.0;
+  s.domain.hi[2] = 1e12;
+  const double a[3] = {0, 0, 0.01}, b[3] = {0, 0.0019, 0.01}, c[3] = {0, 0, 5e11};
+  s.atoms.add(1, 1, a, 0.001, 2500.0);
+  s.atoms.add(2, 1, b, 0.001, 2500.0);
+  s.atoms.add(3, 1, c, 0.001, 2500.0);
+  s.neighbor.skin = 0.0005;
+  s.neighbor.build(s.atoms, s.domain, nullptr, 0);
+  EXPECT_EQ(listed(s), brute(s));
+  EXPECT_EQ(s.neighbor.list.size(), 1u);
+}
+
 class NeighborVsBruteForce : public ::testing::TestWithParam<std::tuple<int, bool, bool, bool>> {};
 
 TEST_P(NeighborVsBruteForce, SamePairsAfterRandomMoves) {
