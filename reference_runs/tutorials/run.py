@@ -16,7 +16,8 @@ folder into OUT/<name>/<code>_s<seed>/ and run there as written, except for:
     kinetic energy at the end; the run-averaged kinetic energy comes from the
     deck's own thermo table (mean of the `ke` column); decks with fix heat/gran
     also print the mean, standard deviation, lowest and highest grain
-    temperature (HEAT_OBSERVE).
+    temperature (HEAT_OBSERVE);
+  - the variants named in EDITS (packing_skin9), a line changed in both codes.
 Decks that chain (a restart written by the one before) run in one folder in
 order. Per tutorial and code the table gives: runs unchanged (yes/no and the
 first error), then per observable the mean ± standard deviation over seeds,
@@ -62,6 +63,11 @@ TUTORIALS = {
     'movingMeshGran': ('movingMeshGran', ['in.movingMeshGran']),
     'multisphere': ('multisphere_stone_restitution', ['in.multisphere']),
     'packing': ('packing', ['in.packing']),
+    # The same deck with a 9 mm skin. LIGGGHTS 3.8 bins with the cutoff of the run's
+    # start (2 r_max + skin) and misses contacts once fix adapt has grown grains past
+    # it (radii 8 -> 11.1 mm here); a skin of 9 mm covers that growth. sable's
+    # cutoff follows the radii at every build: its result does not depend on the skin.
+    'packing_skin9': ('packing', ['in.packing']),
     'superquadric': ('superquadric', ['in.particle_particle']),  # Debian's LIGGGHTS 3.8: "Invalid atom style"
     # The ParScale decks need LIGGGHTS' ParScale coupling (fix couple/pascal), which the
     # Debian LIGGGHTS 3.8 lacks ("Invalid fix style"); heatTransferBed_paScal stops even
@@ -127,6 +133,8 @@ print "OBSERVABLE T_min ${tut_Tmin}"
 print "OBSERVABLE T_max ${tut_Tmax}"
 """
 SEED_RE = re.compile(r'(insert/\S+\s+seed\s+)(\d+)')
+# Decks run with an edit (name: (pattern, replacement)), in both codes.
+EDITS = {'packing_skin9': (r'^neighbor\s+0\.002\s+bin', 'neighbor\t0.009 bin')}
 
 
 def seeds_of(name, n):
@@ -151,6 +159,9 @@ def prepare(name, code, seed, out):
         text = open(os.path.join(run, deck)).read()
         if seed is not None:
             text = SEED_RE.sub(lambda m: m.group(1) + str(seed), text)
+        if name in EDITS:
+            text, n = re.subn(EDITS[name][0], EDITS[name][1], text, flags=re.M)
+            assert n == 1, f'{name}: the edit {EDITS[name]} did not match'
         if k == len(decks) - 1:
             # After write_restart (its system init) LIGGGHTS refuses thermo keywords
             # in variables until a run: `run 0` makes them current (no step; its thermo row repeats the last).
