@@ -50,8 +50,9 @@ class Input {
   [[noreturn]] void rethrow_located(const std::exception& e, const std::string& line, const DeckLocation& where);
   static constexpr std::size_t kMaxIncludeDepth = 32;  // deeper is a file including itself
   static constexpr int kMaxIdleJumps = 10000;
-  std::string last_jump_;  // state at the previous jump (see cmd_jump)
-  int same_jumps_ = 0;
+  static constexpr int kMaxAtomOnlyJumps = 100000;
+  std::string last_jump_, last_jump_but_atoms_;  // state at the previous jump (see cmd_jump)
+  int same_jumps_ = 0, atom_only_jumps_ = 0;
 };
 
 }  // namespace sable

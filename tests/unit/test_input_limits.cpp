@@ -80,6 +80,26 @@ TEST(InputLimits, EndlessJumpLoopStops) {
   EXPECT_NE(e.find("loop.in:3:"), std::string::npos) << e;
 }
 
+// A loop that only adds atoms ends when its variable is exhausted (a counted loop
+// of 20000 runs through); one that would add atoms for ever stops with an error.
+TEST(InputLimits, LoopOnlyAddingAtomsStops) {
+  TempDir t;
+  const std::string head = "units si\natom_style granular\natom_modify map array\nboundary f f f\n"
+                           "region box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n";
+  const std::string counted = t / "counted.in";
+  std::ofstream(counted) << head << "variable i loop 20000\nlabel l\ncreate_atoms 1 single 0.5 0.5 0.5 units box\n"
+                                    "next i\njump SELF l\n";
+  Deck ok;
+  EXPECT_EQ(error_of(ok, "include " + counted), "(no error)");
+  EXPECT_EQ(ok->atoms.n, 20000u);
+  const std::string endless = t / "endless.in";
+  std::ofstream(endless) << head << "label l\ncreate_atoms 1 single 0.5 0.5 0.5 units box\njump SELF l\n";
+  Deck d;
+  const std::string e = error_of(d, "include " + endless);
+  EXPECT_NE(e.find("only the atom count changing"), std::string::npos) << e;
+  EXPECT_NE(e.find("endless.in:9:"), std::string::npos) << e;
+}
+
 TEST(InputLimits, UnknownNamesAtTheirLine) {
   Deck d;
   d(kPile);
