@@ -298,8 +298,8 @@ bool Variables::numeric(const std::string& name, double& out) {
       ~Guard() { --d; }
     } g{++depth_};
     if (depth_ > 50) throw ExpressionError("variable '" + name + "' refers to itself");
-    Args none;
-    SimContext ctx(sim_, none);
+    const Args here({"variable", name}, v.where);  // errors of what it reads name its definition
+    SimContext ctx(sim_, here);
     if (depth_ > 1) {
       out = v.expr->eval(ctx);
       return true;
@@ -329,8 +329,8 @@ bool Variables::atom_values(const std::string& name, std::vector<double>& out) {
   if (it == vars_.end()) return false;
   Var& v = it->second;
   out.assign(sim_.atoms.n, 0.0);
-  Args none;
-  SimContext ctx(sim_, none);
+  const Args here({"variable", name}, v.where);
+  SimContext ctx(sim_, here);
   if (v.style != "atom") {
     double val;
     numeric(name, val);
