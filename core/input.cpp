@@ -258,20 +258,22 @@ void Input::cmd_jump(const Args& a) {
   }
   const std::string& target = a.word(1, "SELF or a deck file name");
   if (stack_.empty()) a.fail_line("jump works only inside a deck file");
-  // A jump loop in which no variable, step or atom count changes can never end;
-  // one in which only the atom count changes (a 'next' moved after the jump) makes
-  // atoms until memory runs out: stopped after kMaxAtomOnlyJumps.
-  const std::string but_atoms = a.where().file + ":" + std::to_string(a.where().line) + "|" +
-                                std::to_string(sim_.step) + "|" + sim_.variables->fingerprint();
+  // A jump loop in which no variable, step or atom count changes between two passes
+  // of the same jump line can never end; one in which only the atom count changes
+  // (a 'next' moved after the jump) makes atoms until memory runs out: stopped
+  // after kMaxAtomOnlyJumps. Per line: an inner loop's jumps between an outer
+  // jump's passes do not reset the outer one's count.
+  JumpSite& site = jumps_[a.where().file + ":" + std::to_string(a.where().line)];
+  const std::string but_atoms = std::to_string(sim_.step) + "|" + sim_.variables->fingerprint();
   const std::string state = but_atoms + "|" + std::to_string(sim_.atoms.n);
-  same_jumps_ = state == last_jump_ ? same_jumps_ + 1 : 0;
-  atom_only_jumps_ = but_atoms == last_jump_but_atoms_ ? atom_only_jumps_ + 1 : 0;
-  last_jump_ = state;
-  last_jump_but_atoms_ = but_atoms;
-  if (same_jumps_ >= kMaxIdleJumps)
+  site.same = state == site.state ? site.same + 1 : 0;
+  site.atom_only = but_atoms == site.but_atoms ? site.atom_only + 1 : 0;
+  site.state = state;
+  site.but_atoms = but_atoms;
+  if (site.same >= kMaxIdleJumps)
     a.fail_line("endless loop: jumped " + std::to_string(kMaxIdleJumps) +
                 " times with no variable, step or atom count changing (missing 'next'?)");
-  if (atom_only_jumps_ >= kMaxAtomOnlyJumps)
+  if (site.atom_only >= kMaxAtomOnlyJumps)
     a.fail_line("endless loop: jumped " + std::to_string(kMaxAtomOnlyJumps) +
                 " times with only the atom count changing (" + std::to_string(sim_.atoms.n) +
                 " atoms; missing 'next'? count such a loop with 'variable i loop N' and 'next i')");

@@ -5,6 +5,7 @@
 // log, echo) live here; every other command is a registered style/command.
 #include <exception>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,9 +51,12 @@ class Input {
   [[noreturn]] void rethrow_located(const std::exception& e, const std::string& line, const DeckLocation& where);
   static constexpr std::size_t kMaxIncludeDepth = 32;  // deeper is a file including itself
   static constexpr int kMaxIdleJumps = 10000;
-  static constexpr int kMaxAtomOnlyJumps = 100000;
-  std::string last_jump_, last_jump_but_atoms_;  // state at the previous jump (see cmd_jump)
-  int same_jumps_ = 0, atom_only_jumps_ = 0;
+  static constexpr int kMaxAtomOnlyJumps = 10000;
+  struct JumpSite {  // the state at a jump line's previous pass (see cmd_jump)
+    std::string state, but_atoms;
+    int same = 0, atom_only = 0;
+  };
+  std::map<std::string, JumpSite> jumps_;  // by file:line
 };
 
 }  // namespace sable

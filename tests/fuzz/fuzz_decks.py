@@ -10,7 +10,10 @@ self-referring variables). Runs are capped (`run N` -> `run min(N, cap)`) and
 given a timeout. Each run is classified:
 
   crash   killed by a signal, or a sanitizer report on stderr
-  hang    still running at the timeout
+  hang    still running at the timeout, not finishing runs
+  endless still running at the timeout, finishing run after run: the mutant loops
+          over `run` without end (a `next` dropped), which is what the deck says
+          (LAMMPS would run it for ever too); counted, not a failure
   noloc   failed without naming the deck file and line ("FILE:LINE:")
   error   failed with a located error (fine: bad input was refused)
   ok      ran to the end
@@ -211,6 +214,19 @@ def make_mutant(seeds, commands, words, master_seed, k, cap):
     return path, "\n".join(lines) + "\n", op
 
 
+ENDLESS_RUNS = 20  # runs finished by a mutant still running at the timeout: it loops over them
+
+
+def finished_runs(log):
+    """The `run`s a killed mutant finished (its log's 'Loop time of' lines; one
+    the log's buffer still held may be missing)."""
+    try:
+        with open(log, errors="replace") as f:
+            return sum(1 for line in f if line.startswith("Loop time of"))
+    except OSError:
+        return 0
+
+
 def run_one(sable, seed_path, text, timeout, keep=None):
     work = keep or tempfile.mkdtemp(prefix="sable_fuzz_")
     os.makedirs(work, exist_ok=True)
@@ -224,14 +240,14 @@ def run_one(sable, seed_path, text, timeout, keep=None):
             f.write(text)
         env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
         env.setdefault("ASAN_OPTIONS", "detect_leaks=0")
-        p = subprocess.Popen([sable, "-in", "mutant.in", "-log", "none", "-screen", "none"], cwd=work,
+        p = subprocess.Popen([sable, "-in", "mutant.in", "-log", "fuzz.log", "-screen", "none"], cwd=work,
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env, start_new_session=True)
         try:
             _, err = p.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
             os.killpg(p.pid, signal.SIGKILL)
             p.communicate()
-            return "hang", ""
+            return ("endless" if finished_runs(os.path.join(work, "fuzz.log")) >= ENDLESS_RUNS else "hang"), ""
         err = err.decode(errors="replace")
         if p.returncode < 0 or SANITIZER.search(err):
             return "crash", err[-2000:]

@@ -98,6 +98,15 @@ TEST(InputLimits, LoopOnlyAddingAtomsStops) {
   const std::string e = error_of(d, "include " + endless);
   EXPECT_NE(e.find("only the atom count changing"), std::string::npos) << e;
   EXPECT_NE(e.find("endless.in:9:"), std::string::npos) << e;
+  // An outer loop whose 'next' is missing: the inner loop's jumps between its
+  // passes (their variable changes) do not hide it.
+  const std::string nested = t / "nested.in";
+  std::ofstream(nested) << head << "variable row loop 4\nlabel rows\nvariable col loop 4\nlabel cols\n"
+                                   "create_atoms 1 single 0.5 0.5 0.5 units box\nnext col\njump SELF cols\njump SELF rows\n";
+  Deck n;
+  const std::string en = error_of(n, "include " + nested);
+  EXPECT_NE(en.find("only the atom count changing"), std::string::npos) << en;
+  EXPECT_NE(en.find("nested.in:14:"), std::string::npos) << en;
 }
 
 TEST(InputLimits, UnknownNamesAtTheirLine) {
