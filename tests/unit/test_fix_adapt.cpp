@@ -15,19 +15,21 @@ using sable::test::error_of;
 
 namespace {
 
-const char* kTwo = R"(units si
-atom_style granular
-atom_modify map array
-region box block -0.1 0.1 -0.1 0.1 -0.1 0.1 units box
-create_box 1 box
-neighbor 0.001 bin
-fix m1 all property/global youngsModulus peratomtype 1e7
+const char* kMaterials = R"(fix m1 all property/global youngsModulus peratomtype 1e7
 fix m2 all property/global poissonsRatio peratomtype 0.3
 fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
 pair_style gran model hertz tangential history
 pair_coeff * *
-timestep 1e-6
+)";
+
+const std::string kTwo = std::string(R"(units si
+atom_style granular
+atom_modify map array
+region box block -0.1 0.1 -0.1 0.1 -0.1 0.1 units box
+create_box 1 box
+neighbor 0.001 bin
+)") + kMaterials + R"(timestep 1e-6
 create_atoms 1 single 0 0 0 units box
 create_atoms 1 single 0.0125 0 0 units box
 set group all diameter 0.01 density 2500
@@ -42,7 +44,7 @@ double mass_of(double d, double rho) { return std::numbers::pi / 6.0 * d * d * d
 // a multiple of N = 10), and the mass follows at density 2500 (round-off only).
 TEST(FixAdapt, EqualStyleDiameterAndMass) {
   Deck d;
-  d(std::string(kTwo) + "variable s equal 0.004+0.0001*step\nfix a all adapt 10 atom diameter v_s\nrun 55\n");
+  d(kTwo + "variable s equal 0.004+0.0001*step\nfix a all adapt 10 atom diameter v_s\nrun 55\n");
   const sable::Atoms& at = d->atoms;
   for (std::size_t i = 0; i < at.n; ++i) {
     EXPECT_DOUBLE_EQ(2.0 * at.radius[i], 0.004 + 0.0001 * 50);
@@ -54,7 +56,7 @@ TEST(FixAdapt, EqualStyleDiameterAndMass) {
 // Changes happen at the run's start and at steps N, 2N, ...: 1 + 40/10 = 5 times.
 TEST(FixAdapt, AtomStyleGrowthCountsTheRunStart) {
   Deck d;
-  d(std::string(kTwo) + "compute rad all property/atom radius\nvariable g atom 1.01*2*c_rad\n"
+  d(kTwo + "compute rad all property/atom radius\nvariable g atom 1.01*2*c_rad\n"
                         "fix a all adapt 10 atom diameter v_g\nrun 40\n");
   for (std::size_t i = 0; i < d->atoms.n; ++i) EXPECT_NEAR(2.0 * d->atoms.radius[i], 0.01 * std::pow(1.01, 5), 1e-15);
 }
@@ -62,14 +64,14 @@ TEST(FixAdapt, AtomStyleGrowthCountsTheRunStart) {
 // scale yes multiplies the diameters of the run's start; reset yes restores them after the run.
 TEST(FixAdapt, ScaleAndReset) {
   Deck d;
-  d(std::string(kTwo) + "variable f equal 0.5\nfix a all adapt 0 atom diameter v_f scale yes reset yes\nrun 5\n");
+  d(kTwo + "variable f equal 0.5\nfix a all adapt 0 atom diameter v_f scale yes reset yes\nrun 5\n");
   // after the run: reset to 0.01 and its mass
   for (std::size_t i = 0; i < d->atoms.n; ++i) {
     EXPECT_DOUBLE_EQ(2.0 * d->atoms.radius[i], 0.01);
     EXPECT_NEAR(d->atoms.rmass[i], mass_of(0.01, 2500), 1e-12 * d->atoms.rmass[i]);
   }
   Deck e;
-  e(std::string(kTwo) + "variable f equal 0.5\nfix a all adapt 0 atom diameter v_f scale yes\nrun 5\n");
+  e(kTwo + "variable f equal 0.5\nfix a all adapt 0 atom diameter v_f scale yes\nrun 5\n");
   for (std::size_t i = 0; i < e->atoms.n; ++i) EXPECT_DOUBLE_EQ(2.0 * e->atoms.radius[i], 0.005);
 }
 
@@ -78,7 +80,7 @@ TEST(FixAdapt, ScaleAndReset) {
 // 13 mm (overlap 0.5 mm). They must then push each other apart along x.
 TEST(FixAdapt, GrownGrainsMeetInTheNeighbourList) {
   Deck d;
-  d(std::string(kTwo) + "variable s equal 0.01+0.003*step/100\nfix a all adapt 10 atom diameter v_s\nrun 100\n");
+  d(kTwo + "variable s equal 0.01+0.003*step/100\nfix a all adapt 10 atom diameter v_s\nrun 100\n");
   const sable::Atoms& at = d->atoms;
   const std::size_t a = at.index_of(1), b = at.index_of(2);
   EXPECT_LT(at.v[3 * a], 0.0);
@@ -101,14 +103,7 @@ boundary f f f
 region box block 0 0.03 0 0.03 0 0.03 units box
 create_box 1 box
 neighbor 0.00004 bin
-)") + neigh + R"(
-fix m1 all property/global youngsModulus peratomtype 5e6
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 1e-6
+)") + neigh + "\n" + kMaterials + R"(timestep 1e-6
 fix w1 all wall/gran model hertz tangential history primitive type 1 xplane 0
 fix w2 all wall/gran model hertz tangential history primitive type 1 xplane 0.03
 lattice sc 0.00306
@@ -147,18 +142,18 @@ run 600
 
 TEST(FixAdapt, Errors) {
   Deck d1;
-  EXPECT_NE(error_of(d1, std::string(kTwo) + "fix a all adapt 10 pair soft a 1 1 v_x\n").find("atom diameter only"),
+  EXPECT_NE(error_of(d1, kTwo + "fix a all adapt 10 pair soft a 1 1 v_x\n").find("atom diameter only"),
             std::string::npos);
   Deck d2;
-  EXPECT_NE(error_of(d2, std::string(kTwo) + "fix a all adapt -1 atom diameter v_x\n").find("a period N >= 0"),
+  EXPECT_NE(error_of(d2, kTwo + "fix a all adapt -1 atom diameter v_x\n").find("a period N >= 0"),
             std::string::npos);
   Deck d3;
-  EXPECT_NE(error_of(d3, std::string(kTwo) + "fix a all adapt 1 atom charge v_x\n").find("'diameter'"), std::string::npos);
+  EXPECT_NE(error_of(d3, kTwo + "fix a all adapt 1 atom charge v_x\n").find("'diameter'"), std::string::npos);
   Deck d4;
-  EXPECT_NE(error_of(d4, std::string(kTwo) + "fix a all adapt 1 atom diameter v_nothere\nrun 1\n").find("'nothere' is not defined"),
+  EXPECT_NE(error_of(d4, kTwo + "fix a all adapt 1 atom diameter v_nothere\nrun 1\n").find("'nothere' is not defined"),
             std::string::npos);
   Deck d5;
-  EXPECT_NE(error_of(d5, std::string(kTwo) + "variable s equal -0.01\nfix a all adapt 1 atom diameter v_s\nrun 1\n")
+  EXPECT_NE(error_of(d5, kTwo + "variable s equal -0.01\nfix a all adapt 1 atom diameter v_s\nrun 1\n")
                 .find("must be > 0"),
             std::string::npos);
 }
