@@ -123,6 +123,27 @@ fix i all nve/sphere)");
   EXPECT_NEAR(d->atoms.v[0] - kR * d->atoms.omega[1], 0.1, 1e-3 * 0.1);  // contact point moves with the belt
 }
 
+// Friction redefined between runs (the drag deck pours at mu 0, turns at mu 0.5):
+// a grain launched at V along a frictionless floor keeps V; once the friction
+// fix is redefined it ends up rolling at 5/7 V (m v + I w / r conserved about
+// the contact point, I = 2/5 m r^2). LIGGGHTS 3.8 prints the same digits.
+TEST(WallGran, FrictionRedefinedBetweenRunsTakesEffect) {
+  Deck d;
+  d(kHead);
+  d("fix m4 all property/global coefficientFriction peratomtypepair 1 0.0");
+  d(R"(create_atoms 1 single 0 0 0.001 units box
+fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix g all gravity 9.81 vector 0 0 -1
+fix i all nve/sphere
+velocity all set 0.1 0 0 units box)");
+  grains(d);
+  d("run 5000");
+  EXPECT_DOUBLE_EQ(d->atoms.v[0], 0.1);
+  d("fix m4 all property/global coefficientFriction peratomtypepair 1 0.5");
+  d("run 20000");
+  EXPECT_NEAR(d->atoms.v[0], 5.0 / 7.0 * 0.1, 1e-3 * 0.5 / 7);
+}
+
 // A floor moving as z = A sin(2 pi t / P) with A w^2 < g carries a resting
 // grain along: z_grain = z_rest + A sin(w t) (to the small change of the
 // Hertz overlap with the floor's acceleration, ~1e-8 m here); tolerance 1 % of A.
