@@ -197,12 +197,18 @@ def load_cases(args):
 
 
 def save_cases(out, cases):
-    """OUT/cases.json: every case run into OUT so far (report_drag.py reads it)."""
+    """OUT/cases.json: every case run into OUT so far (report_drag.py reads it). A case
+    run again with the same variables keeps the codes and seeds it was run with before."""
     path = os.path.join(out, 'cases.json')
-    known = json.load(open(path))['cases'] if os.path.exists(path) else []
-    names = [c['name'] for c in cases]
+    known = {c['name']: c for c in json.load(open(path))['cases']} if os.path.exists(path) else {}
+    for c in cases:
+        old = known.pop(c['name'], None)
+        if old is not None and old['vars'] == c['vars']:
+            c = dict(c, codes=old['codes'] + [x for x in c['codes'] if x not in old['codes']],
+                     seeds=old['seeds'] + [x for x in c['seeds'] if x not in old['seeds']])
+        known[c['name']] = c
     with open(path, 'w') as f:
-        json.dump({'cases': [c for c in known if c['name'] not in names] + cases}, f, indent=1)
+        json.dump({'cases': list(known.values())}, f, indent=1)
 
 
 def plan(cases, out):
