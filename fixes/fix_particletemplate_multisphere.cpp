@@ -38,6 +38,8 @@ bool MultisphereSpec::keyword(const Args& a, std::size_t& i) {
   } else if (k == "ntry") {
     ntry = a.integer(i + 1, "the number of Monte-Carlo points");
     if (ntry < 1000) a.fail(i + 1, "ntry >= 1000 (LIGGGHTS: 'ntry is too low')");
+    // Two Monte-Carlo passes of ntry points each: 1e8 already takes seconds.
+    if (ntry > 100000000) a.fail(i + 1, "ntry <= 100000000 (the Monte-Carlo passes would run for hours; LIGGGHTS' examples use 1e6)");
     i += 2;
   } else if (k == "spheres") {
     if (nspheres < 2) a.fail(i, "'nspheres N' before 'spheres'");
