@@ -126,7 +126,8 @@ fix i all nve/sphere)");
 // Friction redefined between runs (the drag deck pours at mu 0, turns at mu 0.5):
 // a grain launched at V along a frictionless floor keeps V; once the friction
 // fix is redefined it ends up rolling at 5/7 V (m v + I w / r conserved about
-// the contact point, I = 2/5 m r^2). LIGGGHTS 3.8 prints the same digits.
+// the contact point, I = 2/5 m r^2). LIGGGHTS 3.8 does the same (0.0714143 on a
+// deck like this one at E 5 MPa, dt 1e-5, as sable).
 TEST(WallGran, FrictionRedefinedBetweenRunsTakesEffect) {
   Deck d;
   d(kHead);
