@@ -112,8 +112,9 @@ namespace {
 using NodeP = std::unique_ptr<ExprNode>;
 
 // Parsing, evaluating and freeing a tree recurse once per level: a deeper formula
-// (100 000 parentheses, or a chain of 100 000 '+') would overflow the stack.
-constexpr int kMaxFormulaDepth = 500;
+// (100 000 parentheses, or a chain of 100 000 '+') would overflow the stack. One level
+// of parentheses costs about ten parser frames; 500 levels overflowed 8 MB under ASan.
+constexpr int kMaxFormulaDepth = 128;
 
 NodeP make(Op op, std::vector<NodeP> kids = {}) {
   auto n = std::make_unique<ExprNode>();

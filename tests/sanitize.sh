@@ -18,7 +18,8 @@ cmake --build build-asan -j"${JOBS:-$(nproc)}" --target sable sable_tests exampl
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=0:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export OMP_NUM_THREADS=2 OMP_WAIT_POLICY=passive
-build-asan/tests/sable_tests --gtest_filter="${FILTER:-*}" 2>&1 | tee build-asan/unit.log
+# In the tests' build folder, as ctest runs them (some write scratch files where they run).
+(cd build-asan/tests && ./sable_tests --gtest_filter="${FILTER:-*}") 2>&1 | tee build-asan/unit.log
 status=${PIPESTATUS[0]}
 if grep -qE "AddressSanitizer|runtime error:" build-asan/unit.log; then
   echo "sanitize.sh: sanitizer findings in the unit tests (build-asan/unit.log)"; exit 1
