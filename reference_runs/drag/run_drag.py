@@ -67,7 +67,11 @@ def deck_defaults():
 def scene(variables):
     """Deck variables (defaults + case) as floats, with the quantities the deck derives
     from them: lengths, Nrec, dt, grain counts and the particle-steps of a run."""
-    v = {k: float(x) for k, x in {**deck_defaults(), **variables}.items() if k not in ('stl', 'out')}
+    raw = {k: str(x) for k, x in {**deck_defaults(), **variables}.items() if k not in ('stl', 'out')}
+    for k, x in raw.items():  # a default given as another variable: `variable muprep index ${mu}`
+        if x.startswith('${') and x.endswith('}'):
+            raw[k] = raw[x[2:-1]]
+    v = {k: float(x) for k, x in raw.items()}
     d, r = v['d'], 0.5 * v['d']
     L, D, R = v['Ld'] * d, v['Dd'] * d, 0.5 * v['Wd'] * d
     zc, h, g = v['zcL'] * L, v['hL'] * L, 9.81
