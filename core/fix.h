@@ -94,6 +94,7 @@ class Fix {
 
   // Rigid bodies: the body of atom i (-1: in none of this fix's bodies) and a
   // body's summed force (as the last step applied it), for per-body statistics.
+  // Bodies by the deck's numbers (from 0; f_ID row - 1), stable over the run.
   virtual int body_of(std::size_t /*i*/) const { return -1; }
   virtual const double* body_force(int /*body*/) const { return nullptr; }
   // Bodies whose member grains carry the body's mass (fix multisphere): true and

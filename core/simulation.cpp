@@ -623,8 +623,10 @@ void Simulation::run(long nsteps) {
     }
     fused_steps += deferred;
     folded_steps += deferred && folded;
+    velocities_unread = quiet(step);
     if (!deferred)
       for (Fix* f : hook[4]) f->final_integrate();
+    velocities_unread = false;
     lap(timers.integrate);
     for (Fix* f : hook[5])
       if (step % f->nevery == 0) f->end_of_step();

@@ -133,6 +133,10 @@ class Simulation {
   // always the full 3D kernel, the same physics (benchmarks, checks).
   bool reduced_kernels = true;
   long fused_steps = 0;     // steps whose final half kick ran in the next initial pass (run())
+  // True during a step's final integration when nothing reads the grains'
+  // velocities before the next step's initial integration (no output, no
+  // end-of-step fix, not the last step): rigid bodies leave their members' until then.
+  bool velocities_unread = false;
   long folded_steps = 0;    // ... and whose gravity pass went into it too
   // Time split of the last run (seconds).
   struct Timers {

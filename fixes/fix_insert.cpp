@@ -559,7 +559,7 @@ void FixInsert::region_content(long& np, double& vol, double& mass) const {
     }
   }
   for (std::size_t k = 0; k < rho.size(); ++k) {
-    const auto& b = ms->bodies()[k];
+    const auto& b = ms->body(static_cast<int>(k));
     double x[3] = {b.xcm[0], b.xcm[1], b.xcm[2]};
     int image[3] = {0, 0, 0};
     sim.domain.remap(x, image);

@@ -58,7 +58,7 @@ void FixMultisphere::init() {
     if (const int k = set_.body_of_atom(i); k >= 0) ++count[k];
   for (std::size_t b = 0; b < count.size(); ++b)
     if (count[b] != set_.bodies[b].members)
-      args.fail_line("multisphere body " + std::to_string(b + 1) + " had " + std::to_string(set_.bodies[b].members) +
+      args.fail_line("multisphere body " + std::to_string(set_.number_of(static_cast<int>(b)) + 1) + " had " + std::to_string(set_.bodies[b].members) +
                      " spheres and has " + std::to_string(count[b]) + " now (spheres of a clump were deleted)");
   set_.place_members(false);
 }
@@ -69,7 +69,7 @@ void FixMultisphere::initial_integrate() { set_.initial_integrate(sim.dt); }
 
 void FixMultisphere::final_integrate() {
   sum_forces();
-  set_.final_integrate(sim.dt);
+  set_.final_integrate(sim.dt, sim.velocities_unread);
 }
 
 // Member forces summed, then gravity as LIGGGHTS applies it: M g on each body
@@ -166,6 +166,7 @@ double FixMultisphere::rotational_energy() const {
 bool FixMultisphere::write_state(std::string& out) const {
   restart::Packer p;
   p.put_vector(set_.bodies);
+  p.put_vector(set_.number);
   out = p.bytes;
   return true;
 }
@@ -173,6 +174,8 @@ bool FixMultisphere::write_state(std::string& out) const {
 void FixMultisphere::read_state(const std::string& in) {
   restart::Unpacker u(in, "the restart state of fix " + id);
   set_.bodies = u.get_vector<Body>();
+  set_.number = u.get_vector<int>();
+  set_.numbers_read();
 }
 
 SABLE_FIX("multisphere", FixMultisphere);

@@ -28,8 +28,8 @@ class FixMultisphere : public Fix {
   void setup() override;
   void initial_integrate() override;
   void final_integrate() override;
-  int body_of(std::size_t i) const override { return set_.body_of_atom(i); }
-  const double* body_force(int b) const override { return set_.bodies[b].force.data(); }
+  int body_of(std::size_t i) const override { return set_.number_of_atom(i); }
+  const double* body_force(int b) const override { return set_.by_number(b).force.data(); }
   bool turns_grains() const override { return true; }  // bodies inserted later may turn
   bool body_kinetic_energy(double& ke) const override { ke = kinetic_energy(); return true; }
   bool write_state(std::string& out) const override;
@@ -40,7 +40,8 @@ class FixMultisphere : public Fix {
   // them and makes the body (centre xcm, rotation q_ins, velocity v, spin w).
   void add_body(const ClumpShape& shape, const double xcm[3], const rigid::Q4& q_ins, const double v[3],
                 const double w[3], std::size_t first);
-  const std::vector<rigid::Body>& bodies() const { return set_.bodies; }
+  const std::vector<rigid::Body>& bodies() const { return set_.bodies; }  // in the set's order (rigid_body_set.h)
+  const rigid::Body& body(int n) const { return set_.by_number(n); }     // the n-th inserted (body_of's numbers)
   // 1/2 M vcm^2 and 1/2 sum I_k w_k^2 (body frame) over all bodies.
   double kinetic_energy() const;
   double rotational_energy() const;

@@ -58,21 +58,19 @@ class FixRigid : public Fix {
 
   void final_integrate() override {
     set_.sum_forces();
-    set_.final_integrate(sim.dt);
+    set_.final_integrate(sim.dt, sim.velocities_unread);
   }
 
   void setup() override { set_.sum_forces(); }
 
-  int body_of(std::size_t i) const override {
-    return col_ < 0 || i >= sim.atoms.n ? -1 : static_cast<int>(sim.atoms.column(col_)[kStride * i]) - 1;
-  }
-  const double* body_force(int b) const override { return bodies_[b].force.data(); }
+  int body_of(std::size_t i) const override { return set_.number_of_atom(i); }
+  const double* body_force(int b) const override { return bodies_[set_.slot(b)].force.data(); }
 
   double compute_array(int i, int j) override {
     if (i < 1 || i > static_cast<int>(bodies_.size()) || j < 1 || j > 15)
       args.fail_line("f_" + id + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: index out of range [1.." +
                      std::to_string(bodies_.size()) + "][1..15]");
-    const Body& b = bodies_[i - 1];
+    const Body& b = bodies_[set_.slot(i - 1)];
     double x[3] = {b.xcm[0], b.xcm[1], b.xcm[2]};
     int image[3] = {0, 0, 0};
     sim.domain.remap(x, image);
@@ -90,6 +88,7 @@ class FixRigid : public Fix {
     restart::Packer p;
     p.put<std::uint8_t>(defined_);
     p.put_vector(bodies_);
+    p.put_vector(set_.number);
     out = p.bytes;
     return true;
   }
@@ -97,6 +96,8 @@ class FixRigid : public Fix {
     restart::Unpacker u(in, "the restart state of fix " + id);
     defined_ = u.get<std::uint8_t>();
     bodies_ = u.get_vector<Body>();
+    set_.number = u.get_vector<int>();
+    set_.numbers_read();
     for (Body& b : bodies_) b.fflag = b.tflag = {true, true, true};
     apply_flags();  // the deck's force/torque flags, as written again
     col_ = sim.atoms.find_column("rigid:" + id);
@@ -269,7 +270,10 @@ class FixRigid : public Fix {
       }
       if (lo < 1 || hi > nb || lo > hi)
         args.fail(f.at, "bodies within 1.." + std::to_string(nb) + " (this fix has " + std::to_string(nb) + ")");
-      for (long b = lo; b <= hi; ++b) (f.torque ? bodies_[b - 1].tflag : bodies_[b - 1].fflag) = f.on;
+      for (long b = lo; b <= hi; ++b) {
+        Body& body = bodies_[set_.slot(static_cast<int>(b - 1))];
+        (f.torque ? body.tflag : body.fflag) = f.on;
+      }
     }
   }
 
@@ -370,7 +374,7 @@ class FixRigid : public Fix {
     }
     for (std::size_t b = 0; b < bodies_.size(); ++b)
       if (count[b] != bodies_[b].members)
-        args.fail_line("rigid body " + std::to_string(b + 1) + " had " + std::to_string(bodies_[b].members) +
+        args.fail_line("rigid body " + std::to_string(set_.number_of(static_cast<int>(b)) + 1) + " had " + std::to_string(bodies_[b].members) +
                        " grains and has " + std::to_string(count[b]) + " now (grains of a body were deleted)");
     if (std::find(moved.begin(), moved.end(), 1) == moved.end()) return;
     measure_static(moved);

@@ -180,16 +180,18 @@ void BodySet::initial_integrate(double dt) {
   place_members(true);
 }
 
-void BodySet::final_integrate(double dt) {
+// The body's omega serves only the members' velocities: the next orientation
+// step recomputes it from the angular momentum.
+void BodySet::final_integrate(double dt, bool members_unread) {
   const double dtf = 0.5 * dt;
   for (Body& b : bodies) {
     for (int k = 0; k < 3; ++k) {
       if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
       if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
     }
-    if (rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+    if (!members_unread && rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
   }
-  place_members(false);
+  if (!members_unread) place_members(false);
 }
 
 void BodySet::expected(std::size_t i, int k, double* x, double* v) const {
@@ -254,7 +256,50 @@ void BodySet::place_members(bool positions) {
   }
 }
 
+// A body appended since the last look (an insertion, a definition) takes the next number.
+void BodySet::number_new_bodies() {
+  for (std::size_t k = number.size(); k < bodies.size(); ++k) {
+    number.push_back(static_cast<int>(k));
+    slot_.push_back(static_cast<int>(k));
+  }
+}
+
+void BodySet::numbers_read() {
+  slot_.assign(number.size(), 0);
+  for (std::size_t k = 0; k < number.size(); ++k) slot_[number[k]] = static_cast<int>(k);
+  number_new_bodies();
+}
+
+// Only the order of the bodies changes: each body's sums still run over its
+// members in atom order, so the bits are those of any other numbering.
+void BodySet::follow_atom_order() {
+  number_new_bodies();
+  if (sim_.neighbor.builds == builds_seen_) return;
+  builds_seen_ = sim_.neighbor.builds;
+  Atoms& at = sim_.atoms;
+  auto& c = at.column(col);
+  new_index_.assign(bodies.size(), -1);
+  scratch_.clear();
+  std::vector<int> renumbered;
+  renumbered.reserve(bodies.size());
+  auto take = [&](int k) {
+    new_index_[k] = static_cast<int>(scratch_.size());
+    scratch_.push_back(bodies[k]);
+    renumbered.push_back(number[k]);
+  };
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (const int k = static_cast<int>(c[kStride * i]) - 1; k >= 0 && new_index_[k] < 0) take(k);
+  for (std::size_t k = 0; k < bodies.size(); ++k)
+    if (new_index_[k] < 0) take(static_cast<int>(k));
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (const int k = static_cast<int>(c[kStride * i]) - 1; k >= 0) c[kStride * i] = new_index_[k] + 1;
+  bodies.swap(scratch_);
+  number.swap(renumbered);
+  for (std::size_t k = 0; k < number.size(); ++k) slot_[number[k]] = static_cast<int>(k);
+}
+
 void BodySet::sum_forces() {
+  follow_atom_order();
   Atoms& at = sim_.atoms;
   const auto& c = at.column(col);
   for (Body& b : bodies) b.force = b.torque = V3{0, 0, 0};

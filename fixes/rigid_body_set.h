@@ -58,11 +58,20 @@ void principal_axes(Body& b, const Eigen::Matrix3d& inertia);
 class BodySet {
  public:
   static constexpr int kStride = 7;
+  // Bodies are kept in the order the (bin-sorted) atoms first meet them,
+  // renumbered after each neighbour build, so that the per-atom passes walk the
+  // bodies forwards. number[k] is body k's number as the deck counts them (f_ID
+  // rows, flags, messages; from 0: a body appended later gets the next one).
   std::vector<Body> bodies;
+  std::vector<int> number;
   int col = -1;  // the per-atom column
 
   explicit BodySet(Simulation& s) : sim_(s) {}
   int body_of_atom(std::size_t i) const;  // -1: in no body
+  int number_of_atom(std::size_t i) const {  // the deck's number of its body; -1: in no body
+    const int k = body_of_atom(i);
+    return k < 0 ? -1 : number_of(k);
+  }
   static bool rotates(const Body& b) {
     return b.tflag[0] || b.tflag[1] || b.tflag[2] || b.angmom[0] != 0 || b.angmom[1] != 0 || b.angmom[2] != 0;
   }
@@ -70,8 +79,9 @@ class BodySet {
 
   // First half of the NVE step (half kick, drift, orientation), then the members placed.
   void initial_integrate(double dt);
-  // Second half kick from the summed force and torque, then the members' velocities.
-  void final_integrate(double dt);
+  // Second half kick from the summed force and torque, then the members'
+  // velocities (unless members_unread: the next placing pass sets them anyway).
+  void final_integrate(double dt, bool members_unread = false);
   // Members from their body: the offset turned to the body's orientation (kept
   // as it is when the body cannot turn), the position wrapped into the box,
   // v = vcm + w x d, and each sphere's spin the body's.
@@ -82,10 +92,23 @@ class BodySet {
   void sum_forces();
   // Where place_members would put grain i of body k, and its velocity.
   void expected(std::size_t i, int k, double* x, double* v) const;
+  // The body the deck numbers n (from 0), and the deck's number of body k.
+  // (Bodies appended since the last renumbering keep their place: slot == number.)
+  int slot(int n) const { return n < static_cast<int>(slot_.size()) ? slot_[n] : n; }
+  const Body& by_number(int n) const { return bodies[slot(n)]; }
+  int number_of(int k) const { return k < static_cast<int>(number.size()) ? number[k] : k; }
+  // number[] given (restart): slot() follows it.
+  void numbers_read();
+  // Renumbers the bodies in the atoms' order if the atoms were sorted since the last look.
+  void follow_atom_order();
 
  private:
   Simulation& sim_;
   std::vector<char> turning_;  // rotates(body), taken once per placing pass
+  long builds_seen_ = -1;      // neighbour builds (each sorts the atoms) at the last renumbering
+  std::vector<int> slot_, new_index_;
+  std::vector<Body> scratch_;
+  void number_new_bodies();
 };
 
 }  // namespace rigid

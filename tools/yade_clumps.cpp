@@ -133,7 +133,7 @@ std::vector<Clump> multisphere_clumps(const Simulation& sim, const Fix& fix) {
   const auto body = members(sim, fix);
   std::vector<Clump> out;
   for (std::size_t b = 0; b < ms->bodies().size(); ++b) {
-    const rigid::Body& r = ms->bodies()[b];
+    const rigid::Body& r = ms->body(static_cast<int>(b));
     Clump c;
     for (std::size_t i : b < body.size() ? body[b] : std::vector<std::size_t>{}) c.ids.push_back(sim.atoms.id[i]);
     std::sort(c.ids.begin(), c.ids.end());

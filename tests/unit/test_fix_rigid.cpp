@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <string>
 
@@ -18,18 +19,10 @@ namespace {
 constexpr double kG = 9.81, kR = 0.002;
 const double kSin = 0.5, kCos = std::sqrt(3.0) / 2;  // a 30 degree incline
 
-// A floor at z = 0 tilted by turning gravity 30 degrees towards +x; Hertz-Mindlin, mu 0.3.
-std::string incline() {
-  char g[160];
-  std::snprintf(g, sizeof g, "fix g all gravity %.17g vector %.17g 0 %.17g\n", kG, kSin, -kCos);
-  return std::string(R"(units si
-atom_style granular
-atom_modify map array
-boundary f f f
-newton off
-communicate single vel yes
-region box block -0.05 0.15 -0.05 0.05 -0.01 0.05 units box
-create_box 1 box
+// One grain type, Hertz-Mindlin, mu 0.3, in the given box.
+std::string granular(const std::string& boundary, const std::string& box, const std::string& dt) {
+  return "units si\natom_style granular\natom_modify map array\nboundary " + boundary +
+         "\nnewton off\ncommunicate single vel yes\nregion box block " + box + " units box\n" + R"(create_box 1 box
 neighbor 0.0005 bin
 neigh_modify delay 0
 fix m1 all property/global youngsModulus peratomtype 1e7
@@ -38,9 +31,15 @@ fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
 pair_style gran model hertz tangential history
 pair_coeff * *
-timestep 2e-6
-fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
-)") + g;
+timestep )" + dt + "\n";
+}
+
+// A floor at z = 0 tilted by turning gravity 30 degrees towards +x.
+std::string incline() {
+  char g[160];
+  std::snprintf(g, sizeof g, "fix g all gravity %.17g vector %.17g 0 %.17g\n", kG, kSin, -kCos);
+  return granular("f f f", "-0.05 0.15 -0.05 0.05 -0.01 0.05", "2e-6") +
+         "fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0\n" + g;
 }
 
 // Three touching spheres of radius kR resting on the floor: flat triangle or a line along y.
@@ -343,4 +342,63 @@ run 40000)");
   const double weight = 2 * d->atoms.rmass[0] * 9.81;
   EXPECT_LT(value(d, "c_ub"), 1e-3);
   EXPECT_NEAR(value(d, "c_ub[4]"), weight / 2, 0.01 * weight / 2);
+}
+
+// Bodies are renumbered in the atoms' (bin) order at each neighbour build for
+// speed; the deck's numbers must not move. Six dumbbells, body n (atoms 2n-1, 2n)
+// placed so that a bin sort reverses them, fly freely at 0.5 m/s along x through
+// several builds: f_rb[n] is still body n, at x_n(0) + 0.5 t exactly (free flight),
+// and the dump's mol column still gives atom 2n its body n.
+TEST(FixRigid, BodyNumbersStayTheDecksThroughAtomSorts) {
+  sable::test::TempDir t;
+  std::string atoms;
+  auto centre = [](int n, int k) { return (k == 0 ? 0.09 : 0.08) - 0.01 * n; };
+  for (int n = 1; n <= 6; ++n) {
+    char s[200];
+    for (double side : {-kR, kR}) {
+      std::snprintf(s, sizeof s, "create_atoms 1 single %.17g %.17g %.17g units box\n", centre(n, 0) + side,
+                    centre(n, 1), centre(n, 2));
+      atoms += s;
+    }
+  }
+  Deck d;
+  d(granular("p f f", "0 0.1 0 0.1 0 0.1", "1e-5") + atoms + "set group all diameter 0.004 density 2500\nvariable b atom floor((id+1)/2)\n"
+        "fix rb all rigid/small custom v_b\nvelocity all set 0.5 0 0\n"
+        "dump m all custom 2000 " + (t / "m.dump") + " id mol\ndump_modify m sort id\nrun 2000");
+  EXPECT_GT(d->neighbor.builds, 5);
+  for (int n = 1; n <= 6; ++n) {
+    const std::string row = "f_rb[" + std::to_string(n) + "]";
+    double x = centre(n, 0) + 0.5 * 2000 * 1e-5;
+    x -= 0.1 * std::floor(x / 0.1);  // f_ID gives the centre wrapped into the periodic box
+    EXPECT_NEAR(value(d, row + "[1]"), x, 1e-12) << "body " << n;
+    EXPECT_NEAR(value(d, row + "[2]"), centre(n, 1), 1e-12) << "body " << n;
+    EXPECT_NEAR(value(d, row + "[3]"), centre(n, 2), 1e-12) << "body " << n;
+  }
+  std::ifstream in(t / "m.dump");
+  std::string line;
+  while (std::getline(in, line) && line.rfind("ITEM: ATOMS", 0) != 0) {}
+  while (std::getline(in, line) && line.rfind("ITEM", 0) != 0) {}  // the step-0 snapshot
+  while (std::getline(in, line) && line.rfind("ITEM: ATOMS", 0) != 0) {}
+  int checked = 0;
+  for (long id, mol; in >> id >> mol; ++checked) EXPECT_EQ(mol, (id + 1) / 2) << "atom " << id;
+  EXPECT_EQ(checked, 12);
+}
+
+// On steps that nobody observes, the members' velocities are left to the next
+// step's placing pass (Simulation::velocities_unread). A clump rolling and bouncing
+// down the incline with thermo every step (no such step) and every 1000: every grain's
+// position, velocity and spin agree bit for bit after 5000 steps.
+TEST(FixRigid, UnobservedStepsChangeNoBit) {
+  Deck every, rare;
+  const std::string deck = incline() + clump(false) + "velocity all set 0.05 0 0.2\nfix rb all rigid single\n";
+  every(deck + "thermo 1\nrun 5000");
+  rare(deck + "thermo 1000\nrun 5000");
+  const auto &a = every->atoms, &b = rare->atoms;
+  ASSERT_EQ(a.n, b.n);
+  for (std::size_t i = 0; i < 3 * a.n; ++i) {
+    EXPECT_EQ(a.x[i], b.x[i]);
+    EXPECT_EQ(a.v[i], b.v[i]);
+    EXPECT_EQ(a.omega[i], b.omega[i]);
+  }
+  EXPECT_NE(a.omega[0], 0.0);  // it turned
 }
