@@ -43,7 +43,7 @@ def preset(name):
         dt = [dict(name=f'speed_dtf{f}', vars={**SMOKE, 'turns': 3, 'dtf': f}, codes=BOTH, seeds=SEEDS[:2],
                    series='dt') for f in (0.17, 0.15, 0.1, 0.05)]
         stiff = [dict(name=f'speed_E{e}', vars={**SMOKE, 'turns': 3, 'E': e}, codes=BOTH, seeds=SEEDS[:2],
-                      series='E') for e in ('2e6', '5e6', '2e7', '8e7')]
+                      series='E') for e in ('5e6', '1e7', '2e7', '8e7')]  # E >= 5 MPa: both codes refuse softer SI grains (soft_particles)
         size = [dict(name=f'speed_Wd{w}', vars={**SMOKE, 'turns': 3, 'Wd': w}, codes=BOTH, seeds=SEEDS[:2],
                      series='W') for w in (12, 20)]  # Wd 15 is speed_E5e6
         return dt + stiff + size
