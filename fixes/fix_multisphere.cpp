@@ -58,8 +58,8 @@ void FixMultisphere::init() {
     if (const int k = set_.body_of_atom(i); k >= 0) ++count[k];
   for (std::size_t b = 0; b < count.size(); ++b)
     if (count[b] != set_.bodies[b].members)
-      args.fail_line("multisphere body " + std::to_string(set_.number_of(static_cast<int>(b)) + 1) + " had " + std::to_string(set_.bodies[b].members) +
-                     " spheres and has " + std::to_string(count[b]) + " now (spheres of a clump were deleted)");
+      args.fail_line("multisphere body " + std::to_string(set_.number_of(static_cast<int>(b)) + 1) + " had " +
+                     std::to_string(set_.bodies[b].members) + " spheres and has " + std::to_string(count[b]) + " now (spheres of a clump were deleted)");
   set_.place_members(false);
 }
 

@@ -64,13 +64,13 @@ class FixRigid : public Fix {
   void setup() override { set_.sum_forces(); }
 
   int body_of(std::size_t i) const override { return set_.number_of_atom(i); }
-  const double* body_force(int b) const override { return bodies_[set_.slot(b)].force.data(); }
+  const double* body_force(int b) const override { return set_.by_number(b).force.data(); }
 
   double compute_array(int i, int j) override {
     if (i < 1 || i > static_cast<int>(bodies_.size()) || j < 1 || j > 15)
       args.fail_line("f_" + id + "[" + std::to_string(i) + "][" + std::to_string(j) + "]: index out of range [1.." +
                      std::to_string(bodies_.size()) + "][1..15]");
-    const Body& b = bodies_[set_.slot(i - 1)];
+    const Body& b = set_.by_number(i - 1);
     double x[3] = {b.xcm[0], b.xcm[1], b.xcm[2]};
     int image[3] = {0, 0, 0};
     sim.domain.remap(x, image);
@@ -374,8 +374,8 @@ class FixRigid : public Fix {
     }
     for (std::size_t b = 0; b < bodies_.size(); ++b)
       if (count[b] != bodies_[b].members)
-        args.fail_line("rigid body " + std::to_string(set_.number_of(static_cast<int>(b)) + 1) + " had " + std::to_string(bodies_[b].members) +
-                       " grains and has " + std::to_string(count[b]) + " now (grains of a body were deleted)");
+        args.fail_line("rigid body " + std::to_string(set_.number_of(static_cast<int>(b)) + 1) + " had " +
+                       std::to_string(bodies_[b].members) + " grains and has " + std::to_string(count[b]) + " now (grains of a body were deleted)");
     if (std::find(moved.begin(), moved.end(), 1) == moved.end()) return;
     measure_static(moved);
     measure_dynamic();
