@@ -128,6 +128,69 @@ void turn_bodies(std::vector<Body>& bodies, const int* idx, int n, double dtq) {
   }
 }
 
+// A body that spins about world z only, with z one of its principal axes (its
+// orientation a pure turn about z: q = (w, 0, 0, z), ez = (0, 0, w^2 + z^2)), keeps
+// omega = L_z / I_z: its orientation step is that exact turn, without Richardson's iteration.
+bool turns_about_z(const Body& b) {
+  return b.q[1] == 0 && b.q[2] == 0 && b.angmom[0] == 0 && b.angmom[1] == 0;
+}
+
+// The turn about z of a batch of such bodies, in lanes as turn_lanes: omega as
+// omega_of gives it for this orientation (the same bits); sin and cos of the half
+// angle by their Taylor series to x^7 and x^6 (below round-off for |x| <= 1e-2;
+// larger angles are redone with the library's); the turned q brought back to unit
+// length by one Newton step (|q|^2 is 1 to round-off: no square root).
+struct ZLanes {
+  double w[kLanes], z[kLanes], m[kLanes], inv[kLanes], om[kLanes], x[kLanes];
+};
+
+SABLE_INLINE void turn_z_lane(ZLanes& L, int l, double dt, bool small) {
+  const double w = L.w[l], z = L.z[l], ez = w * w + z * z;
+  const double om = L.m[l] * ez * L.inv[l] * ez, x = 0.5 * dt * om, x2 = x * x;
+  double s = x * (1 - x2 / 6 * (1 - x2 / 20 * (1 - x2 / 42)));
+  double c = 1 - x2 / 2 * (1 - x2 / 12 * (1 - x2 / 30));
+  if (!small) s = std::sin(x), c = std::cos(x);
+  double qw = c * w - s * z, qz = c * z + s * w;
+  const double k = 1.5 - 0.5 * (qw * qw + qz * qz);
+  L.w[l] = qw * k, L.z[l] = qz * k, L.om[l] = om, L.x[l] = x;
+}
+
+[[gnu::flatten]] void turn_z_lanes(ZLanes& L, double dt) {
+  for (int l = 0; l < kLanes; ++l) turn_z_lane(L, l, dt, true);
+}
+[[gnu::target("avx2"), gnu::flatten]] void turn_z_lanes_avx2(ZLanes& L, double dt) {
+  for (int l = 0; l < kLanes; ++l) turn_z_lane(L, l, dt, true);
+}
+[[gnu::target("avx512f,avx512dq"), gnu::flatten]] void turn_z_lanes_avx512(ZLanes& L, double dt) {
+  for (int l = 0; l < kLanes; ++l) turn_z_lane(L, l, dt, true);
+}
+
+void turn_bodies_about_z(std::vector<Body>& bodies, const int* idx, int n, double dt) {
+  ZLanes L{};
+  for (int l = 0; l < kLanes; ++l) L.w[l] = 1.0;
+  for (int l = 0; l < n; ++l) {
+    const Body& b = bodies[idx[l]];
+    L.w[l] = b.q[0], L.z[l] = b.q[3], L.m[l] = b.angmom[2], L.inv[l] = b.inv_moments[2];
+  }
+  const ZLanes in = L;
+  switch (simd_level()) {
+    case Simd::AVX512: turn_z_lanes_avx512(L, dt); break;
+    case Simd::AVX2: turn_z_lanes_avx2(L, dt); break;
+    default: turn_z_lanes(L, dt);
+  }
+  for (int l = 0; l < n; ++l) {
+    if (std::abs(L.x[l]) > 1e-2) {
+      ZLanes one = in;
+      turn_z_lane(one, l, dt, false);
+      L.w[l] = one.w[l], L.z[l] = one.z[l];
+    }
+    Body& b = bodies[idx[l]];
+    b.q = {L.w[l], 0.0, 0.0, L.z[l]};
+    b.omega = {0.0, 0.0, L.om[l]};
+    axes_in(b.q.data(), b.ex.data(), b.ey.data(), b.ez.data());
+  }
+}
+
 #undef SABLE_INLINE
 
 }  // namespace
@@ -140,13 +203,28 @@ V3 omega_of(const V3& m, const V3& ex, const V3& ey, const V3& ez, const V3& inv
   return w;
 }
 
+// A body whose inertia has z as an exact principal axis (a planar body, 2D) gets
+// the in-plane axes from the x-y block and z itself, so that its orientation is a
+// pure turn about z (turns_about_z) for as long as it spins about z alone.
 void principal_axes(Body& b, const Eigen::Matrix3d& inertia) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertia);
-  Eigen::Matrix3d R = eig.eigenvectors();
-  if (R.determinant() < 0) R.col(2) = -R.col(2);
-  const double imax = eig.eigenvalues().maxCoeff();
+  Eigen::Matrix3d R;
+  Eigen::Vector3d moment;
+  if (inertia(0, 2) == 0 && inertia(1, 2) == 0) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(inertia.topLeftCorner<2, 2>().eval());
+    R.setZero();
+    R.topLeftCorner<2, 2>() = eig.eigenvectors();
+    R(2, 2) = 1;
+    moment << eig.eigenvalues(), inertia(2, 2);
+    if (R.determinant() < 0) R.col(0) = -R.col(0);
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(inertia);
+    R = eig.eigenvectors();
+    moment = eig.eigenvalues();
+    if (R.determinant() < 0) R.col(2) = -R.col(2);
+  }
+  const double imax = moment.maxCoeff();
   for (int k = 0; k < 3; ++k) {
-    b.moments[k] = eig.eigenvalues()[k] < 1e-7 * imax ? 0.0 : eig.eigenvalues()[k];
+    b.moments[k] = moment[k] < 1e-7 * imax ? 0.0 : moment[k];
     b.inv_moments[k] = b.moments[k] > 0 ? 1.0 / b.moments[k] : 0.0;
   }
   const Eigen::Quaterniond q(R);
@@ -170,14 +248,25 @@ void BodySet::initial_integrate(double dt) {
       if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
     }
   }
-  int idx[kLanes], n = 0;
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
+  // Each body turns on its own: the bodies are split into ranges as the atoms are.
+  for_atom_ranges(AtomSplit{}, bodies.size(), [&](int, std::size_t lo, std::size_t hi) { turn(lo, hi, dt); });
+  place_members(true);
+}
+
+void BodySet::turn(std::size_t lo, std::size_t hi, double dt) {
+  int idx[kLanes], zidx[kLanes], n = 0, nz = 0;
+  for (std::size_t k = lo; k < hi; ++k) {
     if (!rotates(bodies[k])) continue;
+    if (turns_about_z(bodies[k])) {
+      zidx[nz++] = static_cast<int>(k);
+      if (nz == kLanes) turn_bodies_about_z(bodies, zidx, nz, dt), nz = 0;
+      continue;
+    }
     idx[n++] = static_cast<int>(k);
     if (n == kLanes) turn_bodies(bodies, idx, n, 0.5 * dt), n = 0;
   }
   if (n > 0) turn_bodies(bodies, idx, n, 0.5 * dt);
-  place_members(true);
+  if (nz > 0) turn_bodies_about_z(bodies, zidx, nz, dt);
 }
 
 // The body's omega serves only the members' velocities: the next orientation
@@ -223,16 +312,21 @@ void prefetch_body(const std::vector<Body>& bodies, const std::vector<double>& c
 }  // namespace
 
 void BodySet::place_members(bool positions) {
-  Atoms& at = sim_.atoms;
-  auto& c = at.column(col);
   const Domain& dom = sim_.domain;
   const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
   if (positions) {
     turning_.resize(bodies.size());
     for (std::size_t k = 0; k < bodies.size(); ++k) turning_[k] = rotates(bodies[k]);
   }
-  for (std::size_t i = 0; i < at.n; ++i) {
-    prefetch_body(bodies, c, i, at.n);
+  sim_.atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) { place(lo, hi, positions, wrap); });
+}
+
+void BodySet::place(std::size_t lo, std::size_t hi, bool positions, bool wrap) {
+  Atoms& at = sim_.atoms;
+  auto& c = at.column(col);
+  const Domain& dom = sim_.domain;
+  for (std::size_t i = lo; i < hi; ++i) {
+    prefetch_body(bodies, c, i, hi);
     const int k = static_cast<int>(c[kStride * i]) - 1;
     if (k < 0) continue;
     const Body& b = bodies[k];

@@ -189,6 +189,22 @@ TEST(Threads, FreezeForceSameBitsForAnyThreadCount) {
 #endif
 }
 
+// Rigid clumps (fix rigid/small, bodies of three neighbours along x): the
+// orientation step runs on ranges of bodies and the placing pass on the atoms'
+// ranges; each body's force sum stays one serial pass in atom order.
+TEST(Threads, RigidBodiesSameBitsForAnyThreadCount) {
+  std::string deck = kDeck;
+  deck.replace(deck.find("fix integr all nve/sphere"), 25,
+               "variable body atom floor(x/0.00315)+100*floor(y/0.00105)+10000*floor(z/0.00105)+1\n"
+               "fix integr all rigid/small custom v_body");
+  const State serial = run(1, kWide, "", true, deck);
+  ASSERT_GT(serial.contacts, 100u);
+  EXPECT_NE(serial.omega[0], 0.0);  // the bodies turn
+#ifdef _OPENMP
+  for (int t : {2, 3, 6}) EXPECT_TRUE(run(t, kWide, "", true, deck) == serial) << t << " threads differ from 1";
+#endif
+}
+
 // A final half kick deferred into the next initial pass, forces zeroed by the
 // integrator and gravity (kDeck's last post_force fix) added by it: the same
 // bits (and the same rebuilds) as separate passes.
