@@ -113,7 +113,7 @@ def times(sm):
 def series_table(cases, name, clock='wall'):
     """Markdown lines: each case of a speed-against-error series against its reference,
     and per code the fastest setting within SPEED_TOL of it."""
-    series = [c for c in cases if c.get('series') == name]
+    series = [c for c in cases if name in series_of(c)]
     lines = [f'### series {name}: F_stat against the costliest case (ref)', '',
              '| case | code | particle-steps | F_stat mean ± SE (n) | error vs ref ± combined SE | wall (CPU) s |',
              '|---|---|---|---|---|---|']
@@ -192,7 +192,7 @@ def write_markdown(cases, path, sigma, figures, clock='wall'):
         t, ok = case_table(c, sigma)
         lines += t
         status = status and ok
-    for name in sorted({c['series'] for c in cases if c.get('series')}):
+    for name in series_names(cases):
         lines += series_table(cases, name, clock)
     lines += ['Code versions:'] + versions(cases) + [''] + [f'![{f}]({f})' for f in figures]
     open(path, 'w').write('\n'.join(lines) + '\n')
@@ -214,7 +214,7 @@ def seed_mean_curve(runs):
 
 def study_cases(cases):
     """The cases outside a speed-against-error series (all of them if none is)."""
-    plain = [c for c in cases if not c.get('series')]
+    plain = [c for c in cases if not series_of(c)]
     return plain or cases
 
 
@@ -274,6 +274,17 @@ def fig_scatter(cases, path, x, xlabel, quantities, logx=False, panels=None):
     plt.close(fig)
 
 
+def series_of(c):
+    """The speed-against-error series a case belongs to: `series` is a name or a list
+    (a base case shared by several series)."""
+    v = c.get('series') or []
+    return [v] if isinstance(v, str) else list(v)
+
+
+def series_names(cases):
+    return sorted({n for c in cases for n in series_of(c)})
+
+
 def reference_case(series, code):
     """The series' costliest setting that this code ran: finest step, stiffest, largest."""
     ran = [c for c in series if code in c['runs']]
@@ -281,10 +292,10 @@ def reference_case(series, code):
 
 
 def fig_speed(cases, path, clock):
-    names = sorted({c['series'] for c in cases if c.get('series')})
+    names = series_names(cases)
     fig, axes = plt.subplots(1, len(names), figsize=(4.5 * len(names), 3.4), squeeze=False)
     for ax, name in zip(axes[0], names):
-        series = [c for c in cases if c.get('series') == name]
+        series = [c for c in cases if name in series_of(c)]
         for code in ('sable', 'liggghts'):
             ref = reference_case(series, code)
             if ref is None:
@@ -320,7 +331,7 @@ def figures(cases, folder, clock):
                 ('F_stat', 'F_first'), panels=lambda c: f"E* = {c['scene']['Estar']:.2g}")
     fig_scatter(cases, os.path.join(folder, out[2]), lambda c, sm: c['scene']['Estar'], 'E* = E / (ρ g d)',
                 ('F_stat',), logx=True)
-    if any(c.get('series') for c in cases):
+    if series_names(cases):
         out.append('speed_error.png')
         fig_speed(cases, os.path.join(folder, out[-1]), clock)
     return out

@@ -14,7 +14,7 @@ stopped; failed runs are run again and reported with their error tail.
 -j N runs N at once. Keep the default 1 for campaigns whose wall times feed the
 speed-against-error plot: those must come from runs alone on the machine.
 Case file: {"cases": [{"name": ..., "vars": {"hL": 2, ...}, "codes": ["sable", "liggghts"],
-"seeds": [49979687, ...], "series": "dt"}, ...]}. Exit status 1 if any run failed.
+"seeds": [49979687, ...], "series": "dt" (or a list)}, ...]}. Exit status 1 if any run failed.
 """
 import argparse, concurrent.futures, datetime, hashlib, json, math, os, re, shutil, subprocess, sys, threading, time
 
@@ -42,10 +42,11 @@ def preset(name):
     if name == 'speed':  # speed against error on the smoke scene: time step, stiffness, container width
         dt = [dict(name=f'speed_dtf{f}', vars={**SMOKE, 'turns': 3, 'dtf': f}, codes=BOTH, seeds=SEEDS[:2],
                    series='dt') for f in (0.17, 0.15, 0.1, 0.05)]
+        # E >= 5 MPa: both codes refuse softer SI grains (soft_particles); speed_E5e6 (Wd 15) is also the W series' middle
         stiff = [dict(name=f'speed_E{e}', vars={**SMOKE, 'turns': 3, 'E': e}, codes=BOTH, seeds=SEEDS[:2],
-                      series='E') for e in ('5e6', '1e7', '2e7', '8e7')]  # E >= 5 MPa: both codes refuse softer SI grains (soft_particles)
+                      series=['E', 'W'] if e == '5e6' else 'E') for e in ('5e6', '1e7', '2e7', '8e7')]
         size = [dict(name=f'speed_Wd{w}', vars={**SMOKE, 'turns': 3, 'Wd': w}, codes=BOTH, seeds=SEEDS[:2],
-                     series='W') for w in (12, 20)]  # Wd 15 is speed_E5e6
+                     series='W') for w in (12, 20)]
         return dt + stiff + size
     sys.exit(f'unknown preset {name} (smoke, speed-smoke, small, speed)')
 
