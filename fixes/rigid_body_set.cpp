@@ -248,8 +248,9 @@ void BodySet::initial_integrate(double dt) {
       if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
     }
   }
-  // Each body turns on its own: the bodies are split into ranges as the atoms are.
-  for_atom_ranges(AtomSplit{}, bodies.size(), [&](int, std::size_t lo, std::size_t hi) { turn(lo, hi, dt); });
+  // Serial, as the placing pass: threaded on ranges they ran slower with two threads
+  // (history.md, 2026-12-05 sixth session), the serial force sums moving the lines anyway.
+  turn(0, bodies.size(), dt);
   place_members(true);
 }
 
@@ -318,7 +319,7 @@ void BodySet::place_members(bool positions) {
     turning_.resize(bodies.size());
     for (std::size_t k = 0; k < bodies.size(); ++k) turning_[k] = rotates(bodies[k]);
   }
-  sim_.atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) { place(lo, hi, positions, wrap); });
+  place(0, sim_.atoms.n, positions, wrap);
 }
 
 void BodySet::place(std::size_t lo, std::size_t hi, bool positions, bool wrap) {

@@ -84,7 +84,7 @@ class BodySet {
   void final_integrate(double dt, bool members_unread = false);
   // Members from their body: the offset turned to the body's orientation (kept
   // as it is when the body cannot turn), the position wrapped into the box,
-  // v = vcm + w x d, and each sphere's spin the body's (on each thread's atoms).
+  // v = vcm + w x d, and each sphere's spin the body's.
   void place_members(bool positions);
   // Force and torque on each body about its centre: the members' forces, their
   // moments d x f, and the members' own torques (serial, in atom order: the

@@ -189,9 +189,9 @@ TEST(Threads, FreezeForceSameBitsForAnyThreadCount) {
 #endif
 }
 
-// Rigid clumps (fix rigid/small, bodies of three neighbours along x): the
-// orientation step runs on ranges of bodies and the placing pass on the atoms'
-// ranges; each body's force sum stays one serial pass in atom order.
+// Rigid clumps (fix rigid/small, bodies of three neighbours along x): the body
+// passes are serial (sums in atom order) between the threaded pair and atom
+// passes; the bodies are renumbered at each sort. The same bits for any count.
 TEST(Threads, RigidBodiesSameBitsForAnyThreadCount) {
   std::string deck = kDeck;
   deck.replace(deck.find("fix integr all nve/sphere"), 25,
