@@ -250,13 +250,8 @@ void BodySet::initial_integrate(double dt) {
   }
   // Serial, as the placing pass: threaded on ranges they ran slower with two threads
   // (history.md, 2026-12-05 sixth session), the serial force sums moving the lines anyway.
-  turn(0, bodies.size(), dt);
-  place_members(true);
-}
-
-void BodySet::turn(std::size_t lo, std::size_t hi, double dt) {
   int idx[kLanes], zidx[kLanes], n = 0, nz = 0;
-  for (std::size_t k = lo; k < hi; ++k) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
     if (!rotates(bodies[k])) continue;
     if (turns_about_z(bodies[k])) {
       zidx[nz++] = static_cast<int>(k);
@@ -268,6 +263,7 @@ void BodySet::turn(std::size_t lo, std::size_t hi, double dt) {
   }
   if (n > 0) turn_bodies(bodies, idx, n, 0.5 * dt);
   if (nz > 0) turn_bodies_about_z(bodies, zidx, nz, dt);
+  place_members(true);
 }
 
 // The body's omega serves only the members' velocities: the next orientation
@@ -319,15 +315,10 @@ void BodySet::place_members(bool positions) {
     turning_.resize(bodies.size());
     for (std::size_t k = 0; k < bodies.size(); ++k) turning_[k] = rotates(bodies[k]);
   }
-  place(0, sim_.atoms.n, positions, wrap);
-}
-
-void BodySet::place(std::size_t lo, std::size_t hi, bool positions, bool wrap) {
   Atoms& at = sim_.atoms;
   auto& c = at.column(col);
-  const Domain& dom = sim_.domain;
-  for (std::size_t i = lo; i < hi; ++i) {
-    prefetch_body(bodies, c, i, hi);
+  for (std::size_t i = 0; i < at.n; ++i) {
+    prefetch_body(bodies, c, i, at.n);
     const int k = static_cast<int>(c[kStride * i]) - 1;
     if (k < 0) continue;
     const Body& b = bodies[k];

@@ -109,8 +109,6 @@ class BodySet {
   std::vector<int> slot_, new_index_;
   std::vector<Body> scratch_;
   void number_new_bodies();
-  void turn(std::size_t lo, std::size_t hi, double dt);  // the orientation step of bodies [lo, hi)
-  void place(std::size_t lo, std::size_t hi, bool positions, bool wrap);  // place_members on atoms [lo, hi)
 };
 
 }  // namespace rigid
