@@ -73,9 +73,16 @@ class Fix {
   // (AtomRange). Each atom sees the operations of one serial pass in the same
   // order: the same bits for any thread count. A fix writes no threading.
   unsigned atom_tasks = 0;  // FixHook bits
+  // Tasks (of atom_tasks) in two phases: range() runs with phase 0 on every
+  // thread's range, then, once all have finished, with phase 1. For work that
+  // first gathers over atoms of other ranges (rigid bodies: each body summed and
+  // advanced by one thread, then every member placed from its body). Such an
+  // integrator is fused but not pipelined into the force pass.
+  unsigned two_phase_tasks = 0;  // FixHook bits
   struct AtomRange {
     int thread = 0;
     std::size_t lo = 0, hi = 0;
+    int phase = 0;  // two_phase_tasks: 0, then 1
     // INITIAL_INTEGRATE, when the plan fuses: run last step's FINAL_INTEGRATE
     // first (nothing looked at the atoms in between), zero every force and
     // torque of the range after (nothing reads them before the force pass),
@@ -96,6 +103,8 @@ class Fix {
   // body's summed force (as the last step applied it), for per-body statistics.
   // Bodies by the deck's numbers (from 0; f_ID row - 1), stable over the run.
   virtual int body_of(std::size_t /*i*/) const { return -1; }
+  // An integrator of rigid bodies: its group's grains move only as members of its bodies.
+  virtual bool body_integrator() const { return false; }
   virtual const double* body_force(int /*body*/) const { return nullptr; }
   // Bodies whose member grains carry the body's mass (fix multisphere): true and
   // their 1/2 M vcm^2, which thermo ke counts once per body in place of the members'.

@@ -546,12 +546,14 @@ void Simulation::run(long nsteps) {
   // Pipelining, when fused and every post_force fix is ranged: each thread
   // runs the post_force fixes on its own atoms inside the force pass as soon
   // as their pair forces are final (Pair::compute_then) and, when the final
-  // half kick is deferred, the next step's fused initial pass too. One
+  // half kick is deferred, the next step's fused initial pass too (unless it
+  // runs in two phases: then at the start of the next step, as usual). One
   // parallel region per step instead of four; the threads' uneven shares of
   // the passes add up to one wait; the atoms are still in the core's cache.
   // Every atom sees the same operations in the same order: the same bits.
   bool ranged = fused && pair;
   for (Fix* f : hook[3]) ranged = ranged && (f->atom_tasks & POST_FORCE);
+  const bool tail_integrates = fused && !(fused->two_phase_tasks & INITIAL_INTEGRATE);
   explain_slow_path(hook, fused, ranged);
   bool pre_integrated = false;  // this step's initial pass ran in the last force pass
   std::vector<Fix*> tail_fixes;
@@ -590,8 +592,9 @@ void Simulation::run(long nsteps) {
       next.final_first = true;
       next.clear = clear_in_integrate;
       next.accel = folded ? accel : nullptr;
-      if (deferred) fused->begin(INITIAL_INTEGRATE);
-      const bool prescan = deferred && hook[1].empty();
+      const bool pipelined = deferred && tail_integrates;
+      if (pipelined) fused->begin(INITIAL_INTEGRATE);
+      const bool prescan = pipelined && hook[1].empty();
       if (prescan) neighbor.expect_prescan(atoms, step + 1);
       tail_fix_s = tail_int_s = 0.0;
       pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
@@ -600,7 +603,7 @@ void Simulation::run(long nsteps) {
         r.thread = t, r.lo = lo, r.hi = hi;
         for (Fix* f : tail_fixes) f->range(POST_FORCE, r);
         const auto t1 = t == 0 ? clock::now() : clock::time_point{};
-        if (deferred) fused->range(INITIAL_INTEGRATE, r);
+        if (pipelined) fused->range(INITIAL_INTEGRATE, r);
         if (prescan) neighbor.prescan_range(atoms, t, lo, hi);
         if (t == 0) {
           tail_fix_s += std::chrono::duration<double>(t1 - t0).count();
@@ -608,8 +611,8 @@ void Simulation::run(long nsteps) {
         }
       });
       for (Fix* f : tail_fixes) f->end(POST_FORCE);
-      if (deferred) fused->end(INITIAL_INTEGRATE);
-      pre_integrated = deferred;
+      if (pipelined) fused->end(INITIAL_INTEGRATE);
+      pre_integrated = pipelined;
       lap(timers.pair);
       timers.pair -= tail_fix_s + tail_int_s;  // thread 0's share, as the time split counts
       timers.fixes += tail_fix_s;

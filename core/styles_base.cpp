@@ -30,9 +30,14 @@ void Fix::run_task(FixHook h) { run_task(h, AtomRange{}); }
 void Fix::run_task(FixHook h, const AtomRange& how) {
   if (!(atom_tasks & h)) return;
   begin(h);
+  const bool phases = two_phase_tasks & h;
   sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
     AtomRange r = how;
     r.thread = t, r.lo = lo, r.hi = hi;
+    range(h, r);
+    if (!phases) return;
+    atom_pass_barrier();
+    r.phase = 1;
     range(h, r);
   });
   end(h);

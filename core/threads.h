@@ -130,6 +130,13 @@ void for_atom_ranges([[maybe_unused]] const AtomSplit& split, std::size_t n, Bod
   body(0, std::size_t{0}, n);
 }
 
+// Inside a for_atom_ranges body: waits until every thread of the pass got here.
+inline void atom_pass_barrier() {
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+}
+
 // Threads a for_atom_ranges pass may use (size of per-thread result arrays).
 inline int atom_pass_threads() {
 #ifdef _OPENMP

@@ -139,7 +139,7 @@ void FixMultisphere::add_body(const ClumpShape& shape, const double xcm[3], cons
 void FixMultisphere::check_integrators(std::size_t first, std::size_t n) const {
   const Atoms& at = sim.atoms;
   for (auto& f : sim.fixes) {
-    if (!(f->atom_tasks & INITIAL_INTEGRATE)) continue;
+    if (!(f->atom_tasks & INITIAL_INTEGRATE) || f->body_integrator()) continue;
     for (std::size_t i = first; i < first + n; ++i)
       if (at.mask[i] & f->groupbit)
         args.fail_line("a multisphere clump's sphere (atom " + std::to_string(at.id[i]) + ") is also integrated by fix " +

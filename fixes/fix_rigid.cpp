@@ -36,6 +36,7 @@ class FixRigid : public Fix {
  public:
   FixRigid(Simulation& s, const Args& a) : Fix(s, a) {
     hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
+    atom_tasks = two_phase_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
     small_ = style == "rigid/small";
     parse(a);
     const auto st = sim.restart.fix_states.find(id);
@@ -54,16 +55,18 @@ class FixRigid : public Fix {
   }
   void pre_force() override { refresh_contact_mass(false); }
 
-  void initial_integrate() override { set_.initial_integrate(sim.dt); }
-
-  void final_integrate() override {
-    set_.sum_forces();
-    set_.final_integrate(sim.dt, sim.velocities_unread);
+  void begin(FixHook) override { set_.begin_task(); }
+  void range(FixHook h, const AtomRange& r) override {
+    if (h == INITIAL_INTEGRATE)
+      set_.initial_range(r, sim.dt);
+    else
+      set_.final_range(r, sim.dt, sim.velocities_unread);
   }
 
   void setup() override { set_.sum_forces(); }
 
   int body_of(std::size_t i) const override { return set_.number_of_atom(i); }
+  bool body_integrator() const override { return true; }
   const double* body_force(int b) const override { return set_.by_number(b).force.data(); }
 
   double compute_array(int i, int j) override {
@@ -137,7 +140,7 @@ class FixRigid : public Fix {
         if (c[kStride * i] != 0 && f->body_of(i) >= 0)
           args.fail_line("atom " + std::to_string(at.id[i]) + " belongs to a body of fix " + f->id +
                          " too: a grain is in one rigid body at most");
-      if (!(f->atom_tasks & INITIAL_INTEGRATE)) continue;
+      if (!(f->atom_tasks & INITIAL_INTEGRATE) || f->body_integrator()) continue;
       for (std::size_t i = 0; i < at.n; ++i)
         if (c[kStride * i] != 0 && (at.mask[i] & f->groupbit))
           args.fail_line("atom " + std::to_string(at.id[i]) + " of a rigid body is also integrated by fix " + f->id +

@@ -239,45 +239,98 @@ int BodySet::body_of_atom(std::size_t i) const {
 
 bool BodySet::any_rotates() const { return std::any_of(bodies.begin(), bodies.end(), rotates); }
 
-void BodySet::initial_integrate(double dt) {
-  const double dtf = 0.5 * dt;
-  for (Body& b : bodies) {
-    for (int k = 0; k < 3; ++k) {
-      if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
-      b.xcm[k] += dt * b.vcm[k];
-      if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
-    }
+namespace {
+void kick(Body& b, double dtf) {
+  for (int k = 0; k < 3; ++k) {
+    if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
+    if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
   }
-  // Serial, as the placing pass: threaded on ranges they ran slower with two threads
-  // (history.md, 2026-12-05 sixth session), the serial force sums moving the lines anyway.
+}
+}  // namespace
+
+// Bodies k0 .. k1 - 1: (the deferred second half kick,) the first half kick, the drift, the turn.
+void BodySet::advance(int k0, int k1, double dt, bool final_first, const double* accel) {
+  const double dtf = 0.5 * dt;
+  for (int k = k0; k < k1; ++k) {
+    Body& b = bodies[k];
+    if (final_first) sum_body(k, accel), kick(b, dtf);
+    kick(b, dtf);
+    for (int e = 0; e < 3; ++e) b.xcm[e] += dt * b.vcm[e];
+  }
+  turn(k0, k1, dt);
+}
+
+void BodySet::turn(int k0, int k1, double dt) {
   int idx[kLanes], zidx[kLanes], n = 0, nz = 0;
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
-    if (!rotates(bodies[k])) continue;
+  for (int k = k0; k < k1; ++k) {
+    turning_[k] = rotates(bodies[k]);
+    if (!turning_[k]) continue;
     if (turns_about_z(bodies[k])) {
-      zidx[nz++] = static_cast<int>(k);
+      zidx[nz++] = k;
       if (nz == kLanes) turn_bodies_about_z(bodies, zidx, nz, dt), nz = 0;
       continue;
     }
-    idx[n++] = static_cast<int>(k);
+    idx[n++] = k;
     if (n == kLanes) turn_bodies(bodies, idx, n, 0.5 * dt), n = 0;
   }
   if (n > 0) turn_bodies(bodies, idx, n, 0.5 * dt);
   if (nz > 0) turn_bodies_about_z(bodies, zidx, nz, dt);
-  place_members(true);
+}
+
+void BodySet::initial_integrate(double dt) {
+  turning_.resize(bodies.size());
+  advance(0, static_cast<int>(bodies.size()), dt, false, nullptr);
+  place_range(0, sim_.atoms.n, true);
 }
 
 // The body's omega serves only the members' velocities: the next orientation
 // step recomputes it from the angular momentum.
 void BodySet::final_integrate(double dt, bool members_unread) {
-  const double dtf = 0.5 * dt;
   for (Body& b : bodies) {
-    for (int k = 0; k < 3; ++k) {
-      if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
-      if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
-    }
+    kick(b, 0.5 * dt);
     if (!members_unread && rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
   }
   if (!members_unread) place_members(false);
+}
+
+void BodySet::begin_task() {
+  follow_atom_order();
+  turning_.resize(bodies.size());
+}
+
+void BodySet::owned(const Fix::AtomRange& r, int& k0, int& k1) const {
+  k0 = static_cast<int>(std::lower_bound(first_.begin(), first_.end(), r.lo) - first_.begin());
+  k1 = r.hi >= sim_.atoms.n ? static_cast<int>(bodies.size())
+                            : static_cast<int>(std::lower_bound(first_.begin(), first_.end(), r.hi) - first_.begin());
+}
+
+void BodySet::initial_range(const Fix::AtomRange& r, double dt) {
+  if (r.phase == 0) {
+    int k0, k1;
+    owned(r, k0, k1);
+    advance(k0, k1, dt, r.final_first, r.final_first ? r.accel : nullptr);
+    return;
+  }
+  place_range(r.lo, r.hi, true);
+  if (!r.clear) return;
+  Atoms& at = sim_.atoms;
+  std::fill(at.f.begin() + 3 * r.lo, at.f.begin() + 3 * r.hi, 0.0);
+  std::fill(at.torque.begin() + 3 * r.lo, at.torque.begin() + 3 * r.hi, 0.0);
+}
+
+void BodySet::final_range(const Fix::AtomRange& r, double dt, bool members_unread) {
+  if (r.phase == 1) {
+    if (!members_unread) place_range(r.lo, r.hi, false);
+    return;
+  }
+  int k0, k1;
+  owned(r, k0, k1);
+  for (int k = k0; k < k1; ++k) {
+    Body& b = bodies[k];
+    sum_body(k, nullptr);
+    kick(b, 0.5 * dt);
+    if (!members_unread && rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+  }
 }
 
 void BodySet::expected(std::size_t i, int k, double* x, double* v) const {
@@ -309,16 +362,21 @@ void prefetch_body(const std::vector<Body>& bodies, const std::vector<double>& c
 }  // namespace
 
 void BodySet::place_members(bool positions) {
-  const Domain& dom = sim_.domain;
-  const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
   if (positions) {
     turning_.resize(bodies.size());
     for (std::size_t k = 0; k < bodies.size(); ++k) turning_[k] = rotates(bodies[k]);
   }
+  place_range(0, sim_.atoms.n, positions);
+}
+
+// With positions, turning_ holds rotates() of each body as it is now.
+void BodySet::place_range(std::size_t lo, std::size_t hi, bool positions) {
+  const Domain& dom = sim_.domain;
+  const bool wrap = dom.wraps(0) || dom.wraps(1) || dom.wraps(2);
   Atoms& at = sim_.atoms;
   auto& c = at.column(col);
-  for (std::size_t i = 0; i < at.n; ++i) {
-    prefetch_body(bodies, c, i, at.n);
+  for (std::size_t i = lo; i < hi; ++i) {
+    prefetch_body(bodies, c, i, hi);
     const int k = static_cast<int>(c[kStride * i]) - 1;
     if (k < 0) continue;
     const Body& b = bodies[k];
@@ -360,9 +418,11 @@ void BodySet::numbers_read() {
 // members in atom order, so the bits are those of any other numbering.
 void BodySet::follow_atom_order() {
   number_new_bodies();
-  if (sim_.neighbor.builds == builds_seen_) return;
-  builds_seen_ = sim_.neighbor.builds;
   Atoms& at = sim_.atoms;
+  if (sim_.neighbor.builds == builds_seen_ && at.n == atoms_seen_ && bodies.size() == bodies_seen_) return;
+  builds_seen_ = sim_.neighbor.builds;
+  atoms_seen_ = at.n;
+  bodies_seen_ = bodies.size();
   auto& c = at.column(col);
   new_index_.assign(bodies.size(), -1);
   scratch_.clear();
@@ -382,19 +442,37 @@ void BodySet::follow_atom_order() {
   bodies.swap(scratch_);
   number.swap(renumbered);
   for (std::size_t k = 0; k < number.size(); ++k) slot_[number[k]] = static_cast<int>(k);
+  list_members();
 }
 
-void BodySet::sum_forces() {
-  follow_atom_order();
-  Atoms& at = sim_.atoms;
+void BodySet::list_members() {
+  const Atoms& at = sim_.atoms;
   const auto& c = at.column(col);
-  for (Body& b : bodies) b.force = b.torque = V3{0, 0, 0};
-  for (std::size_t i = 0; i < at.n; ++i) {
-    prefetch_body(bodies, c, i, at.n);
-    const int k = static_cast<int>(c[kStride * i]) - 1;
-    if (k < 0) continue;
-    Body& b = bodies[k];
-    const V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
+  const std::size_t nb = bodies.size();
+  start_.assign(nb + 1, 0);
+  first_.assign(nb, at.n);
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (const int k = static_cast<int>(c[kStride * i]) - 1; k >= 0) {
+      if (start_[k + 1]++ == 0) first_[k] = i;
+    }
+  for (std::size_t k = 0; k < nb; ++k) start_[k + 1] += start_[k];
+  member_.resize(start_[nb]);
+  std::vector<int> at_k(start_.begin(), start_.end() - 1);
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (const int k = static_cast<int>(c[kStride * i]) - 1; k >= 0) member_[at_k[k]++] = static_cast<int>(i);
+}
+
+// Over the members in atom order (with rmass accel added to each force: a folded gravity).
+void BodySet::sum_body(int k, const double* accel) {
+  const Atoms& at = sim_.atoms;
+  const auto& c = at.column(col);
+  Body& b = bodies[k];
+  b.force = b.torque = V3{0, 0, 0};
+  for (int m = start_[k]; m < start_[k + 1]; ++m) {
+    const std::size_t i = static_cast<std::size_t>(member_[m]);
+    V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
+    if (accel)
+      for (int e = 0; e < 3; ++e) f[e] += at.rmass[i] * accel[e];
     const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
     const V3 t = cross(d, f);
     for (int e = 0; e < 3; ++e) {
@@ -402,6 +480,11 @@ void BodySet::sum_forces() {
       b.torque[e] += t[e] + at.torque[3 * i + e];
     }
   }
+}
+
+void BodySet::sum_forces() {
+  follow_atom_order();
+  for (std::size_t k = 0; k < bodies.size(); ++k) sum_body(static_cast<int>(k), nullptr);
 }
 
 }  // namespace sable::rigid

@@ -6,6 +6,12 @@
 // iteration for the orientation, placing the members from their body, and
 // summing member forces into body force and torque.
 //
+// The integration runs serially (initial_integrate, sum_forces, final_integrate)
+// or as the step plan's per-atom tasks in two phases (Fix::two_phase_tasks):
+// in phase 0 each thread advances the bodies whose first member lies in its atom
+// range, summing each body over its members in atom order (the same bits for any
+// split); in phase 1 each thread places the members in its range.
+//
 // Per atom, one extra column of kStride doubles: body index + 1 (0: in no
 // body), the offset from the centre of mass in the body frame (3) and in the
 // world frame (3).
@@ -16,6 +22,8 @@
 #include <vector>
 
 #include <Eigen/Dense>
+
+#include "core/fix.h"
 
 namespace sable {
 
@@ -90,6 +98,14 @@ class BodySet {
   // moments d x f, and the members' own torques (serial, in atom order: the
   // same bits for any thread count).
   void sum_forces();
+  // The same steps as the plan's two-phase tasks (see the top of this file):
+  // begin_task serially before each, then the phases on every atom range. The
+  // initial task with r.final_first first does the deferred second half kick of
+  // the last step (forces summed with rmass r.accel added: a folded gravity),
+  // and with r.clear zeroes the range's forces and torques after placing.
+  void begin_task();
+  void initial_range(const Fix::AtomRange& r, double dt);
+  void final_range(const Fix::AtomRange& r, double dt, bool members_unread);
   // Where place_members would put grain i of body k, and its velocity.
   void expected(std::size_t i, int k, double* x, double* v) const;
   // The body the deck numbers n (from 0), and the deck's number of body k.
@@ -99,16 +115,28 @@ class BodySet {
   int number_of(int k) const { return k < static_cast<int>(number.size()) ? number[k] : k; }
   // number[] given (restart): slot() follows it.
   void numbers_read();
-  // Renumbers the bodies in the atoms' order if the atoms were sorted since the last look.
+  // Renumbers the bodies in the atoms' order if the atoms were sorted, added or
+  // removed since the last look, and lists each body's members in atom order.
   void follow_atom_order();
 
  private:
   Simulation& sim_;
   std::vector<char> turning_;  // rotates(body), taken once per placing pass
   long builds_seen_ = -1;      // neighbour builds (each sorts the atoms) at the last renumbering
+  std::size_t atoms_seen_ = 0, bodies_seen_ = 0;
   std::vector<int> slot_, new_index_;
   std::vector<Body> scratch_;
+  // Body k's members: member_[start_[k] .. start_[k + 1]) in atom order; first_[k]
+  // its first member (the atom count for a body without members): ascending in k.
+  std::vector<int> start_, member_;
+  std::vector<std::size_t> first_;
   void number_new_bodies();
+  void list_members();
+  void owned(const Fix::AtomRange& r, int& k0, int& k1) const;  // the bodies of r's thread
+  void sum_body(int k, const double* accel);
+  void advance(int k0, int k1, double dt, bool final_first, const double* accel);
+  void turn(int k0, int k1, double dt);
+  void place_range(std::size_t lo, std::size_t hi, bool positions);
 };
 
 }  // namespace rigid

@@ -203,6 +203,16 @@ TEST(Threads, RigidBodiesSameBitsForAnyThreadCount) {
 #ifdef _OPENMP
   for (int t : {2, 3, 6}) EXPECT_TRUE(run(t, kWide, "", true, deck) == serial) << t << " threads differ from 1";
 #endif
+  // The bodies' two-phase tasks fused across steps, gravity (the last post_force
+  // fix) added to the member forces they sum: the bits of separate passes.
+  const State separate = run(1, kWide, "", false, deck);
+  EXPECT_EQ(separate.fused_steps, 0);
+  EXPECT_EQ(serial.fused_steps, 1499);
+  EXPECT_EQ(serial.folded_steps, 1499);
+  EXPECT_TRUE(serial == separate) << "fused and separate passes differ";
+#ifdef _OPENMP
+  EXPECT_TRUE(run(2, kWide, "thermo 7\n", true, deck) == separate) << "partly fused, 2 threads: differs";
+#endif
 }
 
 // A final half kick deferred into the next initial pass, forces zeroed by the
