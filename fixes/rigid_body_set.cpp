@@ -246,6 +246,13 @@ void kick(Body& b, double dtf) {
     if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
   }
 }
+
+// The second half kick; with `spin`, omega for the members' velocities (the next
+// orientation step recomputes it from the angular momentum anyway).
+void second_half(Body& b, double dt, bool spin) {
+  kick(b, 0.5 * dt);
+  if (spin && BodySet::rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+}
 }  // namespace
 
 // Bodies k0 .. k1 - 1: (the deferred second half kick,) the first half kick, the drift, the turn.
@@ -253,7 +260,7 @@ void BodySet::advance(int k0, int k1, double dt, bool final_first, const double*
   const double dtf = 0.5 * dt;
   for (int k = k0; k < k1; ++k) {
     Body& b = bodies[k];
-    if (final_first) sum_body(k, accel), kick(b, dtf);
+    if (final_first) sum_body(k, accel), second_half(b, dt, false);
     kick(b, dtf);
     for (int e = 0; e < 3; ++e) b.xcm[e] += dt * b.vcm[e];
   }
@@ -283,13 +290,8 @@ void BodySet::initial_integrate(double dt) {
   place_range(0, sim_.atoms.n, true);
 }
 
-// The body's omega serves only the members' velocities: the next orientation
-// step recomputes it from the angular momentum.
 void BodySet::final_integrate(double dt, bool members_unread) {
-  for (Body& b : bodies) {
-    kick(b, 0.5 * dt);
-    if (!members_unread && rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
-  }
+  for (Body& b : bodies) second_half(b, dt, !members_unread);
   if (!members_unread) place_members(false);
 }
 
@@ -326,10 +328,8 @@ void BodySet::final_range(const Fix::AtomRange& r, double dt, bool members_unrea
   int k0, k1;
   owned(r, k0, k1);
   for (int k = k0; k < k1; ++k) {
-    Body& b = bodies[k];
     sum_body(k, nullptr);
-    kick(b, 0.5 * dt);
-    if (!members_unread && rotates(b)) b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+    second_half(bodies[k], dt, !members_unread);
   }
 }
 
