@@ -2,6 +2,7 @@
 // Base of all fixes (LIGGGHTS `fix ID group style args`). A fix overrides the
 // hooks it needs and says so in `hooks`, so the step loop calls only those.
 #include <cstddef>
+#include <functional>
 #include <string>
 
 #include "core/args.h"
@@ -121,7 +122,10 @@ class Fix {
 
   // Runs the task declared for hook h (if any) over all atoms: begin, the ranges, end.
   void run_task(FixHook h);
-  void run_task(FixHook h, const AtomRange& how);
+  // `after(t, lo, hi)`, when given, runs on each thread's range once the task
+  // (its last phase) is done with it: the step plan's work on the same atoms.
+  void run_task(FixHook h, const AtomRange& how,
+                const std::function<void(int, std::size_t, std::size_t)>& after = {});
 
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }

@@ -262,6 +262,7 @@ bool Neighbor::decide(const Atoms& atoms, long step) {
   }
   const bool ahead = prescan_.step == step && prescan_.n == atoms.n;  // announced for this step
   const double d2 = ahead ? max_of_parts(prescan_.part) : max_displacement_sq(atoms);
+  prescans_used += ahead;
   prescan_.step = -1;
   return !(d2 <= 0.25 * skin * skin);  // NaN too: the rebuild checks positions
 }

@@ -134,6 +134,7 @@ class Neighbor {
   // The last step at which decide() scanned every position (a NaN or infinite
   // one there forces a rebuild, which checks the atoms).
   long positions_scanned_step = -1;
+  long prescans_used = 0;  // rebuild checks that took the scan done ahead (below)
   double max_displacement_sq(const Atoms& atoms) const;
   bool moved_or_grew(const Atoms& atoms) const;
   // The check's scan done ahead, range by range, by the threads that just

@@ -554,6 +554,9 @@ void Simulation::run(long nsteps) {
   bool ranged = fused && pair;
   for (Fix* f : hook[3]) ranged = ranged && (f->atom_tasks & POST_FORCE);
   const bool tail_integrates = fused && !(fused->two_phase_tasks & INITIAL_INTEGRATE);
+  // A two-phase integrator (rigid bodies) places each thread's atoms in its last
+  // phase: the rebuild check's scan follows there, one parallel region fewer.
+  const bool scan_after_placing = fused && !tail_integrates && hook[1].empty();
   explain_slow_path(hook, fused, ranged);
   bool pre_integrated = false;  // this step's initial pass ran in the last force pass
   std::vector<Fix*> tail_fixes;
@@ -569,11 +572,18 @@ void Simulation::run(long nsteps) {
     fusion.accel = deferred && folded ? accel : nullptr;
     deferred = false;
     if (!pre_integrated) {
-      if (fused)
+      if (fused && scan_after_placing) {
+        neighbor.expect_prescan(atoms, step);
+        fused->run_task(INITIAL_INTEGRATE, fusion, [&](int t, std::size_t lo, std::size_t hi) {
+          neighbor.prescan_range(atoms, t, lo, hi);
+        });
+      } else if (fused) {
         fused->run_task(INITIAL_INTEGRATE, fusion);
-      else
+      } else {
         for (Fix* f : hook[0]) f->initial_integrate();
+      }
     }
+    cleared_steps += clear_in_integrate;
     pre_integrated = false;
     for (Fix* f : hook[1]) f->post_integrate();
     lap(timers.integrate);

@@ -138,6 +138,7 @@ class Simulation {
   // end-of-step fix, not the last step): rigid bodies leave their members' until then.
   bool velocities_unread = false;
   long folded_steps = 0;    // ... and whose gravity pass went into it too
+  long cleared_steps = 0;   // steps whose forces the fused initial pass zeroed (run())
   // Time split of the last run (seconds).
   struct Timers {
     double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;

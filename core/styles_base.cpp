@@ -27,7 +27,7 @@ void Pair::compute_then(const RangeTail& tail) {
 
 void Fix::run_task(FixHook h) { run_task(h, AtomRange{}); }
 
-void Fix::run_task(FixHook h, const AtomRange& how) {
+void Fix::run_task(FixHook h, const AtomRange& how, const std::function<void(int, std::size_t, std::size_t)>& after) {
   if (!(atom_tasks & h)) return;
   begin(h);
   const bool phases = two_phase_tasks & h;
@@ -35,10 +35,12 @@ void Fix::run_task(FixHook h, const AtomRange& how) {
     AtomRange r = how;
     r.thread = t, r.lo = lo, r.hi = hi;
     range(h, r);
-    if (!phases) return;
-    atom_pass_barrier();
-    r.phase = 1;
-    range(h, r);
+    if (phases) {
+      atom_pass_barrier();
+      r.phase = 1;
+      range(h, r);
+    }
+    if (after) after(t, lo, hi);
   });
   end(h);
 }

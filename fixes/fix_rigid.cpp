@@ -45,6 +45,12 @@ class FixRigid : public Fix {
 
   void init() override {
     check_integrators();
+    // Grains appear mid-run only in post_integrate (insertion): only then must
+    // their contact mass be set before the force pass. Without the hook the
+    // step plan lets the integrator zero the forces (one parallel region fewer).
+    bool inserts = false;
+    for (auto& f : sim.fixes) inserts = inserts || (f->hooks & POST_INTEGRATE);
+    hooks = inserts ? hooks | PRE_FORCE : hooks & ~PRE_FORCE;
     mass_col_ = sim.atoms.add_column("rigid:contact_mass", 1);
     sim.atoms.mass_override = mass_col_;
     pair_col_ = sim.atoms.add_column("rigid:pair_exclusion", 1);

@@ -437,3 +437,37 @@ TEST(FixRigid, PlanarBodyTurnsExactlyAboutZ) {
   EXPECT_NEAR(dy, std::sin(a) * dx0 + std::cos(a) * dy0, 1e-12 * r);
   EXPECT_EQ(at.x[3 * i + 2], 0.0);
 }
+
+// Grains poured into a run with a rigid body (fix insert/pack, on a later step)
+// get their own mass as the contact mass, the members their body's: the fix
+// keeps its pre_force look when an insertion fix is defined. Without one the
+// step plan zeroes the forces in the integrator (cleared_steps; Threads tests).
+TEST(FixRigid, GrainsInsertedMidRunGetTheirOwnContactMass) {
+  Deck d;
+  d(granular("f f f", "-0.05 0.05 -0.05 0.05 0 0.1", "1e-6") + clump(false) +
+    R"(fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0.0
+fix g all gravity 9.81 vector 0 0 -1
+group body id 1:3
+fix rb body rigid single
+group poured subtract all body
+fix integr poured nve/sphere
+fix pts1 all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.002
+fix pdd1 all particledistribution/discrete 32452843 1 pts1 1.0
+region ins block -0.03 0.03 -0.03 0.03 0.02 0.06 units box
+run 10
+fix ins all insert/pack seed 32452867 distributiontemplate pdd1 insert_every once overlapcheck yes particles_in_region 40 region ins
+run 20)");
+  const sable::Atoms& a = d->atoms;
+  ASSERT_EQ(a.n, 43u);
+  const int col = a.find_column("rigid:contact_mass");
+  ASSERT_GE(col, 0);
+  const auto& m = a.column(col);
+  const double body = 3 * a.rmass[0];
+  for (std::size_t i = 0; i < a.n; ++i) {
+    if (a.id[i] <= 3)
+      EXPECT_DOUBLE_EQ(m[i], body) << "member " << a.id[i];
+    else
+      EXPECT_EQ(m[i], a.rmass[i]) << "poured grain " << a.id[i];
+  }
+  EXPECT_EQ(d->cleared_steps, 0);  // two integrators: separate passes
+}

@@ -62,7 +62,7 @@ run 1500
 struct State {
   std::vector<double> x, v, omega, f, torque;
   std::vector<long> id;
-  long builds = 0, fused_steps = 0, folded_steps = 0;
+  long builds = 0, fused_steps = 0, folded_steps = 0, cleared_steps = 0, prescans = 0;
   std::size_t contacts = 0;  // touching pair entries at the end
   double floor_force[3] = {0, 0, 0};
   double freeze_force[3] = {0, 0, 0};  // f_fr, where the deck has fix fr
@@ -112,6 +112,8 @@ State run(int threads, sable::Simd simd, const std::string& before_run = "", boo
     for (int k = 0; k < 3; ++k) s.freeze_force[k] = fr->compute_vector(k + 1);
   s.fused_steps = d->fused_steps;
   s.folded_steps = d->folded_steps;
+  s.cleared_steps = d->cleared_steps;
+  s.prescans = d->neighbor.prescans_used;
   if (const sable::ContactStore* h = d->pair->history())
     s.contacts = h->contacts();
   return s;
@@ -209,6 +211,13 @@ TEST(Threads, RigidBodiesSameBitsForAnyThreadCount) {
   EXPECT_EQ(separate.fused_steps, 0);
   EXPECT_EQ(serial.fused_steps, 1499);
   EXPECT_EQ(serial.folded_steps, 1499);
+  // ... which also zero the forces after placing the members and scan them for
+  // the rebuild check (one region a step for the whole integration).
+  EXPECT_EQ(serial.cleared_steps, 1500);
+  EXPECT_EQ(separate.cleared_steps, 0);
+  EXPECT_GT(serial.prescans, 1400);
+  EXPECT_EQ(separate.prescans, 0);
+  EXPECT_EQ(serial.builds, separate.builds);
   EXPECT_TRUE(serial == separate) << "fused and separate passes differ";
 #ifdef _OPENMP
   EXPECT_TRUE(run(2, kWide, "thermo 7\n", true, deck) == separate) << "partly fused, 2 threads: differs";
