@@ -111,7 +111,7 @@ def parse_stdout(text):
     """SCENE/SETTLED/RESULT key=value lines, BLOCK values, summed Loop times."""
     rec = {'blocks': [float(m) for m in re.findall(r'^BLOCK \d+ F=(\S+)', text, re.M)],
            'loop_time_s': sum(float(t) for t in re.findall(r'^Loop time of (\S+)', text, re.M))}
-    for key in ('SCENE', 'SETTLED', 'RESULT'):
+    for key in ('SCENE', 'SETTLED', 'RESULT', 'PIECE'):
         lines = [l for l in text.splitlines() if l.startswith(key + ' ')]
         if lines:
             rec[key.lower()] = {k: float(v) for k, v in re.findall(r'(\w+)=(\S+)', lines[-1])}
@@ -129,37 +129,91 @@ def is_done(folder):
         return False
 
 
-def run_one(case, code, seed, folder, exe, threads=1):
-    """Run the deck once in its folder and write run.json; returns the record. sable runs on
-    `threads` OpenMP threads (default 1, as LIGGGHTS' one process, so that times compare per core)."""
+def launch(cmd, folder, stdout_name, threads):
+    """Run cmd in folder with stdout to stdout_name; returns (exit code, wall s, CPU s, text)."""
+    t0 = time.monotonic()
+    with open(os.path.join(folder, stdout_name), 'w') as f:
+        env = {**os.environ, 'OMP_NUM_THREADS': str(threads)}
+        p = subprocess.Popen(cmd, cwd=folder, stdout=f, stderr=subprocess.STDOUT, env=env)
+        _, status, usage = os.wait4(p.pid, 0)  # wait4: the run's own CPU time, whatever else runs
+    text = open(os.path.join(folder, stdout_name), errors='replace').read()
+    return os.waitstatus_to_exitcode(status), time.monotonic() - t0, usage.ru_utime + usage.ru_stime, text
+
+
+def run_one(case, code, seed, folder, exe, threads=1, chunk=0):
+    """Run the deck in its folder and write run.json; returns the record. sable runs on
+    `threads` OpenMP threads (default 1, as LIGGGHTS' one process, so that times compare per core).
+    chunk > 0: in pieces of that many half-turns (run_pieces)."""
     os.makedirs(folder, exist_ok=True)
     v = {**{k: str(x) for k, x in case['vars'].items()}, 'seed': str(seed), 'stl': 'cylinder.stl', 'out': 'drag'}
     s = scene(v)
-    subprocess.run([sys.executable, STL_MAKER, repr(s['D']), repr(s['L']), os.path.join(folder, 'cylinder.stl')],
-                   check=True, capture_output=True)
-    cmd = (['stdbuf', '-o0', '-e0'] if code == 'liggghts' else []) + [exe, '-in', DECK, '-log', 'log.txt']
+    if not os.path.exists(os.path.join(folder, 'cylinder.stl')) or not chunk:
+        subprocess.run([sys.executable, STL_MAKER, repr(s['D']), repr(s['L']), os.path.join(folder, 'cylinder.stl')],
+                       check=True, capture_output=True)
+    cmd = (['stdbuf', '-o0', '-e0'] if code == 'liggghts' else []) + [exe, '-in', DECK]
     cmd += (['-echo', 'none'] if code == 'liggghts' else []) + [w for k, x in v.items() for w in ('-var', k, x)]
     rec = {'case': case['name'], 'code': code, 'seed': seed, 'vars': v, 'series': case.get('series'),
            'command': ' '.join(cmd), 'started': datetime.datetime.now().isoformat(timespec='seconds'),
            'threads': threads if code == 'sable' else 1,
            'version': code_version(code, exe), 'estimate': {'grains': s['grains'], 'particle_steps': s['particle_steps']}}
-    t0 = time.monotonic()
-    with open(os.path.join(folder, 'stdout.txt'), 'w') as f:
-        env = {**os.environ, 'OMP_NUM_THREADS': str(threads)}
-        p = subprocess.Popen(cmd, cwd=folder, stdout=f, stderr=subprocess.STDOUT, env=env)
-        _, status, usage = os.wait4(p.pid, 0)  # wait4: the run's own CPU time, whatever else runs
-        p.returncode = os.waitstatus_to_exitcode(status)
-    rec['wall_s'] = time.monotonic() - t0
-    rec['cpu_s'] = usage.ru_utime + usage.ru_stime
-    text = open(os.path.join(folder, 'stdout.txt'), errors='replace').read()
-    rec.update(parse_stdout(text))
-    rec['returncode'] = p.returncode
-    rec['status'] = 'ok' if p.returncode == 0 and 'result' in rec else 'failed'
-    if rec['status'] != 'ok':
-        rec['error_tail'] = text.strip().splitlines()[-15:]
+    if chunk:
+        run_pieces(rec, cmd, folder, threads, chunk, int(s['turns']))
+    else:
+        rc, rec['wall_s'], rec['cpu_s'], text = launch(cmd + ['-log', 'log.txt'], folder, 'stdout.txt', threads)
+        rec.update(parse_stdout(text))
+        rec['returncode'] = rc
+        rec['status'] = 'ok' if rc == 0 and 'result' in rec else 'failed'
+        if rec['status'] != 'ok':
+            rec['error_tail'] = text.strip().splitlines()[-15:]
     with open(os.path.join(folder, 'run.json'), 'w') as f:
         json.dump(rec, f, indent=1)
     return rec
+
+
+def run_pieces(rec, cmd, folder, threads, chunk, turns):
+    """The run as pieces of `chunk` half-turns (the deck's halves/resume: each piece ends with a
+    restart file, the next reads it). pieces.json keeps the half-turn means and times of the
+    pieces done, so that a cut campaign goes on from the last finished piece. The result is
+    the deck's: F_first the first half-turn, F_stat the mean of the last `turns` half-turns."""
+    state_file = os.path.join(folder, 'pieces.json')
+    try:
+        st = json.load(open(state_file))
+    except (OSError, ValueError):
+        st = {'done': 0, 'halves': [], 'pieces': []}
+    total = 2 * turns
+    while st['done'] < total:
+        k, n = st['done'], min(chunk, total - st['done'])
+        name = f'piece{k}'
+        rc, wall, cpu, text = launch(cmd + ['-log', f'log_{name}.txt', '-var', 'halves', str(n), '-var', 'resume', str(k)],
+                                     folder, f'stdout_{name}.txt', threads)
+        halves = [(int(a), float(b)) for a, b in re.findall(r'^HALF (\d+) F=(\S+)', text, re.M)]
+        piece = parse_stdout(text)
+        ok = rc == 0 and [h[0] for h in halves] == list(range(k + 1, k + n + 1)) and 'piece' in piece
+        if not ok:
+            rec.update(returncode=rc, status='failed', error_tail=text.strip().splitlines()[-15:], pieces_done=k)
+            return
+        if k == 0:
+            st['scene'], st['settled'] = piece.get('scene'), piece.get('settled')
+        st['halves'] += [h[1] for h in halves]
+        st['pieces'].append({'from': k, 'halves': n, 'wall_s': wall, 'cpu_s': cpu,
+                             'loop_time_s': piece['loop_time_s'], 'step': piece['piece']['step']})
+        st['done'] = k + n
+        st['last'] = piece['piece']
+        with open(state_file, 'w') as f:
+            json.dump(st, f, indent=1)
+    h = st['halves']
+    blocks = h[total - turns:]
+    mean = sum(blocks) / turns
+    var = abs(sum(b * b for b in blocks) / turns - mean * mean)
+    rec.update({k: st[k] for k in ('scene', 'settled') if st.get(k)})
+    rec['halves'], rec['blocks'] = h, blocks
+    rec['result'] = {'F_first': h[0], 'F_stat': mean, 'F_stat_err': math.sqrt(var / (turns - 1)), 'turns': turns,
+                     'grains': st['last']['grains'], 'h_meas': (st.get('settled') or {}).get('h_meas'),
+                     'dt': st['last']['dt'], 'steps_per_turn': st['last']['steps_per_turn']}
+    for key in ('wall_s', 'cpu_s', 'loop_time_s'):
+        rec[key] = sum(p[key] for p in st['pieces'])
+    rec['pieces'] = len(st['pieces'])
+    rec['returncode'], rec['status'] = 0, 'ok'
 
 
 def use_stored(case, code, seed, folder):
@@ -247,6 +301,9 @@ def main():
     p.add_argument('--only', nargs='+', metavar='CASE', help='only these cases')
     p.add_argument('--codes', default=None, help='only these codes (comma-separated)')
     p.add_argument('--store', action='store_true', help=f'keep the LIGGGHTS runs in {os.path.relpath(STORED, REPO)}')
+    p.add_argument('--chunk', type=int, default=0, metavar='H',
+                   help='run in pieces of H half-turns, each ended by a restart file (long runs: '
+                        'a cut campaign goes on from the last finished piece); 0: whole runs')
     p.add_argument('--dry-run', action='store_true', help='print the plan and the time estimate only')
     args = p.parse_args()
     exe = {'sable': os.path.abspath(args.sable), 'liggghts': args.liggghts}
@@ -272,7 +329,7 @@ def main():
 
     def job(r):
         c, code, seed, folder, _ = r
-        rec = run_one(c, code, seed, folder, exe[code], args.threads)
+        rec = run_one(c, code, seed, folder, exe[code], args.threads, args.chunk)
         with lock:
             count[0] += 1
             res = rec.get('result', {})

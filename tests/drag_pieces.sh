@@ -1,0 +1,29 @@
+#!/bin/bash
+# Issue 21's long runs in pieces: the drag deck turned in pieces (halves / resume,
+# a restart file between them) gives the half-turn drags of the whole run, bit for
+# bit (sable's restarts and split runs continue exactly): HALF 1 is F_first and the
+# last `turns` HALF lines are the BLOCK lines. Small scene, 5 rev/s, 2 turns.
+set -u
+sable=$1; src=$2; work=$3
+rm -rf "$work"; mkdir -p "$work" && cd "$work" || exit 1
+python3 "$src/input_scripts/drag/make_cylinder_stl.py" 0.003 0.006 cyl.stl > /dev/null || exit 1
+scene="-var Wd 10 -var Ld 4 -var Dd 2 -var zcL 1 -var hL 1 -var period 0.2 -var turns 2 -var settle 0.05 -var stl cyl.stl -log none -echo none"
+deck="$src/input_scripts/drag/drag.in"
+"$sable" -in "$deck" $scene -var out whole > whole.out 2>&1 || { tail -5 whole.out; exit 1; }
+"$sable" -in "$deck" $scene -var out part -var halves 1 > p0.out 2>&1 || { tail -5 p0.out; exit 1; }
+"$sable" -in "$deck" $scene -var out part -var halves 3 -var resume 1 > p1.out 2>&1 || { tail -5 p1.out; exit 1; }
+grep -h -E '^(RESULT|BLOCK|HALF|PIECE)' whole.out p0.out p1.out
+python3 - <<'PY'
+import re, sys
+whole, parts = open('whole.out').read(), open('p0.out').read() + open('p1.out').read()
+first = float(re.search(r'^RESULT F_first=(\S+)', whole, re.M).group(1))
+blocks = [float(x) for x in re.findall(r'^BLOCK \d+ F=(\S+)', whole, re.M)]
+halves = {int(k): float(v) for k, v in re.findall(r'^HALF (\d+) F=(\S+)', parts, re.M)}
+done = [int(x) for x in re.findall(r'^PIECE done=(\d+)', parts, re.M)]
+# the deck prints F_first and BLOCK with 15 significant digits, HALF with more
+same = lambda a, b: abs(a - b) <= 1e-13 * abs(b)
+ok = done == [1, 4] and sorted(halves) == [1, 2, 3, 4] and len(blocks) == 2 and first > 0
+ok = ok and same(halves[1], first) and same(halves[3], blocks[0]) and same(halves[4], blocks[1])
+print('pieces equal the whole run' if ok else 'pieces differ from the whole run')
+sys.exit(0 if ok else 1)
+PY
