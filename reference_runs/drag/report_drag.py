@@ -16,7 +16,7 @@ scatter contains the block noise): the SE errs on the large side. A case passes
 when |sable - LIGGGHTS| <= K sqrt(SE_s^2 + SE_l^2) (K = --sigma, default 1) or
 <= 5 % of LIGGGHTS. Exit status 1 if a judged quantity fails.
 """
-import argparse, datetime, glob, json, math, os, sys
+import argparse, datetime, glob, json, math, os, re, sys
 
 import numpy as np
 import matplotlib
@@ -36,12 +36,15 @@ SMOOTH = 5  # 1/100-turn rows per point of the F*(turns) curves
 
 # ---------------------------------------------------------------- reading runs
 def torque_curve(folder, rec):
-    """(turns, F*) from drag_torque.txt: each row is M_z averaged over the 1/100 turn
-    ending at its step; plotted at the window's centre."""
+    """(turns, F*) from drag_torque.txt (and a run in pieces' drag_torque_K.txt, in order):
+    each row is M_z averaged over the 1/100 turn ending at its step; plotted at the
+    window's centre."""
     path = os.path.join(folder, 'drag_torque.txt')
     if not os.path.exists(path):
         return None
-    a = np.loadtxt(path, comments='#', ndmin=2)
+    pieces = sorted(glob.glob(os.path.join(folder, 'drag_torque_*.txt')),
+                    key=lambda p: int(re.search(r'_(\d+)\.txt$', p).group(1)))
+    a = np.concatenate([np.loadtxt(p, comments='#', ndmin=2) for p in [path] + pieces])
     s = run_drag.scene(rec['vars'])
     turns = (a[:, 0] - rec['settled']['step0']) / (100 * s['Nrec']) - 0.005
     return turns, 4 * np.abs(a[:, 1]) / s['L'] / s['Fscale']
