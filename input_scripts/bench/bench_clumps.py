@@ -9,7 +9,7 @@ interleaved, for each thread count. Prints particle-steps/s of the timed run
 and the paired ratio free / clumps (1: a clump's grains cost what free grains
 cost). The two scenes are not the same physics (clumps settle otherwise).
 
-  python3 input_scripts/bench/bench_clumps.py [--repeats 3] [--threads 1,2] [--decks clumps_2d,clumps]
+  python3 input_scripts/bench/bench_clumps.py [--repeats 3] [--threads 1,2] [--decks clumps_2d,clumps] [--grid NX,NY]
 """
 import argparse
 import os
@@ -29,6 +29,8 @@ def main():
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--decks", default="clumps_2d,clumps")
     ap.add_argument("--sable", default=None)
+    ap.add_argument("--grid", default=None, metavar="NX,NY",
+                    help="clumps_2d's lattice (nx, ny; default 128,16): a larger scene (use with --decks clumps_2d)")
     args = ap.parse_args()
     sable = bench.find_sable(args.sable)
     threads = [int(t) for t in args.threads.split(",")]
@@ -40,7 +42,10 @@ def main():
             for t in threads:
                 for clumps in (1, 0):
                     wd = os.path.join(tmp, "%s_%d_%d_%d" % (deck, t, clumps, rep))
-                    r = bench.run_engine("sable", sable, dict(deck=deck + ".in"), dict(clumps=clumps), t, wd, 3600,
+                    size = dict(clumps=clumps)
+                    if args.grid:
+                        size["nx"], size["ny"] = args.grid.split(",")
+                    r = bench.run_engine("sable", sable, dict(deck=deck + ".in"), size, t, wd, 3600,
                                          "final.dump")
                     if not r["ok"]:
                         print("FAILED %s clumps %d:\n%s" % (deck, clumps, r.get("tail")))
