@@ -66,23 +66,24 @@ def plot_line(d, out):
     fig.savefig(out, dpi=150)
 
 
-def plot_ellipses(d, out, plane="xz", at=0.0):
+def plot_ellipses(d, out, plane="xz", at=0.0, stride=2):
     import matplotlib.pyplot as plt
     from matplotlib.collections import EllipseCollection
     a = "xyz".index(plane[0])  # horizontal axis of the picture; z is vertical
     cut = 1 - a  # the other horizontal axis, held at `at`
     k = np.abs(d["xyz"[cut]] - at).argmin()
-    s = np.take(d["stress"], k, axis=cut)  # [n_a, nz, 6]
+    s = np.take(d["stress"], k, axis=cut)[::stride, ::stride]  # [n_a, nz, 6], every stride-th node
     t = tensor(s)[..., [a, 2], :][..., :, [a, 2]]  # in-plane 2x2
     P = pressure(s)
     val, vec = np.linalg.eigh(t)
     ok = P > 1e-3 * P.max()  # empty and surface nodes: no stress to draw
-    h = min(np.diff(d["xyz"[a]]).min(initial=np.inf), np.diff(d["z"]).min(initial=np.inf))
+    xa, za = d["xyz"[a]][::stride], d["z"][::stride]
+    h = min(np.diff(xa).min(initial=np.inf), np.diff(za).min(initial=np.inf))
     h = h if np.isfinite(h) else 1.0
-    X, Z = np.meshgrid(d["xyz"[a]], d["z"], indexing="ij")
-    # Diameters 0.3 h per unit of eigenvalue / P (at most 3 for a compressive tensor: 0.9 h).
-    widths = 0.3 * h * np.clip(val[..., 1][ok] / P[ok], 0, 3)  # major axis: larger eigenvalue
-    heights = 0.3 * h * np.clip(val[..., 0][ok] / P[ok], 0, 3)
+    X, Z = np.meshgrid(xa, za, indexing="ij")
+    # Diameters 0.6 h per unit of eigenvalue / P (at most 1.5: 0.9 h, so that neighbours do not touch).
+    widths = 0.6 * h * np.clip(val[..., 1][ok] / P[ok], 0, 1.5)  # major axis: larger eigenvalue
+    heights = 0.6 * h * np.clip(val[..., 0][ok] / P[ok], 0, 1.5)
     angles = np.degrees(np.arctan2(vec[..., 1, 1], vec[..., 0, 1]))[ok]
     fig, ax = plt.subplots(figsize=(6, 7))
     ec = EllipseCollection(widths, heights, angles, units="xy", offsets=np.c_[X[ok], Z[ok]],
@@ -105,6 +106,7 @@ def main():
     p.add_argument("--ellipses", help="figure: stress ellipses in a vertical plane")
     p.add_argument("--plane", default="xz", choices=("xz", "yz"))
     p.add_argument("--at", type=float, default=0.0, help="coordinate of the plane along the other horizontal axis")
+    p.add_argument("--stride", type=int, default=2, help="ellipses at every stride-th node (default 2)")
     a = p.parse_args()
     d = load(a.file, slice(*[int(x) if x else None for x in a.windows.split(":")]))
     i, j = np.abs(d["x"]).argmin(), np.abs(d["y"]).argmin()
@@ -119,7 +121,7 @@ def main():
     if a.line:
         plot_line(d, a.line)
     if a.ellipses:
-        plot_ellipses(d, a.ellipses, a.plane, a.at)
+        plot_ellipses(d, a.ellipses, a.plane, a.at, a.stride)
 
 
 if __name__ == "__main__":
