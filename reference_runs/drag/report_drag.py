@@ -327,11 +327,17 @@ def fig_speed(cases, path, clock):
     plt.close(fig)
 
 
+def depth_panel(c):
+    """The depth figure's panels: one per stiffness and bed preparation (friction while poured)."""
+    mu = c['vars'].get('muprep')
+    return f"E* = {c['scene']['Estar']:.2g}" + (f", poured with μ {float(mu):g}" if mu is not None else '')
+
+
 def figures(cases, folder, clock):
     out = ['drag_turns.png', 'drag_depth.png', 'drag_stiffness.png']
     fig_turns(cases, os.path.join(folder, out[0]))
     fig_scatter(study_cases(cases), os.path.join(folder, out[1]), lambda c, sm: sm['hL'], 'h/L (measured)',
-                ('F_stat', 'F_first'), panels=lambda c: f"E* = {c['scene']['Estar']:.2g}")
+                ('F_stat', 'F_first'), panels=depth_panel)
     fig_scatter(cases, os.path.join(folder, out[2]), lambda c, sm: c['scene']['Estar'], 'E* = E / (ρ g d)',
                 ('F_stat',), logx=True)
     if series_names(cases):
