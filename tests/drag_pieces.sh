@@ -3,18 +3,21 @@
 # a restart file between them) gives the half-turn drags of the whole run, bit for
 # bit (sable's restarts and split runs continue exactly): HALF 1 is F_first and the
 # last `turns` HALF lines are the BLOCK lines. Small scene, 5 rev/s, 2 turns.
+# The whole run also writes the walls' vertical loads (-var load 1, which must not
+# change the run): per half-turn, floor + side wall + cylinder balance the weight
+# (Newton: the bed's mean vertical momentum change over a half-turn is negligible).
 set -u
 sable=$1; src=$2; work=$3
 rm -rf "$work"; mkdir -p "$work" && cd "$work" || exit 1
 python3 "$src/input_scripts/drag/make_cylinder_stl.py" 0.003 0.006 cyl.stl > /dev/null || exit 1
 scene="-var Wd 10 -var Ld 4 -var Dd 2 -var zcL 1 -var hL 1 -var period 0.2 -var turns 2 -var settle 0.05 -var stl cyl.stl -log none -echo none"
 deck="$src/input_scripts/drag/drag.in"
-"$sable" -in "$deck" $scene -var out whole > whole.out 2>&1 || { tail -5 whole.out; exit 1; }
+"$sable" -in "$deck" $scene -var out whole -var load 1 > whole.out 2>&1 || { tail -5 whole.out; exit 1; }
 "$sable" -in "$deck" $scene -var out part -var halves 1 > p0.out 2>&1 || { tail -5 p0.out; exit 1; }
 "$sable" -in "$deck" $scene -var out part -var halves 3 -var resume 1 > p1.out 2>&1 || { tail -5 p1.out; exit 1; }
 grep -h -E '^(RESULT|BLOCK|HALF|PIECE)' whole.out p0.out p1.out
 python3 - <<'PY'
-import re, sys
+import math, re, sys
 whole, parts = open('whole.out').read(), open('p0.out').read() + open('p1.out').read()
 first = float(re.search(r'^RESULT F_first=(\S+)', whole, re.M).group(1))
 blocks = [float(x) for x in re.findall(r'^BLOCK \d+ F=(\S+)', whole, re.M)]
@@ -25,5 +28,12 @@ same = lambda a, b: abs(a - b) <= 1e-13 * abs(b)
 ok = done == [1, 4] and sorted(halves) == [1, 2, 3, 4] and len(blocks) == 2 and first > 0
 ok = ok and same(halves[1], first) and same(halves[3], blocks[0]) and same(halves[4], blocks[1])
 print('pieces equal the whole run' if ok else 'pieces differ from the whole run')
-sys.exit(0 if ok else 1)
+# weight of the grains: d 1.5 mm, rho 2500 (the deck's defaults)
+grains = int(re.search(r'^RESULT .* grains=(\d+)', whole, re.M).group(1))
+W = grains * 2500 * math.pi * 0.0015 ** 3 / 6 * 9.81
+rows = [list(map(float, l.split()[1:])) for l in open('whole_load.txt') if not l.startswith('#')]
+# forces on the walls: the grains push the floor and side wall down, the cylinder up
+bad = [r for r in rows if abs(-r[0] - r[1] - r[2] - W) > 0.01 * W]
+print(f'{len(rows)} half-turns of wall loads, weight {W:.5g} N; unbalanced by more than 1 %: {bad}')
+sys.exit(0 if ok and len(rows) == 4 and not bad else 1)
 PY
