@@ -11,6 +11,9 @@ over the stationary half-turns (the last `turns`), and the Janssen length lambda
 that share in a bed of height H (top grain + r): with the mean vertical stress
 sigma(z) = rho_b g lambda (1 - exp(-z / lambda)) at depth z, the wall carries
     s = 1 - (lambda / H) (1 - exp(-H / lambda)).
+A negative share (the wall pushing the bed down: a bed dilating upward against the wall's
+friction, as in the first half-turn) gives a negative lambda: the stress grows faster than
+hydrostatic.
 J = (lambda / h) (1 - exp(-h / lambda)) is then the mean vertical stress at the axis' depth h
 over the hydrostatic one: a drag proportional to the local pressure grows as h J(h).
 F / (h/L J) is the drag with that screening taken out; the paper's effect (a stationary drag
@@ -36,21 +39,26 @@ def load_rows(folder):
     return np.concatenate(rows)[:, 1:4] if rows else None
 
 
+def share_of(x):
+    """Side-wall share of a bed of height H with x = H / lambda (x < 0: the wall pushes the bed down)."""
+    return 0.0 if x == 0 else 1 + math.expm1(-x) / x
+
+
 def janssen_length(share, H):
-    """lambda with 1 - (lambda/H)(1 - exp(-H/lambda)) = share (bisection on x = H / lambda)."""
-    if not 0 < share < 1:
-        return math.inf if share <= 0 else 0.0
-    f = lambda x: 1 - (1 - math.exp(-x)) / x - share
-    lo, hi = 1e-9, 1e3
+    """lambda with share_of(H / lambda) = share (bisection; share_of rises from -inf to 1)."""
+    if share >= 1:
+        return 0.0
+    lo, hi = -30.0, 1e3
     for _ in range(200):
-        mid = math.sqrt(lo * hi)
-        lo, hi = (mid, hi) if f(mid) < 0 else (lo, mid)
-    return H / math.sqrt(lo * hi)
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if share_of(mid) < share else (lo, mid)
+    x = 0.5 * (lo + hi)
+    return math.inf if x == 0 else H / x
 
 
 def screening(lam, h):
-    """Mean vertical stress at depth h over rho_b g h."""
-    return 1.0 if math.isinf(lam) else (lam / h) * (1 - math.exp(-h / lam))
+    """Mean vertical stress at depth h over rho_b g h (> 1 when the wall pushes down, lambda < 0)."""
+    return 1.0 if math.isinf(lam) else 1 - share_of(h / lam)
 
 
 def run_load(rec, folder):
