@@ -146,7 +146,9 @@ def figure(rows, path):
                    label=f'F_{k} ∝ h J(h) (Janssen, through the first point)')
         ax[1].plot(h, [r['share_' + k] for r in rows], 'o-', color=c, label=f'side-wall share, {k}')
     ax[0].set(xlabel='h / L', ylabel='F*', title='drag and the Janssen-screened pressure')
-    ax[1].set(xlabel='h / L', ylabel='share of the weight', title='weight carried by the side wall', ylim=(0, None))
+    ax[1].axhline(0, color='k', lw=0.6)
+    ax[1].set(xlabel='h / L', ylabel='share of the weight (< 0: the wall pushes the bed down)',
+              title='weight carried by the side wall')
     for a in ax:
         a.legend(fontsize=7)
         a.grid(alpha=0.3)
