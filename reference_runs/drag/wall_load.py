@@ -118,7 +118,10 @@ def pm(v):
 
 
 def table(rows):
-    out = ['| h/L | grains | seeds (with loads) | side-wall share: first half-turn / stationary | '
+    out = ['Drags: mean over the seeds ± sd / sqrt(n) (seed scatter only; report_drag.py\'s SE adds '
+           'the block errors). Shares, lambda, J and the lift: the runs with load files (drag.in -var load 1). '
+           'A negative share: the side wall pushes the bed down.', '',
+           '| h/L | grains | seeds (with loads) | side-wall share: first half-turn / stationary | '
            'lambda/L first / stationary | J(h) first / stationary | cylinder lift share | '
            'F_first | F_stat | F_first / (h/L J) | F_stat / (h/L J) |',
            '|' + '---|' * 11]
