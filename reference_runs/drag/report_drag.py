@@ -59,7 +59,8 @@ def load(out):
         for path in sorted(glob.glob(os.path.join(out, c['name'], '*_s*', 'run.json'))):
             rec = json.load(open(path))
             if rec.get('status') == 'ok':
-                rec['curve'] = torque_curve(os.path.dirname(path), rec)
+                rec['folder'] = os.path.dirname(path)
+                rec['curve'] = torque_curve(rec['folder'], rec)
                 c['runs'].setdefault(rec['code'], []).append(rec)
     return [c for c in cases if c['runs']]
 

@@ -18,14 +18,15 @@ J = (lambda / h) (1 - exp(-h / lambda)) is then the mean vertical stress at the 
 over the hydrostatic one: a drag proportional to the local pressure grows as h J(h).
 F / (h/L J) is the drag with that screening taken out; the paper's effect (a stationary drag
 that stops growing with depth) is the part of the flattening that this does not explain.
-Per case (several seeds) the drags are the means over every ok run (with or without load
-files) +- the standard error of the seed means; the shares and J are over the runs with load files.
+Per case the drags are those of every ok sable run, with or without load files (mean +- SE as in
+report_drag.py); the shares and J are the means over the runs with load files.
 """
-import argparse, glob, json, math, os, re, sys
+import argparse, glob, math, os, re, sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_drag  # noqa: E402  (the runs and their statistics)
 import run_drag  # noqa: E402  (the deck's numbers)
 
 G = 9.81
@@ -80,46 +81,36 @@ def run_load(rec, folder):
     return out
 
 
-def mean_se(xs):
-    xs = [x for x in xs if x is not None]
-    if not xs:
-        return None, None
-    m = float(np.mean(xs))
-    return m, (float(np.std(xs, ddof=1)) / math.sqrt(len(xs)) if len(xs) > 1 else None)
-
-
 def cases(out):
+    """Per case with load files: the shares and J (mean over those runs) and the drags of
+    every sable run (report_drag's mean and SE)."""
     rows = []
-    for c in json.load(open(os.path.join(out, 'cases.json')))['cases']:
-        recs = []
-        for path in sorted(glob.glob(os.path.join(out, c['name'], 'sable_s*', 'run.json'))):
-            rec = json.load(open(path))
-            if rec.get('status') == 'ok':
-                recs.append((rec, run_load(rec, os.path.dirname(path))))
-        loads = [ld for _, ld in recs if ld]
+    for c in report_drag.load(out):
+        runs = c['runs'].get('sable', [])
+        loads = [ld for r in runs if (ld := run_load(r, r['folder']))]
         if not loads:
             continue
-        hL = float(np.mean([r['result']['h_meas'] for r, _ in recs])) / loads[0]['L']
-        row = {'case': c['name'], 'hL': hL, 'seeds': len(recs), 'load_seeds': len(loads),
-               'grains': int(recs[0][0]['result']['grains'])}
+        sm = report_drag.summary(c, 'sable')
+        row = {'case': c['name'], 'hL': sm['hL'], 'seeds': len(runs), 'load_seeds': len(loads),
+               'grains': int(runs[0]['result']['grains']), 'cyl': float(np.mean([ld['cyl'] for ld in loads]))}
         for k in ('first', 'stat'):
-            row['F_' + k] = mean_se([r['result']['F_' + k] for r, _ in recs])
-            for q in ('', 'lam_', 'J_'):
-                row[q + k if q else 'share_' + k] = float(np.mean([ld[q + k] for ld in loads]))
-            row['Fn_' + k] = row['F_' + k][0] / (hL * row['J_' + k])
-        row['cyl'] = float(np.mean([ld['cyl'] for ld in loads]))
+            row['F_' + k] = sm['F_' + k][:2]
+            row['share_' + k] = float(np.mean([ld[k] for ld in loads]))
+            for q in ('lam_', 'J_'):
+                row[q + k] = float(np.mean([ld[q + k] for ld in loads]))
+            row['Fn_' + k] = row['F_' + k][0] / (row['hL'] * row['J_' + k])
         rows.append(row)
     return sorted(rows, key=lambda r: r['hL'])
 
 
 def pm(v):
     m, e = v
-    return f'{m:.2f}' + (f' ± {e:.2f}' if e else '')
+    return f'{m:.2f}' + (f' ± {e:.2f}' if e == e else '')
 
 
 def table(rows):
-    out = ['Drags: mean over the seeds ± sd / sqrt(n) (seed scatter only; report_drag.py\'s SE adds '
-           'the block errors). Shares, lambda, J and the lift: the runs with load files (drag.in -var load 1). '
+    out = ['Drags: mean over the seeds ± SE as in report_drag.py\'s results.md (seed scatter and block '
+           'errors). Shares, lambda, J and the lift: the runs with load files (drag.in -var load 1). '
            'A negative share: the side wall pushes the bed down.', '',
            '| h/L | grains | seeds (with loads) | side-wall share: first half-turn / stationary | '
            'lambda/L first / stationary | J(h) first / stationary | cylinder lift share | '
