@@ -2,10 +2,10 @@
 // Base of all fixes (LIGGGHTS `fix ID group style args`). A fix overrides the
 // hooks it needs and says so in `hooks`, so the step loop calls only those.
 #include <cstddef>
-#include <functional>
 #include <string>
 
 #include "core/args.h"
+#include "core/threads.h"
 
 namespace sable {
 
@@ -124,8 +124,7 @@ class Fix {
   void run_task(FixHook h);
   // `after(t, lo, hi)`, when given, runs on each thread's range once the task
   // (its last phase) is done with it: the step plan's work on the same atoms.
-  void run_task(FixHook h, const AtomRange& how,
-                const std::function<void(int, std::size_t, std::size_t)>& after = {});
+  void run_task(FixHook h, const AtomRange& how, const RangeTail& after = {});
 
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }

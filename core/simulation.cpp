@@ -572,7 +572,7 @@ void Simulation::run(long nsteps) {
     fusion.accel = deferred && folded ? accel : nullptr;
     deferred = false;
     if (!pre_integrated) {
-      if (fused && scan_after_placing) {
+      if (scan_after_placing) {  // implies fused
         neighbor.expect_prescan(atoms, step);
         fused->run_task(INITIAL_INTEGRATE, fusion, [&](int t, std::size_t lo, std::size_t hi) {
           neighbor.prescan_range(atoms, t, lo, hi);

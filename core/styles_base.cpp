@@ -27,7 +27,7 @@ void Pair::compute_then(const RangeTail& tail) {
 
 void Fix::run_task(FixHook h) { run_task(h, AtomRange{}); }
 
-void Fix::run_task(FixHook h, const AtomRange& how, const std::function<void(int, std::size_t, std::size_t)>& after) {
+void Fix::run_task(FixHook h, const AtomRange& how, const RangeTail& after) {
   if (!(atom_tasks & h)) return;
   begin(h);
   const bool phases = two_phase_tasks & h;
