@@ -8,6 +8,14 @@ guillard2015 Fig. 7 in a vertical plane: at each node the ellipse sigma n / P
 directions with lengths proportional to eigenvalue / P, coloured by P.
 
     cg_fields.py F.h5 [--windows=A:B] [--line P.png] [--ellipses E.png] [--plane xz|yz] [--at 0]
+                      [--layers LEVEL]
+
+--layers LEVEL (the bed's surface height in the grid's frame, m): per horizontal layer of
+nodes, the means of P, sigma_zz and phi over the nodes one kernel support or more inside the
+side wall (a cylindrical container centred on the grid), against the weight above per area,
+g (LEVEL - z) rho_mean (rho_mean: the layer means of rho from z to 2 supports below LEVEL),
+and the axis' P over the layer's: how far the bed's pressure is from hydrostatic, and
+whether it dips at the cylinder's axis.
 
 Grid coordinates are those of the compute (the mesh body frame with `frame mesh`).
 """
@@ -31,6 +39,7 @@ def load(path, windows=slice(None)):
         out.update({k: f[k][:] for k in ("x", "y", "z")})
         out["step"] = f["step"][:n][w]
         out["frame"] = f.attrs["frame"][0]
+        out["support"] = float(f["support"][0])
     return out
 
 
@@ -49,6 +58,22 @@ def pressure(s6):
 def principal(s6):
     """Eigenvalues (ascending) and unit eigenvectors (columns) of each node's stress."""
     return np.linalg.eigh(tensor(s6))
+
+
+def layers(d, level, g=9.81):
+    """Per z: (mean P, mean sigma_zz, mean phi over the layer's inner nodes, weight above per
+    area, axis P). Inner: radius <= grid half-width + half a cell - the kernel support."""
+    x, y, z = d["x"], d["y"], d["z"]
+    R = x.max() + 0.5 * (x[1] - x[0])
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    inner = np.hypot(X, Y) <= R - d["support"]
+    mean = lambda f: np.array([f[:, :, k][inner].mean() for k in range(len(z))])
+    P, szz, phi, rho = mean(pressure(d["stress"])), mean(d["stress"][..., 2]), mean(d["phi"]), mean(d["rho"])
+    deep = z <= level - 2 * d["support"]  # below the kernel-smoothed surface
+    weight = np.array([g * (level - zk) * rho[deep & (z >= zk)].mean() if (deep & (z >= zk)).any() else np.nan
+                       for zk in z])
+    i, j = np.abs(x).argmin(), np.abs(y).argmin()
+    return P, szz, phi, weight, pressure(d["stress"][i, j])
 
 
 def plot_line(d, out):
@@ -98,6 +123,15 @@ def plot_ellipses(d, out, plane="xz", at=0.0, stride=2):
     fig.savefig(out, dpi=150)
 
 
+def print_layers(d, level):
+    P, szz, phi, w, Pax = layers(d, level)
+    print(f"# layers (surface z = {level:.6g}): z depth P sigma_zz phi weight_above sigma_zz/weight P/weight P_axis/P")
+    for k, z in enumerate(d["z"]):
+        if z < level:
+            print(f"{z:.6g} {level - z:.6g} {P[k]:.6g} {szz[k]:.6g} {phi[k]:.4f} {w[k]:.6g} "
+                  f"{szz[k] / w[k]:.3f} {P[k] / w[k]:.3f} {Pax[k] / P[k]:.3f}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("file")
@@ -107,6 +141,7 @@ def main():
     p.add_argument("--plane", default="xz", choices=("xz", "yz"))
     p.add_argument("--at", type=float, default=0.0, help="coordinate of the plane along the other horizontal axis")
     p.add_argument("--stride", type=int, default=2, help="ellipses at every stride-th node (default 2)")
+    p.add_argument("--layers", type=float, metavar="LEVEL", help="layer means against the weight above (LEVEL: surface z)")
     a = p.parse_args()
     d = load(a.file, slice(*[int(x) if x else None for x in a.windows.split(":")]))
     i, j = np.abs(d["x"]).argmin(), np.abs(d["y"]).argmin()
@@ -118,6 +153,8 @@ def main():
         e = vec[k][:, 2]
         print(f"{z:.6g} {P[k]:.6g} {d['phi'][i, j, k]:.4f} {val[k, 2]:.6g} {val[k, 0]:.6g} "
               f"{e[0]:+.3f} {e[1]:+.3f} {e[2]:+.3f}")
+    if a.layers is not None:
+        print_layers(d, a.layers)
     if a.line:
         plot_line(d, a.line)
     if a.ellipses:
