@@ -76,12 +76,19 @@ def layers(d, level, g=9.81):
     return P, szz, phi, weight, pressure(d["stress"][i, j])
 
 
-def plot_line(d, out):
+def plot_line(d, out, level=None):
+    """With `level` (--layers) also the layer means of P and sigma_zz and the weight above."""
     import matplotlib.pyplot as plt
     i, j = np.abs(d["x"]).argmin(), np.abs(d["y"]).argmin()
     P = pressure(d["stress"][i, j])
     fig, ax = plt.subplots(1, 2, figsize=(7, 4), sharey=True)
-    ax[0].plot(P, d["z"], "o-")
+    ax[0].plot(P, d["z"], "o-", label="P on the axis")
+    if level is not None:
+        Pl, szz, _, w, _ = layers(d, level)
+        ax[0].plot(Pl, d["z"], "-", label="P, layer mean")
+        ax[0].plot(szz, d["z"], "--", label="sigma_zz, layer mean")
+        ax[0].plot(w, d["z"], "k:", label="weight above per area")
+        ax[0].legend(fontsize=7)
     ax[0].set_xlabel("P = tr(sigma)/3 (Pa)")
     ax[0].set_ylabel(f"z (x = {d['x'][i]:.3g}, y = {d['y'][j]:.3g})")
     ax[1].plot(d["phi"][i, j], d["z"], "o-")
@@ -156,7 +163,7 @@ def main():
     if a.layers is not None:
         print_layers(d, a.layers)
     if a.line:
-        plot_line(d, a.line)
+        plot_line(d, a.line, a.layers)
     if a.ellipses:
         plot_ellipses(d, a.ellipses, a.plane, a.at, a.stride)
 
