@@ -144,7 +144,7 @@ struct Outcome {
 // Equal grains (type 1) head-on at relative speed v; e = coefficientRestitution.
 Outcome head_on(const std::string& cohesion, double v, double e, double k, double t_end) {
   Deck d;
-  char mat[512];
+  char mat[1024];  // the fixed text is ~470 characters, each %.17g up to 24
   std::snprintf(mat, sizeof mat, R"(units si
 atom_style granular
 boundary f f f
