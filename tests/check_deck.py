@@ -18,7 +18,7 @@ exit fails. A deck must say how it is judged, in its leading comment lines:
       the deck's output (screen) must contain TEXT.
   # check-file: FILE contains TEXT  (source: ...)
       FILE, written by the run in its directory, must contain TEXT (\n for a
-      line break; TEXT may be quoted "...").
+      line break, \" for a quote; TEXT may be quoted "...").
   a `fix ... halt ... error hard` in the deck (an in-deck check that stops the run).
   # judged-by: tests/unit/test_X.cpp
       that file must exist and name the deck.
@@ -101,7 +101,7 @@ def unquote(text):
     text = text.strip()
     if len(text) >= 2 and text[0] == text[-1] == '"':
         text = text[1:-1]
-    return text.replace("\\n", "\n")
+    return text.replace("\\n", "\n").replace('\\"', '"')
 
 
 def number(key, text):
@@ -189,6 +189,10 @@ def judge(args):
         if name not in open(path, errors="replace").read():
             raise Fail("judged-by file %s does not name the deck %s" % (f, name))
 
+    # A file left by an earlier run must not pass for this run's output.
+    for m in files:
+        if os.path.isfile(m.group("file")):
+            os.remove(m.group("file"))
     cmd = [args.sable, "-in", deck, "-log", "none", "-echo", "none"]
     env = dict(os.environ, OMP_WAIT_POLICY="passive")
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env)
