@@ -7,11 +7,14 @@ mutant is a seed with a few random edits (numbers replaced by 0, -1, nan, inf,
 keywords swapped for others seen in the corpus; deck-given printf formats;
 empty, reversed and huge loop variables; include recursion; deep parentheses;
 self-referring variables). Runs are capped (`run N` -> `run min(N, cap)`) and
-given a timeout. Each run is classified:
+given a budget of CPU seconds (RLIMIT_CPU through prlimit, one OpenMP thread):
+CPU time, unlike wall clock, does not depend on how loaded the machine is.
+Each run is classified:
 
   crash   killed by a signal, or a sanitizer report on stderr
-  hang    still running at the timeout, not finishing runs
-  endless still running at the timeout, finishing run after run: the mutant loops
+  hang    spent its CPU budget, not finishing runs; or used (almost) no CPU
+          for the whole wall-clock backstop (blocked)
+  endless spent its CPU budget, finishing run after run: the mutant loops
           over `run` without end (a `next` dropped), which is what the deck says
           (LAMMPS would run it for ever too); counted, not a failure
   noloc   failed without naming the deck file and line ("FILE:LINE:")
@@ -26,6 +29,7 @@ Reproduce one mutant: --seed S --only K --keep DIR.
 import argparse
 import concurrent.futures as cf
 import glob
+import math
 import os
 import random
 import re
@@ -214,7 +218,18 @@ def make_mutant(seeds, commands, words, master_seed, k, cap):
     return path, "\n".join(lines) + "\n", op
 
 
-ENDLESS_RUNS = 20  # runs finished by a mutant still running at the timeout: it loops over them
+BLOCKED_FACTOR = 30  # wall-clock seconds per CPU second of budget before a run counts as blocked
+ENDLESS_RUNS = 20  # runs finished by a mutant that spent its CPU budget: it loops over them
+
+
+def cpu_seconds(pid):
+    """User + system CPU seconds of a live process (/proc/PID/stat), None if gone."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, IndexError, ValueError):
+        return None
 
 
 def finished_runs(log):
@@ -227,7 +242,7 @@ def finished_runs(log):
         return 0
 
 
-def run_one(sable, seed_path, text, timeout, keep=None):
+def run_one(sable, seed_path, text, cpu_limit, keep=None):
     work = keep or tempfile.mkdtemp(prefix="sable_fuzz_")
     os.makedirs(work, exist_ok=True)
     try:
@@ -240,13 +255,20 @@ def run_one(sable, seed_path, text, timeout, keep=None):
             f.write(text)
         env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
         env.setdefault("ASAN_OPTIONS", "detect_leaks=0")
-        p = subprocess.Popen([sable, "-in", "mutant.in", "-log", "fuzz.log", "-screen", "none"], cwd=work,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env, start_new_session=True)
+        limit = max(1, int(math.ceil(cpu_limit)))
+        cmd = ["prlimit", "--cpu=%d:%d" % (limit, limit + 5), "--core=0",
+               sable, "-in", "mutant.in", "-log", "fuzz.log", "-screen", "none"]
+        p = subprocess.Popen(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env,
+                             start_new_session=True)
         try:
-            _, err = p.communicate(timeout=timeout)
+            # Backstop for a blocked process only: it spends no CPU, so the CPU limit never fires.
+            _, err = p.communicate(timeout=BLOCKED_FACTOR * limit)
         except subprocess.TimeoutExpired:
+            cpu = cpu_seconds(p.pid)
             os.killpg(p.pid, signal.SIGKILL)
             p.communicate()
+            return "hang", "blocked: %s CPU seconds in %d s of wall clock" % (cpu, BLOCKED_FACTOR * limit)
+        if p.returncode in (-signal.SIGXCPU, -signal.SIGKILL):  # the CPU budget ran out (hard limit: SIGKILL)
             return ("endless" if finished_runs(os.path.join(work, "fuzz.log")) >= ENDLESS_RUNS else "hang"), ""
         err = err.decode(errors="replace")
         if p.returncode < 0 or SANITIZER.search(err):
@@ -258,6 +280,26 @@ def run_one(sable, seed_path, text, timeout, keep=None):
     finally:
         if not keep:
             shutil.rmtree(work, ignore_errors=True)
+
+
+BOX = ("units si\natom_style granular\nregion box block 0 1 0 1 0 1 units box\ncreate_box 1 box\n"
+       "create_atoms 1 single 0.5 0.5 0.5 units box\nfix i all nve/sphere\ntimestep 1e-6\n")
+CONTROLS = [  # (what, deck, expected class, CPU budget)
+    ("a run that steps for ever", BOX + "run 2000000000\n", "hang", 2),
+    ("a loop over `run` without end", BOX + "label a\nrun 10\njump SELF a\n", "endless", 2),
+    ("a bad number", BOX + "timestep abc\n", "error", 20),
+    ("a good deck", BOX + "run 10\n", "ok", 20),
+]
+
+
+def controls(sable):
+    """The classifier's positive controls: each class is reached by a deck made for it."""
+    bad = 0
+    for what, text, want, budget in CONTROLS:
+        kind, err = run_one(sable, os.path.join(ROOT, "tests", "decks", "control.in"), text, budget)
+        print("%-32s -> %-8s (expected %s) %s" % (what, kind, want, short(err)))
+        bad += kind != want
+    return 1 if bad else 0
 
 
 def short(err):
@@ -280,7 +322,7 @@ def main():
     ap.add_argument("--seed", type=int, default=24)
     ap.add_argument("--count", type=int, default=300)
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=float, default=20.0, help="seconds before a run counts as a hang")
+    ap.add_argument("--cpu-limit", type=float, default=20.0, help="CPU seconds before a run counts as a hang")
     ap.add_argument("--cap", type=int, default=20, help="largest `run N` kept")
     ap.add_argument("--long", action="store_true", help="run for --minutes and write --report")
     ap.add_argument("--minutes", type=float, default=60.0)
@@ -289,6 +331,7 @@ def main():
     ap.add_argument("--only", type=int, default=None, help="run only mutant K (to reproduce)")
     ap.add_argument("--keep", default=None, help="with --only: keep the run folder here")
     ap.add_argument("--print", action="store_true", help="with --only: print the mutant deck")
+    ap.add_argument("--controls", action="store_true", help="positive controls of the classifier, then exit")
     args = ap.parse_args()
     args.sable = os.path.abspath(args.sable)
     if not os.access(args.sable, os.X_OK):
@@ -296,11 +339,13 @@ def main():
     seeds = load_seeds()
     commands, words = vocabulary(seeds)
 
+    if args.controls:
+        return controls(args.sable)
     if args.only is not None:
         path, text, op = make_mutant(seeds, commands, words, args.seed, args.only, args.cap)
         if args.print:
             print(text)
-        kind, err = run_one(args.sable, path, text, args.timeout, args.keep)
+        kind, err = run_one(args.sable, path, text, args.cpu_limit, args.keep)
         print("mutant %d of %s (%s): %s\n%s" % (args.only, os.path.relpath(path, ROOT), op, kind, err))
         return 0 if kind in ("ok", "error") else 1
 
@@ -322,7 +367,7 @@ def main():
             if k is None:
                 return False
             path, text, op = make_mutant(seeds, commands, words, args.seed, k, args.cap)
-            pending[ex.submit(run_one, args.sable, path, text, args.timeout)] = (k, path, text, op)
+            pending[ex.submit(run_one, args.sable, path, text, args.cpu_limit)] = (k, path, text, op)
             return True
         for _ in range(args.jobs * 2):
             submit()
