@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """sable-analyze end to end. Mode 'cli': every subcommand's --help, a fit on a known
 sample through the text reader, the named errors. Mode 'figure': fig_pdf.py draws the fit
+forms; the test checks the drawn lines are the curve file's columns, the PNG has ink in the
+fit colours, and a curve without its pdf column is refused
 (exit 77, skipped, without matplotlib).
 
     cli_and_figure.py cli|figure SABLE_ANALYZE WORKDIR
@@ -90,9 +92,72 @@ def figure(exe, work):
     png = os.path.join(work, "pdf.png")
     p = subprocess.run([sys.executable, os.path.join(HERE, "..", "fig_pdf.py"), curve, "-o", png, "--log"],
                        capture_output=True, text=True)
-    if p.returncode != 0 or not os.path.getsize(png) > 1000:
+    if p.returncode != 0:
         sys.exit(f"FAIL: fig_pdf.py: {p.stderr}")
-    print("figure:", png)
+    check_drawn(curve)
+    check_png(png)
+    # Positive control: a curve file without its pdf column is refused, naming file and column.
+    bad = os.path.join(work, "no_pdf.csv")
+    with open(curve) as f:
+        lines = f.read().splitlines()
+    head = next(i for i, l in enumerate(lines) if l.strip() and not l.startswith("#"))
+    if "pdf" not in lines[head].split(","):
+        sys.exit(f"FAIL: {curve}'s header {lines[head]} has no pdf column")
+    lines[head] = ",".join("qdf" if c == "pdf" else c for c in lines[head].split(","))
+    with open(bad, "w") as g:
+        g.write("\n".join(lines) + "\n")
+    p = subprocess.run([sys.executable, os.path.join(HERE, "..", "fig_pdf.py"), bad, "-o", png + ".bad.png"],
+                       capture_output=True, text=True)
+    if p.returncode == 0 or "no_pdf.csv" not in p.stderr + p.stdout or "pdf" not in p.stderr + p.stdout:
+        sys.exit(f"FAIL: a curve without 'pdf' should be refused naming the file and the column: {p.stderr}")
+    print("figure:", png, "holds the data and every fit of", curve)
+
+
+def check_drawn(curve):
+    """What fig_pdf draws is the curve file: the data points where pdf > 0 and one line per fit form,
+    each with its label, on a log y axis."""
+    sys.path.insert(0, os.path.join(HERE, ".."))
+    import fig_pdf
+    import figstyle
+    figstyle.use()
+    t = figstyle.read(curve)
+    fig, ax = fig_pdf.draw(t, log=True)
+    lines = {l.get_label(): l for l in ax.get_lines()}
+    forms = [k for k in ("eq7", "normal", "eq8", "eq9", "eq10") if k in t]
+    if len(forms) < 2:
+        sys.exit(f"FAIL: fit-forms wrote {forms}: expected several fit forms in {curve}")
+    want = {"data": ([x for x, p in zip(t["x"], t["pdf"]) if p > 0], [p for p in t["pdf"] if p > 0])}
+    for k in forms:
+        want[fig_pdf.LABELS[k]] = (t["x"], t[k])
+    if set(lines) != set(want):
+        sys.exit(f"FAIL: the figure's lines {sorted(lines)} are not {sorted(want)}")
+    for label, (xs, ys) in want.items():
+        x, y = lines[label].get_data()
+        if list(map(float, x)) != list(map(float, xs)) or list(map(float, y)) != list(map(float, ys)):
+            sys.exit(f"FAIL: the line '{label}' does not plot the file's columns")
+    if ax.get_yscale() != "log" or "bar f" not in ax.get_xlabel():
+        sys.exit(f"FAIL: axes: y scale {ax.get_yscale()}, x label {ax.get_xlabel()}")
+    import matplotlib.pyplot as plt
+    plt.close(fig)
+
+
+def check_png(png):
+    """The PNG is a real picture of that size with ink in the fit colours, not an empty canvas."""
+    import matplotlib.image as mpimg
+    import figstyle
+    img = mpimg.imread(png)
+    h, w = img.shape[:2]
+    if w < 300 or h < 200:
+        sys.exit(f"FAIL: {png} is {w}x{h} pixels")
+    rgb = (img[:, :, :3] * 255).round().astype(int)
+    ink = (rgb.sum(axis=2) < 3 * 250).mean()
+    if not 0.005 < ink < 0.5:
+        sys.exit(f"FAIL: {png}: {ink:.3%} of the pixels are not white")
+    for colour in figstyle.COLOURS[1:3]:  # the first two fit lines
+        c = [int(colour[i:i + 2], 16) for i in (1, 3, 5)]
+        near = (abs(rgb - c).sum(axis=2) < 30).sum()
+        if near < 50:
+            sys.exit(f"FAIL: {png}: only {near} pixels of the fit colour {colour}")
 
 
 def main():
