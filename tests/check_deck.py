@@ -17,8 +17,10 @@ exit fails. A deck must say how it is judged, in its leading comment lines:
   # check-output: TEXT  (source: ...)
       the deck's output (screen) must contain TEXT.
   # check-file: FILE contains TEXT  (source: ...)
-      FILE, written by the run in its directory, must contain TEXT (\n for a
-      line break, \" for a quote; TEXT may be quoted "...").
+  # check-file: FILE matches REGEX  (source: ...)
+      FILE, written by the run in its directory (removed before it), must contain
+      TEXT (\n for a line break, \" for a quote; TEXT may be quoted "...") or a
+      match of the Python regular expression REGEX (for numbers known to so many digits).
   a `fix ... halt ... error hard` in the deck (an in-deck check that stops the run).
   # judged-by: tests/unit/test_X.cpp
       that file must exist and name the deck.
@@ -55,7 +57,7 @@ CHECK_RE = re.compile(
     r"^#\s*check:\s*(?P<key>[A-Za-z_][\w.]*)\s*(?P<op>==|!=|<=|>=|=|<|>)\s*(?P<value>.+?)"
     r"(?:\s+(?P<kind>tol|rel)\s+(?P<tol>.+?))?\s*\(source:\s*(?P<source>.*\S)\s*\)\s*$")
 OUTPUT_RE = re.compile(r"^#\s*check-output:\s*(?P<text>.+?)\s*\(source:\s*(?P<source>.*\S)\s*\)\s*$")
-FILE_RE = re.compile(r"^#\s*check-file:\s*(?P<file>\S+)\s+contains\s+(?P<text>.+?)\s*\(source:\s*(?P<source>.*\S)\s*\)\s*$")
+FILE_RE = re.compile(r"^#\s*check-file:\s*(?P<file>\S+)\s+(?P<how>contains|matches)\s+(?P<text>.+?)\s*\(source:\s*(?P<source>.*\S)\s*\)\s*$")
 HALT_RE = re.compile(r"^\s*fix\s+\S+\s+\S+\s+halt\s+(?P<rest>.*)$")
 
 
@@ -163,7 +165,7 @@ def judge(args):
         elif re.match(r"^#\s*check-file:", c):
             m = FILE_RE.match(c)
             if not m:
-                raise Fail("malformed check-file line (want '# check-file: FILE contains TEXT (source: ...)'): %s" % c)
+                raise Fail("malformed check-file line (want '# check-file: FILE contains|matches TEXT (source: ...)'): %s" % c)
             files.append(m)
         elif re.match(r"^#\s*check:", c):
             m = CHECK_RE.match(c)
@@ -230,12 +232,13 @@ def judge(args):
         if not ok:
             bad.append(line)
     for m in files:
-        text = unquote(m.group("text"))
+        how = m.group("how")
+        text = unquote(m.group("text")) if how == "contains" else m.group("text")
         path = m.group("file")
         body = open(path, errors="replace").read() if os.path.isfile(path) else None
-        ok = body is not None and text in body
+        ok = body is not None and (text in body if how == "contains" else re.search(text, body) is not None)
         line = "%s: %s %s '%s' (source: %s)" % ("ok" if ok else "FAILED", path,
-                                               "contains" if body is not None else "(missing) contains",
+                                               how if body is not None else "(missing) " + how,
                                                text.replace("\n", "\\n"), m.group("source"))
         print("check_deck: " + line)
         if not ok:
