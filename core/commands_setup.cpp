@@ -1,4 +1,5 @@
 // Box, style-creation and run-control commands (the deck's skeleton).
+#include <cctype>
 #include <cmath>
 #include <dlfcn.h>
 
@@ -190,7 +191,17 @@ void cmd_run(Simulation& sim, const Args& a) {
   try {
     sim.run(n);
   } catch (const SableError& e) {
-    throw SableError(std::string(e.what()) + "\n  (during '" + a.joined() + "' at " + a.where().file + ":" +
+    // An error that names its own deck line (a fix's or pair style's check at set-up)
+    // keeps it and adds the run; one found while stepping (a lost grain, a blow-up) has
+    // no line but the run's, so it leads with "FILE:LINE: 'run N':" as a command's error.
+    const std::string msg = e.what();
+    const std::size_t c = msg.find(':');
+    std::size_t d = c + 1;
+    while (c != std::string::npos && d < msg.size() && std::isdigit(static_cast<unsigned char>(msg[d]))) ++d;
+    const bool located = c != std::string::npos && c > 0 && d > c + 1 && d < msg.size() && msg[d] == ':' &&
+                         msg.find_first_of(" \n") > c;
+    if (!located) a.fail_line(msg);
+    throw SableError(msg + "\n  (during '" + a.joined() + "' at " + a.where().file + ":" +
                      std::to_string(a.where().line) + ")");
   }
 }
