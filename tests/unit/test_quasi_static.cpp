@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -400,30 +401,89 @@ TEST(FixHalt, BadInput) {
 // ---- the relaxation loop deck: a piston of frozen grains is lowered by
 // 0.15 mm five times; after each move the bed relaxes until the unbalanced
 // force ratio is below 0.01 (checked every 100 steps) or 20000 steps pass.
-// Each record: the relaxation ended at the threshold on a check step, or at
-// the cap; the piston went down by exactly dz each time. (Measured: the
+
+namespace {
+
+constexpr long kRelaxCap = 20000;
+constexpr double kRelaxThreshold = 0.01;
+
+// A RELAX record (i step steps ratio ke zpiston fpiston) of a relaxation that
+// the halt ended: on a check step (multiple of 100) before the cap, with the
+// ratio it printed below the threshold. A halt that never fires runs every
+// relaxation to the cap, which this rejects.
+bool stopped_by_halt(const std::vector<double>& r, double threshold) {
+  const long steps = static_cast<long>(r[2]);
+  return steps > 0 && steps < kRelaxCap && steps % 100 == 0 && r[3] < threshold;
+}
+
+std::vector<std::vector<double>> piston_records(const std::string& deck_text, Deck& d, std::string& out) {
+  sable::test::TempDir tmp;
+  const std::string path = tmp / "quasi_piston.in";  // `jump SELF` needs the deck as a file
+  {
+    std::ofstream f(path);
+    f << deck_text;
+  }
+  out = printed("include " + path, d);
+  return rows_after(out, "RELAX");
+}
+
+std::string piston_deck() {
+  std::ifstream f(std::string(SABLE_SOURCE_DIR) + "/tests/decks/quasi_piston.in");
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+// Each record: the halt ended the relaxation on a check step with the ratio
+// below 0.01 (every relaxation but the first, which starts from the settled
+// bed's looser state and may run to the cap); the piston went down by exactly
+// dz each time and each run continued from the halted step. (Measured: the
 // first relaxation runs to the cap, the others stop at the threshold after
 // 2100 to 5900 steps.)
 TEST(QuasiStatic, PistonLoopDeckRelaxesEachStep) {
   Deck d;
-  const std::string out = printed(std::string("include ") + SABLE_SOURCE_DIR + "/tests/decks/quasi_piston.in", d);
-  const auto rec = rows_after(out, "RELAX");  // RELAX i step steps ratio ke zpiston fpiston
+  std::string out;
+  const auto rec = piston_records(piston_deck(), d, out);
   ASSERT_EQ(rec.size(), 5u) << out;
   for (std::size_t k = 0; k < rec.size(); ++k) {
     const auto& r = rec[k];
     ASSERT_EQ(r.size(), 7u);
     EXPECT_EQ(r[0], k + 1);
-    const bool at_cap = r[2] == 20000;
-    if (!at_cap) {
-      EXPECT_LT(r[3], 0.01) << "relaxation " << k + 1 << " ended before the cap above the threshold";
-      EXPECT_EQ(static_cast<long>(r[2]) % 100, 0);
-      EXPECT_GT(r[2], 0);
-    }
     if (k > 0) {
+      EXPECT_TRUE(stopped_by_halt(r, kRelaxThreshold))
+          << "relaxation " << k + 1 << " not ended by the halt: " << r[2] << " steps, ratio " << r[3];
       EXPECT_EQ(r[1], rec[k - 1][1] + r[2]);  // each run continues from the halted step
       EXPECT_NEAR(rec[k - 1][5] - r[5], 1.5e-4, 1e-12);
+    } else {
+      EXPECT_TRUE(r[2] == kRelaxCap || stopped_by_halt(r, kRelaxThreshold)) << r[2] << " steps, ratio " << r[3];
     }
   }
   // The set strain: five steps of dz from where the first one started.
   EXPECT_NEAR(rec[0][5] + 1.5e-4 - rec[4][5], 5 * 1.5e-4, 1e-12);
+}
+
+// Positive control for the check above: the same deck with a halt whose
+// condition cannot hold (the ratio is never negative) and two moves instead of
+// five runs every relaxation to the cap, and stopped_by_halt says so, while the
+// same records read with a threshold above their ratios would pass were the cap
+// not checked.
+TEST(QuasiStatic, HaltThatNeverFiresIsCaught) {
+  std::string text = piston_deck();
+  const std::string halt = "fix h all halt 100 v_ub < 0.01 error continue", loop = "variable i loop 5";
+  ASSERT_NE(text.find(halt), std::string::npos) << "the deck's relaxation halt changed";
+  ASSERT_NE(text.find(loop), std::string::npos) << "the deck's loop changed";
+  text.replace(text.find(halt), halt.size(), "fix h all halt 100 v_ub < 0 error continue");
+  text.replace(text.find(loop), loop.size(), "variable i loop 2");
+  Deck d;
+  std::string out;
+  const auto rec = piston_records(text, d, out);
+  ASSERT_EQ(rec.size(), 2u) << out;
+  for (const auto& r : rec) {
+    ASSERT_EQ(r.size(), 7u);
+    EXPECT_EQ(r[2], kRelaxCap);
+    EXPECT_FALSE(stopped_by_halt(r, kRelaxThreshold));
+    EXPECT_FALSE(stopped_by_halt(r, 2 * r[3] + 1));  // the cap alone rejects it
+  }
 }
