@@ -2,8 +2,10 @@
 // flag, and that producing records never changes forces or history.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "core/compute.h"
@@ -92,15 +94,63 @@ TEST(ContactLocal, RecordsDoNotChangeHistoryOrForces) {
   EXPECT_EQ(c->local_cols, 6 + 6 + 3 + 3 + 3 + 3 + 1);
 }
 
+// A contact is recorded only when both grains are in the compute's group:
+// {1, 3} holds one grain of each contact (1-2 and the periodic 3-4) and gets
+// no row; the positive controls {1, 2} and {3, 4} get exactly their contact,
+// with the force LIGGGHTS' Hertz law gives at set-up (run 0: the tangential
+// spring is zero, so Ft is the dashpot alone). By hand, equal grains
+// (r = 1 mm, 2500 kg/m^3): R* = r/2, m* = m/2, Y* = E / (2 (1 - nu^2)),
+// G* = E / (4 (2 - nu)(1 + nu)), beta = ln e / sqrt(ln^2 e + pi^2);
+// Fn = 4/3 Y* sqrt(R* dn) dn - gamman vn along en (j -> i), Ft = -gammat vtr,
+// gamman = -2 sqrt(5/6) beta sqrt(2 Y* sqrt(R* dn) m*), gammat likewise with 8 G*.
 TEST(ContactLocal, GroupFilterNeedsBothGrains) {
   Deck d;
   setup(d);
-  d("group one id 1 3");
+  d("group one id 1 3\ngroup pair12 id 1 2\ngroup pair34 id 3 4");
   d("compute c one pair/gran/local id");
+  d("compute c12 pair12 pair/gran/local id force_normal force_tangential delta");
+  d("compute c34 pair34 pair/gran/local id force_normal force_tangential delta");
   d("run 0");
   sable::Compute* c = d->find_compute("c");
   c->local_now();
   EXPECT_EQ(c->local_rows(), 0u);
+
+  const double r = 0.001, E = 5e7, nu = 0.3, e = 0.5, pi = std::numbers::pi;
+  const double m = 4.0 / 3.0 * pi * r * r * r * 2500, meff = m / 2, reff = r / 2;
+  const double Ystar = E / (2 * (1 - nu * nu)), Gstar = E / (4 * (2 - nu) * (1 + nu));
+  const double beta = std::log(e) / std::sqrt(std::log(e) * std::log(e) + pi * pi);
+  const auto& a = d->atoms;
+  for (const auto& [id, want_a, want_b] : {std::tuple{"c12", 1L, 2L}, std::tuple{"c34", 3L, 4L}}) {
+    sable::Compute* p = d->find_compute(id);
+    p->local_now();
+    ASSERT_EQ(p->local_rows(), 1u) << id;
+    ASSERT_EQ(p->local_cols, 3 + 3 + 3 + 1) << id;
+    const double* row = p->local.data();
+    const long ia = static_cast<long>(row[0]), ib = static_cast<long>(row[1]);
+    EXPECT_EQ(std::min(ia, ib), want_a) << id;
+    EXPECT_EQ(std::max(ia, ib), want_b) << id;
+    EXPECT_EQ(row[2], ia == 3 || ia == 4 ? 1.0 : 0.0) << id;  // periodic flag
+    const std::size_t i = a.index_of(ia), j = a.index_of(ib);
+    double dx[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+      dx[k] = a.x[3 * i + k] - a.x[3 * j + k];
+      v[k] = a.v[3 * i + k] - a.v[3 * j + k];
+    }
+    dx[0] -= 0.01 * std::round(dx[0] / 0.01);  // nearest periodic image in x
+    const double dist = std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]), dn = 2 * r - dist;
+    ASSERT_GT(dn, 0) << id;
+    const double en[3] = {dx[0] / dist, dx[1] / dist, dx[2] / dist};
+    const double vn = v[0] * en[0] + v[1] * en[1] + v[2] * en[2];
+    const double sq = std::sqrt(reff * dn);
+    const double gamman = -2 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(2 * Ystar * sq * meff);
+    const double gammat = -2 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(8 * Gstar * sq * meff);
+    const double fn = 4.0 / 3.0 * Ystar * sq * dn - gamman * vn;
+    EXPECT_NEAR(row[9], dn, 1e-15) << id;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(row[3 + k], fn * en[k], 1e-10 * fn) << id << " normal " << k;
+      EXPECT_NEAR(row[6 + k], -gammat * (v[k] - vn * en[k]), 1e-10 * fn) << id << " tangential " << k;
+    }
+  }
 }
 
 TEST(ContactLocal, HistoryColumnNeedsAModelWithHistory) {
