@@ -121,19 +121,53 @@ TEST(Plugin, ViscoelasticRestitutionMatchesSchwagerPoschel) {
   }
 }
 
+// Every tangential x rolling model with the plugin's normal law, on a wall
+// contact evaluated at set-up (run 0: history read, not advanced, so the
+// spring and the rolling spring start from zero). Grain 1 (r = 1 mm) sinks
+// dn = 0.5 mm into the plane z = -0.5 mm while moving down at 5 cm/s, sliding
+// at 2 cm/s along x and spinning at 10 rad/s about y. By hand (contact.h's
+// conventions; wall: R* = r, cri = r - dn/2, wroll = cri w / (r - dn)):
+//   s = sqrt(R* dn), Fn = s (4/3 Y* dn - gamma vn) with vn = vz < 0,
+//   vtr = vx - cri w_y;  Ft = 0 (off), -min(mu Fn, gamma s |vtr|) sgn (no_history),
+//   -gamma s vtr (history: zero spring at set-up, below the Coulomb cap);
+//   Mr = 0 (off), rmu (4/3 Y* s dn) R* along wroll (cdt), kt R*^2 wroll dt with
+//   kt = 8 G* s (epsd2: zero spring plus one step), torque_y = -cri Ft - Mr_y.
+// The dashpot is 5 % of Fn here, so a dropped or doubled damping term fails.
 TEST(Plugin, ModelWorksWithEveryBuiltInTangentialAndRollingModelAndWalls) {
+  const double gamma = 2e4, vz = -0.05, vx = 0.02, wy = 10.0, mu = 0.5, rmu = 0.1, dt = 1e-7;
+  const double dn = kR - 0.0005, s = std::sqrt(kR * dn), cri = kR - dn / 2;
+  const double Gstar = 5e7 / (4 * (2 - 0.3) * (1 + 0.3));
+  const double fel = 4.0 / 3.0 * kYstar * s * dn, fn = fel - gamma * s * vz;
+  const double vtr = vx - cri * wy, wroll = cri / (kR - dn) * wy;
+  ASSERT_GT(gamma * s * -vz, 0.04 * fn);           // the dashpot is a visible part of Fn
+  ASSERT_LT(gamma * s * std::fabs(vtr), mu * fn);  // viscous friction below the Coulomb cap
   for (const char* t : {"off", "no_history", "history"})
     for (const char* r : {"off", "cdt", "epsd2"}) {
       Deck d;
-      d(deck_head(1.0));
+      d(deck_head(gamma));
       d("fix m5 all property/global coefficientRollingFriction peratomtypepair 1 0.1");
       d(std::string("pair_style gran model hertz/petit tangential ") + t + " rolling_friction " + r);
       d("pair_coeff * *");
       d(std::string("fix w all wall/gran model hertz/petit tangential ") + t + " rolling_friction " + r +
         " primitive type 1 zplane -0.0005");
-      for (std::size_t i = 0; i < 2; ++i) d->atoms.set_radius_density(i, kR, 2500);
-      d("run 10");
-      EXPECT_GT(d->atoms.f[2], 0.0) << t << " " << r;  // the plane pushes grain 1 up
+      auto& a = d->atoms;
+      for (std::size_t i = 0; i < 2; ++i) a.set_radius_density(i, kR, 2500);
+      const std::size_t i1 = a.index_of(1);
+      a.v[3 * i1] = vx;
+      a.v[3 * i1 + 2] = vz;
+      a.omega[3 * i1 + 1] = wy;
+      d("run 0");
+      const std::string tr = std::string(t), rr = std::string(r);
+      const double ft = tr == "off" ? 0.0 : -gamma * s * vtr;  // no_history: min() picks the dashpot here
+      const double mr = rr == "off" ? 0.0 : rr == "cdt" ? rmu * fel * kR : 8 * Gstar * s * kR * kR * wroll * dt;
+      const std::string what = tr + " " + rr;
+      EXPECT_NEAR(a.f[3 * i1 + 2], fn, 1e-10 * fn) << what;
+      EXPECT_NEAR(a.f[3 * i1], ft, 1e-10 * fn) << what;
+      EXPECT_NEAR(a.f[3 * i1 + 1], 0.0, 1e-10 * fn) << what;
+      EXPECT_NEAR(a.torque[3 * i1 + 1], -cri * ft - mr, 1e-10 * (std::fabs(cri * ft) + std::fabs(mr)) + 1e-20)
+          << what;
+      EXPECT_NEAR(a.torque[3 * i1], 0.0, 1e-20) << what;
+      EXPECT_NEAR(a.torque[3 * i1 + 2], 0.0, 1e-20) << what;
     }
 }
 
