@@ -308,9 +308,14 @@ def short(err):
 
 
 def save_bad(directory, k, kind, text, err):
+    """A draft regression deck. tests/expect_error.cmake wants '# expect: FILE:LINE: TEXT': a
+    noloc mutant's draft names where the error should point as FILE:?: (fill in by hand)."""
     os.makedirs(directory, exist_ok=True)
-    expect = "" if kind != "noloc" else short(err).replace("ERROR: ", "")[:60]
-    name = os.path.join(directory, "fuzz_%s_%d.in" % (kind, k))
+    base = "fuzz_%s_%d.in" % (kind, k)
+    expect = ""
+    if kind == "noloc":
+        expect = "%s:?: %s" % (base, short(err).replace("ERROR: ", "")[:60])
+    name = os.path.join(directory, base)
     with open(name, "w") as f:
         f.write("# expect: %s\n# found by tests/fuzz/fuzz_decks.py (%s)\n%s" % (expect, kind, text))
     return name
