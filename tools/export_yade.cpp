@@ -843,12 +843,16 @@ void YadeExporter::engines() {
   py_ << "def _add_forces():\n    pass\n";
   for (const auto& f : forces_) py_ << "    " << f << "\n";
   const bool facets = !mesh_order_.empty();
+  // avoidGranularRatcheting=False: the shear increment of a grain pair is then the relative velocity of
+  // the contact points (lever arms r - dn/2) times dt, sable's and LIGGGHTS' vtr dt; YADE's default scales
+  // the translational part by (r1 + r2) / (r1 + r2 - dn) and takes the full radii as lever arms.
   py_ << "O.engines = [\n"
          "    ForceResetter(),\n"
          "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()" << (facets ? ", Bo1_Facet_Aabb()" : "") << "]),\n"
-         "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()" << (facets ? ", Ig2_Facet_Sphere_ScGeom()" : "")
+         "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False), Ig2_Wall_Sphere_ScGeom()" << (facets ? ", Ig2_Facet_Sphere_ScGeom()" : "")
       << "], [_ip2], [_law2]),\n";
-  if (!forces_.empty()) py_ << "    PyRunner(command='_add_forces()', iterPeriod=1),\n";
+  // initRun: a PyRunner first fires at iteration 1, so without it step 1 would go without the deck's forces.
+  if (!forces_.empty()) py_ << "    PyRunner(command='_add_forces()', iterPeriod=1, initRun=True),\n";
   for (std::size_t k = 0; k < mesh_order_.size(); ++k) {
     std::string e = meshes_.at(mesh_order_[k]).motion;
     if (e.empty()) continue;
@@ -857,7 +861,7 @@ void YadeExporter::engines() {
   }
   py_ << "    NewtonIntegrator(damping=0, gravity=Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", "
       << num(gravity_[2]) << ")),\n"
-      << "    PyRunner(command='_thermo_tick()', iterPeriod=1),\n]\n";
+      << "    PyRunner(command='_thermo_tick()', iterPeriod=1, initRun=True),\n]\n";  // initRun: step 1's rows and samples too
 }
 
 // fix ave/time (scalar mode, ave one) as a _AveTime recorder (head()): the
