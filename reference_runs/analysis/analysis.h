@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sable::analysis {
@@ -126,6 +127,91 @@ struct Eq9 {
 // P(phi) on radians; phi_max = atan(mu) + pi/4; breaks: where P has kinks or steps.
 Eq9 quad_eq9(const std::function<double(double)>& p, double mu, double phi_min, Vec breaks = {});
 
+// ---------- cavity study: kneib2017 Eqs. 4, 5, 16-20 (cavity.cpp) ----------
+struct LsqParam {
+  std::string name;
+  double value = 0, err = 0;  // standard error
+  double lo = 0, hi = 0;      // 95 % interval: value -+ q err (x0: exp(ln x0 -+ q err(ln x0)))
+};
+struct LsqFit {
+  std::string model;
+  std::vector<LsqParam> params;
+  double chi2 = 0;          // sum of squared residuals, each divided by its error when errors are given
+  double r2 = 0;            // 1 - SS_res/SS_tot (weighted by 1/yerr^2 when errors are given)
+  double q = 0;             // err -> 95 % half-width: normal 1.96 with errors, Student t(dof) without
+  std::size_t n = 0, dof = 0;
+  bool weighted = false;    // false: covariance scaled by chi2/dof (errors from the scatter)
+};
+// kneib2017 Eq. 4 (r1, r2, I_M^0) and Eq. 20 (mu1, mu2, I0): y = a + (b - a)/(1 + x0/x), x > 0.
+double sigmoid(double x, double a, double b, double x0);
+// Weighted nonlinear least squares in (a, b, ln x0) (GSL trust region), started from the best
+// of a scan in ln x0 where (a, b) follow by linear least squares. params: a, b, x0.
+LsqFit fit_sigmoid(const Vec& x, const Vec& y, const Vec& yerr = {});
+// kneib2017 Eq. 5: y = c1 - c2 x (F/(PLd) on l/L); params c1, c2.
+LsqFit fit_linear_down(const Vec& x, const Vec& y, const Vec& yerr = {});
+
+// A mean field on a regular 2D grid of the cavity's plane: x along the cavity (horizontal),
+// y up. Nodes xs[i], ys[j] (increasing, evenly spaced); fields at node (i, j) at i ny + j.
+struct Grid2D {
+  Vec xs, ys;
+  Vec vx, vy;                // mean velocity
+  Vec sxx, syy, szz, sxy;    // stress, compression positive; szz out of the plane (empty: not read)
+  double xlo = 0, xhi = 0, ylo = 0, yhi = 0;  // the cavity's walls (default: the nodes' cells, as fix ave/cg)
+  std::size_t nx() const { return xs.size(); }
+  std::size_t ny() const { return ys.size(); }
+  std::size_t at(std::size_t i, std::size_t j) const { return i * ys.size() + j; }
+};
+// Rows (x, y, fields...) in any order, every node of a complete regular grid the same number
+// of times (several windows: averaged). fields: pairs (column, the grid field it fills).
+Grid2D grid_from_rows(const Vec& x, const Vec& y, const std::vector<std::pair<const Vec*, Vec Grid2D::*>>& fields);
+// fix ave/cg's HDF5 (u [w][nx][ny][nz][3], stress* [w][nx][ny][nz][6], x y z, bounds): the mean
+// over windows after the first `skip` (weighted by samples), averaged over the out-of-plane
+// axis. plane: "xy" (x along, y up), "xz" (x along, z up) or "yz" (y along, z up).
+Grid2D read_cg_grid(const std::string& path, const std::string& plane, const std::string& stress, std::size_t skip);
+
+// Stream function (vx = dpsi/dy, vy = -dpsi/dx) by the trapezoid rule along two paths from
+// node (0, 0) (along the bottom row then up; up the first column then along), averaged.
+Vec stream_function(const Grid2D& g);
+struct Vortex {
+  double x = 0, y = 0;           // centre: the extremum of psi, refined by a Newton step on its 3x3 stencil
+  bool refined = false;          // false: the step left the cell (the node is reported)
+  std::size_t i = 0, j = 0;      // the extremal interior node
+  double psi = 0;                // psi there minus its mean on the grid's edge
+  double x_zero = 0, y_zero = 0; // zero of the bilinear velocity nearest the centre (NaN: none)
+  double ell = 0, ell_over_l = 0;  // kneib2017 Sec. III A: distance from the wall (default the right one)
+};
+Vortex vortex_centre(const Grid2D& g, bool right_wall = true);
+
+// kneib2017 Fig. 19: the upper half of the bed, within L/4 of the middle along x.
+struct Region {
+  double xlo = -kInf, xhi = kInf, ylo = -kInf, yhi = kInf;  // closed
+};
+Region paper_region(const Grid2D& g);
+struct RheologyPoint {
+  double x, y;
+  double dxx, dyy, dxy;  // strain rate D = sym(grad v), in-plane (D_zz = 0)
+  double norm_d;         // ||D'|| (Eqs. 16, 17)
+  double p;              // Tr(sigma)/3
+  double norm_s;         // ||sigma'||
+  double i;              // Eq. 18: d sqrt(rho_p) ||D'|| / sqrt(p)
+  double mu_loc;         // Eq. 19 as printed: Tr(sigma' D')/3 / (p ||D'||)
+  double mu_norm;        // ||sigma'|| / p
+  double align;          // Tr(sigma' D') / (2 ||sigma'|| ||D'||): 1 when collinear
+};
+struct Rheology {
+  std::vector<RheologyPoint> points;
+  std::size_t nodes = 0, skipped = 0;  // nodes in the region; of those, with p <= 0 or ||D'|| = 0
+  std::size_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // the region's node ranges (closed)
+};
+// Gradients from the nodes inside the region only (central; second-order one-sided at its edges).
+Rheology local_rheology(const Grid2D& g, const Region& r, double d, double rho_p);
+struct RheologyBin {
+  double i_lo = 0, i_hi = 0, i_mean = 0;
+  double mu_loc = 0, mu_loc_se = 0, mu_norm = 0, mu_norm_se = 0;
+  std::size_t n = 0;
+};
+std::vector<RheologyBin> bin_rheology(const std::vector<RheologyPoint>& pts, int nbins);  // log bins in I; empty ones left out
+
 // ---------- files (io.cpp) ----------
 struct Column {
   Vec values;
@@ -141,5 +227,8 @@ struct Table {
   std::vector<std::pair<std::string, std::string>> meta;  // '# key: value' lines / HDF5 attributes
 };
 void write_table(const std::string& path, const Table& t);  // .csv or .h5 (by extension)
+bool is_hdf5_file(const std::string& path);
+bool h5_has_dataset(const std::string& path, const std::string& name);
+Vec read_h5_array(const std::string& path, const std::string& name, std::vector<std::size_t>& dims);  // row-major
 
 }  // namespace sable::analysis

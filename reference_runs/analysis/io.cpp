@@ -223,6 +223,46 @@ Column read_text(const std::string& path, const std::string& spec, std::istream&
 
 }  // namespace
 
+bool is_hdf5_file(const std::string& path) { return is_hdf5(path); }
+
+bool h5_has_dataset(const std::string& path, const std::string& name) {
+  if (!is_hdf5(path)) return false;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+  if (f < 0) return false;
+  const bool has = H5Lexists(f, name.c_str(), H5P_DEFAULT) > 0;
+  H5Fclose(f);
+  return has;
+}
+
+Vec read_h5_array(const std::string& path, const std::string& name, std::vector<std::size_t>& dims) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);  // a run still writing
+  if (f < 0) throw Error("file '" + path + "': cannot open as HDF5");
+  if (H5Lexists(f, name.c_str(), H5P_DEFAULT) <= 0) {
+    const std::string m = joined(h5_members(f));
+    H5Fclose(f);
+    throw Error("file '" + path + "': no dataset '" + name + "' (it has: " + m + ")");
+  }
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  const hid_t space = H5Dget_space(d);
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> h(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space, h.data(), nullptr);
+  std::size_t total = 1;
+  dims.assign(h.begin(), h.end());
+  for (std::size_t n : dims) total *= n;
+  Vec all(total);
+  const bool ok = total == 0 || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()) >= 0;
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+  if (!ok) throw Error("file '" + path + "': cannot read dataset '" + name + "' as numbers");
+  return all;
+}
+
 Column read_column(const std::string& path, const std::string& spec, const std::string& dataset) {
   std::ifstream in(path);
   if (!in) throw Error("file '" + path + "': cannot open");
