@@ -173,7 +173,8 @@ Grid2D read_cg_grid(const std::string& path, const std::string& plane, const std
 // node (0, 0) (along the bottom row then up; up the first column then along), averaged.
 Vec stream_function(const Grid2D& g);
 struct Vortex {
-  double x = 0, y = 0;           // centre: the extremum of psi, refined by a Newton step on its 3x3 stencil
+  double x = 0, y = 0;           // centre: the interior extremum of psi (a maximum where the net vorticity
+                                 // is positive), refined by a Newton step on its 3x3 stencil
   bool refined = false;          // false: the step left the cell (the node is reported)
   std::size_t i = 0, j = 0;      // the extremal interior node
   double psi = 0;                // psi there minus its mean on the grid's edge

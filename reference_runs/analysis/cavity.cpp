@@ -359,26 +359,32 @@ Vortex vortex_centre(const Grid2D& g, bool right_wall) {
     if (!std::isfinite(g.vx[k]) || !std::isfinite(g.vy[k]))
       throw Error("vortex-centre: velocity at node (" + std::to_string(g.xs[k / ny]) + ", " + std::to_string(g.ys[k % ny]) + ") is not finite");
   const Vec psi = stream_function(g);
-  double edge = 0;
+  const double hx = spacing(g.xs), hy = spacing(g.ys);
+  double edge = 0, omega = 0;
   std::size_t ne = 0;
   for (std::size_t i = 0; i < nx; ++i)
     for (std::size_t j = 0; j < ny; ++j)
       if (i == 0 || j == 0 || i == nx - 1 || j == ny - 1) {
         edge += psi[g.at(i, j)];
         ++ne;
+      } else {  // vorticity dvy/dx - dvx/dy = -laplacian(psi)
+        omega += (g.vy[g.at(i + 1, j)] - g.vy[g.at(i - 1, j)]) / (2 * hx) - (g.vx[g.at(i, j + 1)] - g.vx[g.at(i, j - 1)]) / (2 * hy);
       }
   edge /= double(ne);
-  // The vortex: the interior extremum of psi farthest from its value along the walls.
+  // The vortex turns with the field's net vorticity: a maximum of psi where it is positive
+  // (anticlockwise), a minimum where negative; the interior node of that extremum.
+  const double sense = omega >= 0 ? 1 : -1;
   Vortex v;
+  double best = -kInf;
   for (std::size_t i = 1; i + 1 < nx; ++i)
     for (std::size_t j = 1; j + 1 < ny; ++j)
-      if (std::fabs(psi[g.at(i, j)] - edge) > std::fabs(v.psi)) {
+      if (sense * psi[g.at(i, j)] > best) {
+        best = sense * psi[g.at(i, j)];
         v.psi = psi[g.at(i, j)] - edge;
         v.i = i;
         v.j = j;
       }
   const std::size_t i = v.i, j = v.j;
-  const double hx = spacing(g.xs), hy = spacing(g.ys);
   const auto P = [&](std::size_t a, std::size_t b) { return psi[g.at(a, b)]; };
   // One Newton step on the central-difference gradient and Hessian: exact for a quadratic psi.
   const double px = (P(i + 1, j) - P(i - 1, j)) / (2 * hx), py = (P(i, j + 1) - P(i, j - 1)) / (2 * hy);
@@ -396,12 +402,12 @@ Vortex vortex_centre(const Grid2D& g, bool right_wall) {
   }
   // Cross-check: the stagnation point of the bilinear velocity in the cells within two of the node.
   v.x_zero = v.y_zero = std::nan("");
-  double best = kInf;
+  double nearest = kInf;
   for (std::size_t a = i >= 2 ? i - 2 : 0; a <= std::min(i + 1, nx - 2); ++a)
     for (std::size_t b = j >= 2 ? j - 2 : 0; b <= std::min(j + 1, ny - 2); ++b) {
       double zx, zy;
-      if (cell_zero(g, a, b, zx, zy) && std::hypot(zx - v.x, zy - v.y) < best) {
-        best = std::hypot(zx - v.x, zy - v.y);
+      if (cell_zero(g, a, b, zx, zy) && std::hypot(zx - v.x, zy - v.y) < nearest) {
+        nearest = std::hypot(zx - v.x, zy - v.y);
         v.x_zero = zx;
         v.y_zero = zy;
       }
@@ -512,33 +518,35 @@ std::vector<RheologyBin> bin_rheology(const std::vector<RheologyPoint>& pts, int
     lo = std::min(lo, p.i);
     hi = std::max(hi, p.i);
   }
-  const double llo = std::log(lo), step = (std::log(hi) - llo) / nbins;
-  std::vector<RheologyBin> bins(static_cast<std::size_t>(nbins));
-  Vec s2l(bins.size()), s2n(bins.size());
+  if (std::log(hi / lo) < 1e-9) nbins = 1;  // one value of I (to rounding): one bin
+  const double llo = std::log(lo), step = std::log(hi / lo) / nbins;
+  std::vector<std::vector<const RheologyPoint*>> members(static_cast<std::size_t>(nbins));
   for (auto& p : pts) {
-    const std::size_t b = step > 0 ? std::min<std::size_t>(std::size_t((std::log(p.i) - llo) / step), bins.size() - 1) : 0;
-    RheologyBin& q = bins[b];
-    ++q.n;
-    q.i_mean += p.i;
-    q.mu_loc += p.mu_loc;
-    q.mu_norm += p.mu_norm;
-    s2l[b] += p.mu_loc * p.mu_loc;
-    s2n[b] += p.mu_norm * p.mu_norm;
+    const double k = nbins == 1 ? 0 : std::floor((std::log(p.i) - llo) / step);
+    members[std::min<std::size_t>(std::size_t(std::max(k, 0.0)), members.size() - 1)].push_back(&p);
   }
   std::vector<RheologyBin> out;
-  for (std::size_t b = 0; b < bins.size(); ++b) {
-    RheologyBin q = bins[b];
-    q.i_lo = std::exp(llo + step * double(b));
-    q.i_hi = std::exp(llo + step * double(b + 1));
-    if (q.n == 0) continue;
+  for (std::size_t b = 0; b < members.size(); ++b) {
+    if (members[b].empty()) continue;
+    RheologyBin q;
+    q.i_lo = nbins == 1 ? lo : std::exp(llo + step * double(b));
+    q.i_hi = nbins == 1 ? hi : std::exp(llo + step * double(b + 1));
+    q.n = members[b].size();
     const double n = double(q.n);
-    q.i_mean /= n;
-    q.mu_loc /= n;
-    q.mu_norm /= n;
-    // Standard error of the bin mean (nodes treated as independent: a lower bound, neighbours correlate).
-    const auto se = [n](double s2, double m) { return n > 1 ? std::sqrt(std::max(s2 / n - m * m, 0.0) * n / (n - 1) / n) : 0.0; };
-    q.mu_loc_se = se(s2l[b], q.mu_loc);
-    q.mu_norm_se = se(s2n[b], q.mu_norm);
+    for (auto* p : members[b]) {
+      q.i_mean += p->i / n;
+      q.mu_loc += p->mu_loc / n;
+      q.mu_norm += p->mu_norm / n;
+    }
+    // Standard error of the bin mean, the nodes taken as independent (a lower bound: neighbours
+    // share grains through the kernel).
+    double vl = 0, vn = 0;
+    for (auto* p : members[b]) {
+      vl += (p->mu_loc - q.mu_loc) * (p->mu_loc - q.mu_loc);
+      vn += (p->mu_norm - q.mu_norm) * (p->mu_norm - q.mu_norm);
+    }
+    q.mu_loc_se = q.n > 1 ? std::sqrt(vl / (n - 1) / n) : 0.0;
+    q.mu_norm_se = q.n > 1 ? std::sqrt(vn / (n - 1) / n) : 0.0;
     out.push_back(q);
   }
   return out;

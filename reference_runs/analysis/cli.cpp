@@ -379,6 +379,209 @@ int cmd_quad_eq9(const Cli& c) {
   return 0;
 }
 
+// ---------- the cavity study (kneib2017 Eqs. 4, 5, 16-20) ----------
+
+Vec xy_column(const Cli& c, const char* opt) {
+  if (!c.has(opt)) throw Error(c.sub + " needs " + opt + " (a column)");
+  Cli one = c;
+  one.opt["--column"] = c.str(opt);
+  return input(one, c.pos[0]);
+}
+
+// --names a,b,...: the parameters' names in the output (e.g. r1,r2,I0 or mu1,mu2,I0).
+void rename(const Cli& c, LsqFit& f) {
+  if (!c.has("--names")) return;
+  std::vector<std::string> n;
+  std::string cur;
+  for (char ch : c.str("--names") + ",") {
+    if (ch != ',') {
+      cur += ch;
+    } else {
+      n.push_back(cur);
+      cur.clear();
+    }
+  }
+  if (n.size() != f.params.size()) throw Error("--names wants " + std::to_string(f.params.size()) + " names, comma-separated");
+  for (std::size_t i = 0; i < n.size(); ++i) f.params[i].name = n[i];
+}
+
+int lsq_report(const Cli& c, LsqFit f, const char* formula) {
+  rename(c, f);
+  std::printf("%s over %zu points (%s):\n", formula, f.n,
+              f.weighted ? "weighted by 1/yerr^2, errors as given" : "unweighted, errors from the scatter (chi2/dof)");
+  for (auto& p : f.params)
+    std::printf("  %-6s %.6g +- %.3g   95%% [%.6g, %.6g]\n", p.name.c_str(), p.value, p.err, p.lo, p.hi);
+  std::printf("  chi2 %.6g / %zu dof   R^2 %.6f   (interval = value -+ %.4g err%s)\n", f.chi2, f.dof, f.r2, f.q,
+              f.model == "sigmoid" ? "; x0 in ln x0" : "");
+  Table t;
+  t.meta = {{"model", formula}, {"errors", f.weighted ? "given (yerr)" : "from the scatter"}};
+  for (auto& p : f.params)
+    for (auto [suffix, v] : {std::pair{"", p.value}, {"_err", p.err}, {"_lo", p.lo}, {"_hi", p.hi}}) {
+      t.names.push_back(p.name + suffix);
+      t.cols.push_back({v});
+    }
+  for (auto [n, v] : {std::pair{"chi2", f.chi2}, {"dof", double(f.dof)}, {"r2", f.r2}, {"n", double(f.n)}}) {
+    t.names.push_back(n);
+    t.cols.push_back({v});
+  }
+  out_or_print(c, t);
+  return 0;
+}
+
+int cmd_fit_sigmoid(const Cli& c) {
+  const Vec x = xy_column(c, "--x"), y = xy_column(c, "--y"), e = c.has("--yerr") ? xy_column(c, "--yerr") : Vec{};
+  const LsqFit f = fit_sigmoid(x, y, e);
+  if (c.has("--curve")) {  // the fitted curve on 200 log-spaced points across the data's x
+    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+    Vec cx, cy;
+    for (int i = 0; i < 200; ++i) {
+      cx.push_back(*lo * std::pow(*hi / *lo, i / 199.0));
+      cy.push_back(sigmoid(cx.back(), f.params[0].value, f.params[1].value, f.params[2].value));
+    }
+    out_or_print(c, Table{{"x", "fit"}, {cx, cy}, {{"model", "a + (b - a)/(1 + x0/x)"}}}, "--curve");
+  }
+  return lsq_report(c, f, "y = a + (b - a)/(1 + x0/x) (kneib2017 Eq. 4, Eq. 20)");
+}
+
+int cmd_fit_linear(const Cli& c) {
+  const Vec x = xy_column(c, "--x"), y = xy_column(c, "--y"), e = c.has("--yerr") ? xy_column(c, "--yerr") : Vec{};
+  return lsq_report(c, fit_linear_down(x, y, e), "y = c1 - c2 x (kneib2017 Eq. 5)");
+}
+
+// A column of a row table; in an HDF5 table of ours every column is its own dataset.
+Vec grid_column(const Cli& c, const std::string& name) {
+  const std::string& path = c.pos[0];
+  Vec v;
+  if (is_hdf5_file(path) && !c.has("--dataset") && h5_has_dataset(path, name)) {
+    std::vector<std::size_t> dims;
+    v = read_h5_array(path, name, dims);
+  } else {
+    v = read_column(path, name, c.str("--dataset")).values;
+  }
+  const std::size_t skip = c.count("--skip", 0);
+  if (skip >= v.size()) throw Error("--skip " + std::to_string(skip) + " leaves nothing of column " + name);
+  return Vec(v.begin() + static_cast<long>(skip), v.end());
+}
+
+// fix ave/cg's HDF5 (found by its 'u' and 'shape'), or rows x, y, fields of any table.
+Grid2D grid_input(const Cli& c, bool stress) {
+  const std::string& path = c.pos[0];
+  Grid2D g;
+  if (is_hdf5_file(path) && h5_has_dataset(path, "u") && h5_has_dataset(path, "shape")) {
+    g = read_cg_grid(path, c.str("--plane", "xy"), stress ? c.str("--stress", "stress_contact") : "", c.count("--skip", 0));
+    std::printf("%s: fix ave/cg grid, plane %s, %zu x %zu nodes%s\n", path.c_str(), c.str("--plane", "xy").c_str(), g.nx(), g.ny(),
+                stress ? (", stress from '" + c.str("--stress", "stress_contact") + "'").c_str() : "");
+  } else {
+    const auto name = [&](const char* opt, const char* def) { return c.str(opt, def); };
+    const Vec x = grid_column(c, name("--x", "x")), y = grid_column(c, name("--y", "y"));
+    Vec vx = grid_column(c, name("--vx", "vx")), vy = grid_column(c, name("--vy", "vy")), sxx, syy, szz, sxy;
+    std::vector<std::pair<const Vec*, Vec Grid2D::*>> f{{&vx, &Grid2D::vx}, {&vy, &Grid2D::vy}};
+    if (stress) {
+      sxx = grid_column(c, name("--sxx", "sxx"));
+      syy = grid_column(c, name("--syy", "syy"));
+      sxy = grid_column(c, name("--sxy", "sxy"));
+      f.insert(f.end(), {{&sxx, &Grid2D::sxx}, {&syy, &Grid2D::syy}, {&sxy, &Grid2D::sxy}});
+      try {
+        szz = grid_column(c, name("--szz", "szz"));
+        f.push_back({&szz, &Grid2D::szz});
+      } catch (const Error&) {
+        if (c.has("--szz")) throw;
+        std::printf("note: no szz column: szz = 0 (a planar assembly, as kneib2017's grains in a plane)\n");
+      }
+    }
+    g = grid_from_rows(x, y, f);
+    std::printf("%s: %zu x %zu nodes\n", path.c_str(), g.nx(), g.ny());
+  }
+  g.xlo = c.num("--xlo", g.xlo);
+  g.xhi = c.num("--xhi", g.xhi);
+  g.ylo = c.num("--ylo", g.ylo);
+  g.yhi = c.num("--yhi", g.yhi);
+  if (!(g.xhi > g.xlo) || !(g.yhi > g.ylo)) throw Error("the walls must satisfy xlo < xhi and ylo < yhi");
+  std::printf("walls: x in [%.6g, %.6g], y in [%.6g, %.6g]%s\n", g.xlo, g.xhi, g.ylo, g.yhi,
+              c.has("--xlo") || c.has("--xhi") || c.has("--ylo") || c.has("--yhi") ? "" : " (the grid's bounds: give --xlo ... for the cavity's)");
+  return g;
+}
+
+int cmd_vortex_centre(const Cli& c) {
+  const std::string wall = c.str("--wall", "right");
+  if (wall != "right" && wall != "left") throw Error("--wall: 'right' or 'left', not '" + wall + "'");
+  const Grid2D g = grid_input(c, false);
+  const Vortex v = vortex_centre(g, wall == "right");
+  std::printf("vortex centre (extremum of the stream function%s): x = %.6g, y = %.6g (node %zu, %zu; psi - psi_walls = %.4g)\n",
+              v.refined ? ", refined on its 3x3 stencil" : ", NOT refined: the step left the cell", v.x, v.y, v.i + 1, v.j + 1, v.psi);
+  std::printf("zero of the bilinear velocity nearby: x = %.6g, y = %.6g\n", v.x_zero, v.y_zero);
+  std::printf("l = distance from the %s wall = %.6g; L = %.6g; l/L = %.6f (kneib2017 Sec. III A, Fig. 3(a))\n", wall.c_str(), v.ell,
+              g.xhi - g.xlo, v.ell_over_l);
+  Table t{{"x", "y", "x_zero", "y_zero", "psi", "refined", "ell", "L", "ell_over_l", "xlo", "xhi"},
+          {{v.x}, {v.y}, {v.x_zero}, {v.y_zero}, {v.psi}, {v.refined ? 1.0 : 0.0}, {v.ell}, {g.xhi - g.xlo}, {v.ell_over_l}, {g.xlo}, {g.xhi}},
+          {{"source", c.pos[0]}, {"centre", "extremum of psi (vx = dpsi/dy, vy = -dpsi/dx), Newton step on its 3x3 stencil"},
+           {"ell", "distance of the centre from the " + wall + " wall"}}};
+  out_or_print(c, t);
+  if (c.has("--psi")) {
+    const Vec psi = stream_function(g);
+    Vec x, y;
+    for (std::size_t i = 0; i < g.nx(); ++i)
+      for (std::size_t j = 0; j < g.ny(); ++j) {
+        x.push_back(g.xs[i]);
+        y.push_back(g.ys[j]);
+      }
+    out_or_print(c, Table{{"x", "y", "vx", "vy", "psi"}, {x, y, g.vx, g.vy, psi}, {{"source", c.pos[0]}}}, "--psi");
+  }
+  return 0;
+}
+
+int cmd_local_rheology(const Cli& c) {
+  if (!c.has("--d") || !c.has("--rho-p")) throw Error("local-rheology needs --d (grain diameter) and --rho-p (grain density)");
+  const std::string reg = c.str("--region", "paper");
+  if (reg != "paper" && reg != "all") throw Error("--region: 'paper' or 'all', not '" + reg + "'");
+  const Grid2D g = grid_input(c, true);
+  const Region r = reg == "paper" ? paper_region(g) : Region{};
+  const Rheology rh = local_rheology(g, r, c.num("--d", 0), c.num("--rho-p", 0));
+  std::printf("region (%s): nodes %zu-%zu along x, %zu-%zu along y: %zu nodes, %zu without shear or pressure left out\n",
+              reg == "paper" ? "kneib2017 Fig. 19: upper half, central L/2" : "the whole grid", rh.i0 + 1, rh.i1 + 1, rh.j0 + 1, rh.j1 + 1,
+              rh.nodes, rh.skipped);
+  const std::vector<RheologyBin> bins = bin_rheology(rh.points, static_cast<int>(c.count("--nbins", 20)));
+  Vec x, y, dxx, dyy, dxy, nd, p, ns, I, ml, mn, al;
+  for (auto& q : rh.points)
+    for (auto [col, v] : {std::pair{&x, q.x}, {&y, q.y}, {&dxx, q.dxx}, {&dyy, q.dyy}, {&dxy, q.dxy}, {&nd, q.norm_d}, {&p, q.p},
+                          {&ns, q.norm_s}, {&I, q.i}, {&ml, q.mu_loc}, {&mn, q.mu_norm}, {&al, q.align}})
+      col->push_back(v);
+  const std::vector<std::pair<std::string, std::string>> meta{
+      {"source", c.pos[0]}, {"d", c.str("--d")}, {"rho_p", c.str("--rho-p")}, {"region", reg},
+      {"I", "kneib2017 Eq. 18: d sqrt(rho_p) ||D'|| / sqrt(p), ||A|| = sqrt(Tr(A A^T)/2), A' = A - Tr(A)/3 I_3"},
+      {"mu_loc", "Eq. 19 as printed: Tr(sigma' D')/3 / (p ||D'||)"}, {"mu_norm", "||sigma'|| / p"},
+      {"align", "Tr(sigma' D') / (2 ||sigma'|| ||D'||)"}};
+  out_or_print(c, Table{{"x", "y", "dxx", "dyy", "dxy", "norm_d", "p", "norm_s", "I", "mu_loc", "mu_norm", "align"},
+                        {x, y, dxx, dyy, dxy, nd, p, ns, I, ml, mn, al}, meta});
+  Table b{{"I_lo", "I_hi", "I", "mu_loc", "mu_loc_se", "mu_norm", "mu_norm_se", "n"}, {}, meta};
+  b.cols.resize(b.names.size());
+  for (auto& q : bins) {
+    const double row[] = {q.i_lo, q.i_hi, q.i_mean, q.mu_loc, q.mu_loc_se, q.mu_norm, q.mu_norm_se, double(q.n)};
+    for (std::size_t k = 0; k < b.cols.size(); ++k) b.cols[k].push_back(row[k]);
+  }
+  if (!c.has("--binned")) {
+    std::printf("%12s %10s %10s %10s %6s\n", "I", "mu_loc", "+-", "mu_norm", "n");
+    for (auto& q : bins) std::printf("%12.5g %10.5g %10.3g %10.5g %6zu\n", q.i_mean, q.mu_loc, q.mu_loc_se, q.mu_norm, q.n);
+  }
+  out_or_print(c, b, "--binned");
+  if (c.flag("--fit")) {  // Eq. 20 over the nodes, unweighted; a failed fit leaves the outputs written
+    LsqFit f;
+    try {
+      f = fit_sigmoid(I, ml);
+    } catch (const Error& e) {
+      std::printf("Eq. 20 fit over the nodes failed: %s\n", e.what());
+      return 1;
+    }
+    f.params[0].name = "mu1";
+    f.params[1].name = "mu2";
+    f.params[2].name = "I0";
+    std::printf("Eq. 20 on mu_loc over the %zu nodes:", I.size());
+    for (auto& q : f.params) std::printf("  %s = %.5g +- %.3g", q.name.c_str(), q.value, q.err);
+    std::printf("  (R^2 %.4f)\n", f.r2);
+  }
+  return 0;
+}
+
 const std::vector<Sub>& subs() {
   static const std::vector<Sub> s{
       {"pdf", "pdf IN --column C [--bins lin|log] [--nbins 50] [--lo X --hi X] [--raw] [--out F.csv|F.h5]",
@@ -410,6 +613,36 @@ const std::vector<Sub>& subs() {
       {"quad-eq9", "quad-eq9 --mu M --phi-min P [--degrees] [IN --phi C [--p C | --nbins 36]] [--out F]",
        "petit2017 Eq. 9 by GSL quadrature: P uniform, tabulated (--phi, --p) or the histogram of angle samples (--phi).",
        {"--mu", "--phi-min", "--phi", "--p", "--nbins", "--dataset", "--skip", "--out"}, {"--degrees"}, 0, 1, cmd_quad_eq9},
+      {"fit-sigmoid", "fit-sigmoid IN --x C --y C [--yerr C] [--names a,b,x0] [--out F] [--curve F]",
+       "Weighted nonlinear least squares of y = a + (b - a)/(1 + x0/x), x0 > 0 (kneib2017 Eq. 4: r1, r2, I_M^0;\n"
+       "Eq. 20: mu1, mu2, I0), fitted in (a, b, ln x0): standard errors from the covariance (scaled by chi2/dof\n"
+       "without --yerr), 95 % intervals (x0's in ln x0), chi2, R^2. --curve: the fit on 200 log-spaced x.",
+       {"--x", "--y", "--yerr", "--names", "--dataset", "--skip", "--out", "--curve"}, {}, 1, 1, cmd_fit_sigmoid},
+      {"fit-linear", "fit-linear IN --x C --y C [--yerr C] [--names c1,c2] [--out F]",
+       "Least-squares line y = c1 - c2 x (kneib2017 Eq. 5: F/(PLd) on l/L) with standard errors, 95 % intervals, R^2.",
+       {"--x", "--y", "--yerr", "--names", "--dataset", "--skip", "--out"}, {}, 1, 1, cmd_fit_linear},
+      {"vortex-centre", "vortex-centre IN [--plane xy|xz|yz] [--x C --y C --vx C --vy C] [--xlo X --xhi X] [--wall right|left]\n"
+       "                    [--skip N] [--out F] [--psi F]",
+       "The vortex centre of a mean velocity field on a regular grid: the extremum of the stream function\n"
+       "(vx = dpsi/dy, vy = -dpsi/dx, trapezoid rule from a corner), refined by a Newton step on its 3x3 stencil;\n"
+       "the zero of the bilinear velocity nearby as a cross-check; l = its distance from the right wall (the one\n"
+       "the lid moves towards) and l/L (kneib2017 Sec. III A). IN: fix ave/cg's HDF5 (mean over the windows after\n"
+       "--skip N; --plane picks the axes along and up, the third is averaged over) or a table with one row per\n"
+       "node (columns x, y, vx, vy by default; repeated nodes averaged). Walls default to the grid's bounds.",
+       {"--plane", "--x", "--y", "--vx", "--vy", "--xlo", "--xhi", "--ylo", "--yhi", "--wall", "--dataset", "--skip", "--out", "--psi"},
+       {}, 1, 1, cmd_vortex_centre},
+      {"local-rheology", "local-rheology IN --d D --rho-p R [--region paper|all] [--stress stress_contact] [--plane xy]\n"
+       "                    [--x --y --vx --vy --sxx --syy --szz --sxy C] [--xlo --xhi --ylo --yhi X] [--nbins 20]\n"
+       "                    [--out points.csv] [--binned bins.csv] [--fit]",
+       "Local inertial number and friction from mean velocity and stress grids (kneib2017 Eqs. 16-19): D = sym grad v\n"
+       "by finite differences over the region's nodes only, I = d sqrt(rho_p) ||D'|| / sqrt(p), mu_loc =\n"
+       "Tr(sigma' D')/3 / (p ||D'||), also ||sigma'||/p and the alignment of sigma' with D'; stress compression\n"
+       "positive (fix ave/cg's). Region 'paper' (Fig. 19): the upper half between the walls in y, the central L/2\n"
+       "in x. Per-node rows (--out) and means in log bins of I (--binned); --fit: Eq. 20 over the nodes. Inputs as\n"
+       "vortex-centre; a table without szz is taken as planar (szz = 0).",
+       {"--d", "--rho-p", "--region", "--stress", "--plane", "--x", "--y", "--vx", "--vy", "--sxx", "--syy", "--szz", "--sxy", "--xlo",
+        "--xhi", "--ylo", "--yhi", "--nbins", "--dataset", "--skip", "--out", "--binned"},
+       {"--fit"}, 1, 1, cmd_local_rheology},
   };
   return s;
 }

@@ -77,7 +77,41 @@ def cli(exe, work):
     e = run(exe, "pdf", os.path.join(work, "missing.txt"), "--column", "1", ok=False).stderr
     if "missing.txt" not in e:
         sys.exit(f"FAIL: missing file: {e}")
+    cavity(exe, work)
     print("cli: all subcommands answer --help; Eq. 7 fit through the CLI recovers the truth; errors name file and column")
+
+
+def cavity(exe, work):
+    """Issue 43's subcommands: --help, Eq. 4 through fit-sigmoid (truth r1 0.53, r2 0.86, I0 0.02
+    inside the 95 % intervals) and vortex-centre on a solid-body field centred off the nodes."""
+    for s in ("fit-sigmoid", "fit-linear", "vortex-centre", "local-rheology"):
+        if "usage: sable-analyze " + s not in run(exe, s, "--help").stdout:
+            sys.exit(f"FAIL: {s} --help")
+    rng = random.Random(4)
+    sig = os.path.join(work, "eq4.txt")
+    with open(sig, "w") as f:
+        f.write("# I_M F_over_PLd\n")
+        for i in range(25):
+            x = 1e-3 * 500 ** (i / 24)
+            f.write(f"{x:.12g} {0.53 + 0.33 / (1 + 0.02 / x) + rng.gauss(0, 0.01):.12g}\n")
+    out = os.path.join(work, "eq4.csv")
+    run(exe, "fit-sigmoid", sig, "--x", "I_M", "--y", "F_over_PLd", "--names", "r1,r2,I0", "--out", out)
+    p = params(out)
+    for name, truth in (("r1", 0.53), ("r2", 0.86), ("I0", 0.02)):
+        if not p[name + "_lo"] <= truth <= p[name + "_hi"]:
+            sys.exit(f"FAIL: fit-sigmoid {name} = {p[name]} [{p[name + '_lo']}, {p[name + '_hi']}] misses {truth}")
+    vel = os.path.join(work, "vel.csv")
+    with open(vel, "w") as f:  # cells of [0, 0.6] x [0, 0.4], rotation about (0.3137, 0.2281)
+        f.write("x,y,vx,vy\n")
+        for i in range(30):
+            for j in range(20):
+                x, y = (i + 0.5) * 0.02, (j + 0.5) * 0.02
+                f.write(f"{x!r},{y!r},{-2 * (y - 0.2281)!r},{2 * (x - 0.3137)!r}\n")
+    out = os.path.join(work, "vortex.csv")
+    run(exe, "vortex-centre", vel, "--out", out)
+    p = params(out)
+    if abs(p["x"] - 0.3137) > 1e-9 or abs(p["y"] - 0.2281) > 1e-9 or abs(p["ell_over_l"] - (0.6 - 0.3137) / 0.6) > 1e-9:
+        sys.exit(f"FAIL: vortex-centre found {p['x']}, {p['y']} (l/L {p['ell_over_l']}), not 0.3137, 0.2281")
 
 
 def figure(exe, work):

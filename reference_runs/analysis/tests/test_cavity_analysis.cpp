@@ -6,6 +6,7 @@
 #include <gsl/gsl_rng.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -180,6 +181,13 @@ TEST(CavityVortex, SolidBodyRotationCentreOffTheNodes) {
   EXPECT_NEAR(v.y_zero, yc, 1e-12);
   EXPECT_NEAR(v.ell_over_l, (0.6 - xc) / 0.6, 1e-12);
   EXPECT_NEAR(vortex_centre(g, false).ell, xc, 1e-12);  // from the left wall
+  // Near a corner and turning clockwise: psi's deepest interior node is the centre's, though
+  // nodes across the grid lie farther from psi's mean along the edges.
+  const double xd = 0.5237, yd = 0.0913;
+  fill_velocity(g, [&](double x, double y) { return std::pair{om * (y - yd), -om * (x - xd)}; });
+  const Vortex c = vortex_centre(g);
+  EXPECT_NEAR(c.x, xd, 1e-12);
+  EXPECT_NEAR(c.y, yd, 1e-12);
 }
 
 TEST(CavityVortex, RankineVortexCentreToAFractionOfACell) {
@@ -336,6 +344,39 @@ TEST(CavityRheology, BinnedMeansOverLogBinsInI) {
   }
   EXPECT_EQ(total, r.points.size());
   EXPECT_EQ(b.size(), 5u);
+}
+
+TEST(CavityRheology, Eq20RecoveredThroughTheLocalRheology) {
+  // u = A y^2 over the whole grid: gd = 2 A y (finite differences exact for a quadratic, one-sided
+  // ones too), I = d sqrt(rho) A y / sqrt(P) from 0.006 to 0.49; the shear stress set so that
+  // Eq. 19 gives kneib2017's mu_th(I) (mu1 0.12, mu2 0.40, I0 0.13): tau = 3/2 mu P (szz = P).
+  // Fitting Eq. 20 to the nodes returns the three parameters (rounding: 1e-9).
+  const double P = 1000, d = 1e-3, rho = 2500, A = 0.49 / 20 * std::sqrt(P) / (d * std::sqrt(rho));
+  Grid2D g = cells(10, 40, 0.5, 20.0 * 40 / 39.5);  // top node at y = 20
+  fill_velocity(g, [&](double, double y) { return std::pair{A * y * y, 0.0}; });
+  const std::size_t n = g.nx() * g.ny();
+  g.sxx.assign(n, P);
+  g.syy.assign(n, P);
+  g.szz.assign(n, P);
+  g.sxy.assign(n, 0.0);
+  for (std::size_t i = 0; i < g.nx(); ++i)
+    for (std::size_t j = 0; j < g.ny(); ++j) {
+      const double I = d * std::sqrt(rho) * A * g.ys[j] / std::sqrt(P);
+      g.sxy[g.at(i, j)] = 1.5 * sigmoid(I, 0.12, 0.40, 0.13) * P;
+    }
+  const Rheology r = local_rheology(g, Region{}, d, rho);
+  Vec I, mu;
+  for (auto& q : r.points) {
+    I.push_back(q.i);
+    mu.push_back(q.mu_loc);
+  }
+  const auto [lo, hi] = std::minmax_element(I.begin(), I.end());
+  EXPECT_NEAR(*hi, 0.49, 1e-12);
+  EXPECT_LT(*lo, 0.02);
+  const LsqFit f = fit_sigmoid(I, mu);
+  EXPECT_NEAR(param(f, "a").value, 0.12, 1e-9);
+  EXPECT_NEAR(param(f, "b").value, 0.40, 1e-9);
+  EXPECT_NEAR(param(f, "x0").value, 0.13, 1e-9);
 }
 
 TEST(CavityGrid, RowsInAnyOrderAndWindowsAveraged) {
