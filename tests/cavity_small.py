@@ -13,7 +13,10 @@ tiny size, judged against what is known without the deck:
   standard errors of its block means (a misapplied push moves the floor's mean off 1 by
   its error, e.g. 10 % against a 0.5 % error);
 - H/d measured within 5 % of Hd, in the deposit and under shear (the grain count is set
-  for H at the deposit's packing fraction 0.80; README);
+  for H at the deposit's packing fraction 0.80; README). Deposits at Hd 8 gave H/d 7.86 to
+  8.28 over seeds 1 2 3 5 7 11 13 and 8.26-8.37 for 4242, whose first 324 diameters give
+  2.6 % more area than the mean: seed 7 (1.001 of the mean area) keeps this check on the
+  deck's H rather than on one seed's sizes;
 - phi3D = 2/3 phi_2D between 0.45 and 0.60: phi_2D between 0.675 (looser than any
   settled frictional disk packing) and 0.90 (the paper's nominal Phi = 0.6 in 2D, close
   to the hexagonal 0.907 that a random packing stays below);
@@ -28,7 +31,7 @@ import sys
 
 sable, deck, work = sys.argv[1:4]
 os.makedirs(work, exist_ok=True)
-V = {"Hd": 8, "NU": 1, "NP": 1, "tshear": 0.3, "trec": 0.1, "seed": 4242, "dtfrac": 0.1, "nblk": 10}
+V = {"Hd": 8, "NU": 1, "NP": 1, "tshear": 0.3, "trec": 0.1, "seed": 7, "dtfrac": 0.1, "nblk": 10}
 failures = []
 
 
