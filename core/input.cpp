@@ -217,6 +217,8 @@ void Input::execute(const Args& a) {
   if (c == "jump") return cmd_jump(a);
   if (c == "if") return cmd_if(a);
   if (c == "print") return cmd_print(a);
+  // sable's addition (LAMMPS has only `quit`): a deck's own check stops with its line and message.
+  if (c == "error") a.fail_line("stopped by the deck: " + a.word(1, "the message to stop with"));
   if (c == "variable") return sim_.variables->define(a);
   if (c == "next") {
     a.need(2, "the name of a loop or index variable");

@@ -117,3 +117,18 @@ TEST(Input, ErrorsNameFileLineAndWord) {
     EXPECT_NE(std::string(e.what()).find("variable 'b' is not defined"), std::string::npos) << e.what();
   }
 }
+
+// `error MESSAGE` (sable's addition) stops at its own line with the deck's message, variables
+// substituted; through `if` it is a deck's input check, silent while the check holds.
+TEST(Input, ErrorCommandStopsAtItsLineWithTheDecksMessage) {
+  Deck d;
+  EXPECT_NO_THROW(d("variable NU equal 2\nif \"${NU} <= 0\" then \"error 'NU = ${NU}: expected NU > 0'\""));
+  try {
+    d("variable NP equal -1\nif \"${NP} <= 0\" then \"error 'NP = ${NP}: expected NP > 0'\"");
+    FAIL() << "expected an error";
+  } catch (const sable::SableError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("test:2:"), std::string::npos) << m;
+    EXPECT_NE(m.find("stopped by the deck: NP = -1: expected NP > 0"), std::string::npos) << m;
+  }
+}
