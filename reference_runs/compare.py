@@ -6,9 +6,11 @@
 
 The conventions (OBSERVABLE lines, thermo series, #@ directives) and the
 output layout are described in reference_runs/README.md. Exit status: 0 when
-every judged observable passes, 1 otherwise.
+every judged observable passes, 1 otherwise: also when an observable has no
+#@ tolerance or #@ unjudged line, when such a line decides no observable, and
+(before anything runs) when a stored result was made from other deck commands.
 """
-import argparse, datetime, fnmatch, json, math, os, shutil, subprocess, sys
+import argparse, datetime, fnmatch, hashlib, json, math, os, re, shutil, subprocess, sys
 
 import numpy as np
 
@@ -25,18 +27,30 @@ def show(path):
 
 # ---------------------------------------------------------------- deck header
 def parse_header(deck):
-    """#@ tolerance PATTERN rel X | abs X | sigma K | none (keys combine),
-    #@ seeds VAR V1 V2 ..., #@ coordination NAME DUMPFILE, #@ avetime NAME FILE."""
-    h = {'tol': [], 'seeds': None, 'coord': [], 'files': []}
+    """#@ tolerance PATTERN rel X | abs X | sigma K | offset D | none (keys combine),
+    #@ unjudged PATTERN REASON..., #@ seeds VAR V1 V2 ..., #@ coordination NAME
+    DUMPFILE, #@ avetime NAME FILE. Tolerance and unjudged lines form one list
+    (h['rules']: pattern, spec or None, reason, line number) in deck order."""
+    h = {'rules': [], 'seeds': None, 'coord': [], 'files': []}
     for n, line in enumerate(open(deck), 1):
         if not line.startswith('#@'):
             continue
         w = line[2:].split()
         if w[0] == 'tolerance' and len(w) >= 3:
-            spec = {} if w[2:] == ['none'] else dict(zip(w[2::2], map(float, w[3::2])))
-            if not set(spec) <= {'rel', 'abs', 'sigma'}:
-                sys.exit(f'{deck}:{n}: tolerance keys are rel, abs, sigma (or none)')
-            h['tol'].append((w[1], spec))
+            if w[2:] == ['none']:
+                h['rules'].append((w[1], None, 'tolerance none', n))
+                continue
+            if len(w) % 2:
+                sys.exit(f'{deck}:{n}: tolerance PATTERN then KEY VALUE pairs (rel, abs, sigma, offset) or none')
+            try:
+                spec = dict(zip(w[2::2], map(float, w[3::2])))
+            except ValueError:
+                sys.exit(f'{deck}:{n}: tolerance values must be numbers: {line.strip()}')
+            if not set(spec) <= {'rel', 'abs', 'sigma', 'offset'} or set(spec) == {'offset'}:
+                sys.exit(f'{deck}:{n}: tolerance keys are rel, abs, sigma, offset (with rel or abs), or none')
+            h['rules'].append((w[1], spec, None, n))
+        elif w[0] == 'unjudged' and len(w) >= 3:
+            h['rules'].append((w[1], None, ' '.join(w[2:]), n))
         elif w[0] == 'seeds' and len(w) >= 3:
             h['seeds'] = (w[1], w[2:])
         elif w[0] == 'coordination' and len(w) == 3:
@@ -44,17 +58,26 @@ def parse_header(deck):
         elif w[0] == 'avetime' and len(w) == 3:
             h['files'].append((w[1], w[2]))
         else:
-            sys.exit(f'{deck}:{n}: unknown or incomplete directive: {line.strip()}')
+            sys.exit(f'{deck}:{n}: unknown or incomplete directive (unjudged needs a reason): {line.strip()}')
     return h
 
 
-def tolerance(h, name):
-    """The last #@ tolerance line whose pattern matches name; None = not judged."""
-    spec = None
-    for pat, s in h['tol']:
+def rule(h, name):
+    """Index in h['rules'] of the last #@ tolerance / #@ unjudged line whose
+    pattern matches name; None when no line does (an error: every observable
+    is judged or explicitly left unjudged)."""
+    found = None
+    for k, (pat, _, _, _) in enumerate(h['rules']):
         if fnmatch.fnmatchcase(name, pat):
-            spec = s
-    return spec or None
+            found = k
+    return found
+
+
+def dead_rules(h, names):
+    """The rules that decide no observable: their pattern matches none, or a
+    later line overrides every match (e.g. *floor_3 where the names end in _mean)."""
+    used = {rule(h, n) for n in names}
+    return [r for k, r in enumerate(h['rules']) if k not in used]
 
 
 # ---------------------------------------------------------------- output parsing
@@ -234,7 +257,37 @@ def run_code(code, deck, outdir, variables, h, args):
 PACKAGE = {'liggghts': 'liggghts', 'yade': 'yade'}
 
 
-def load_stored(deckname, variables, code='liggghts'):
+def sha256(data):
+    return hashlib.sha256(data).hexdigest()
+
+
+# #@ directives that change what is run or read; the others (tolerance,
+# unjudged) and plain comments only change how results are judged or explained.
+RUN_DIRECTIVES = ('#@ seeds', '#@ coordination', '#@ avetime')
+
+
+def deck_hashes(deck):
+    """What a stored reference was made from: sha256 of the deck file, of its
+    commands (the deck without comment lines other than RUN_DIRECTIVES), and
+    of each file next to it that it names (STL meshes, data files)."""
+    folder, raw = os.path.dirname(os.path.abspath(deck)), open(deck, 'rb').read()
+    text = raw.decode(errors='replace')
+    commands = '\n'.join(l.rstrip() for l in text.splitlines()
+                         if not l.lstrip().startswith('#') or l.startswith(RUN_DIRECTIVES))
+    files = {}
+    for f in sorted(os.listdir(folder)):
+        p = os.path.join(folder, f)
+        if f != os.path.basename(deck) and not f.endswith('.in') and os.path.isfile(p) \
+                and re.search(r'(?<![\w.-])' + re.escape(f) + r'(?![\w.-])', commands):
+            files[f] = sha256(open(p, 'rb').read())
+    return {'deck': os.path.basename(deck), 'deck_sha256': sha256(raw),
+            'commands_sha256': sha256(commands.encode()), 'files_sha256': files}
+
+
+def load_stored(deck, deckname, variables, code='liggghts'):
+    """The stored results of code for this deck; refused when they were made
+    from other commands or files (a stored result of another deck is not a
+    reference). Returns (record, note)."""
     path = os.path.join(STORED, deckname, code, 'results.json')
     if not os.path.exists(path):
         sys.exit(f'no stored {code} reference for {deckname} ({show(path)}); '
@@ -243,15 +296,31 @@ def load_stored(deckname, variables, code='liggghts'):
     if rec.get('vars', {}) != variables:
         sys.exit(f'the stored reference {show(path)} was made with -var {rec.get("vars")}, '
                  f'not {variables}; run {code} itself for other values')
+    stored, now = rec.get('made_from'), deck_hashes(deck)
+    redo = f'run {code} on it with --update-reference (apt-get install {PACKAGE[code]})'
+    if stored is None:
+        sys.exit(f'the stored reference {show(path)} records no sha256 of the deck it came from, so nothing '
+                 f'says it is a reference for {show(deck)}; {redo}')
+    changed = (['its commands'] if stored.get('commands_sha256') != now['commands_sha256'] else []) + \
+        sorted(f for f in set(stored.get('files_sha256', {})) | set(now['files_sha256'])
+               if stored.get('files_sha256', {}).get(f) != now['files_sha256'].get(f))
+    if changed:
+        sys.exit(f'the stored reference {show(path)} was made from another deck: {", ".join(changed)} differ '
+                 f'by sha256 from {show(deck)} today (deck file {stored.get("deck_sha256", "?")[:12]} then, '
+                 f'{now["deck_sha256"][:12]} now); it is not a reference for this deck; {redo}')
+    note = ('same deck file (sha256 ' + now['deck_sha256'][:12] + ')' if stored.get('deck_sha256') == now['deck_sha256']
+            else 'deck file edited since, in comments or #@ tolerance/unjudged lines only (its commands\' sha256 '
+                 + now['commands_sha256'][:12] + ' is the stored one)')
     rec['code'] = code + '-stored'
-    return rec
+    return rec, note
 
 
-def store(rec, deckname, code='liggghts'):
+def store(rec, deck, deckname, code='liggghts'):
     d = os.path.join(STORED, deckname, code)
     os.makedirs(d, exist_ok=True)
     rec_tail = rec['log_tail']
     rec = {k: v for k, v in rec.items() if k != 'log_tail'}
+    rec['made_from'] = deck_hashes(deck)
     with open(os.path.join(d, 'results.json'), 'w') as f:
         json.dump(rec, f, indent=1, allow_nan=True)
     open(os.path.join(d, 'log_tail.txt'), 'w').write(rec_tail + '\n')
@@ -264,27 +333,34 @@ def fmt(v):
 
 
 def judge(h, name, val, ref):
-    """(difference, allowed, tolerance text, verdict) of code value vs reference record."""
-    spec = tolerance(h, name)
+    """(difference, |difference - offset|, allowed, tolerance text, verdict) of code value vs reference record."""
+    k = rule(h, name)
     r = ref['observables'].get(name)
+    missing = val is None or r is None or math.isnan(val) or math.isnan(r)
+    if k is None:
+        return (None if missing else val - r, None, None, 'no #@ tolerance or #@ unjudged line matches', 'FAIL (no tolerance)')
+    spec, reason = h['rules'][k][1], h['rules'][k][2]
     if spec is None:
-        return (None, None, 'none', 'info')
-    if val is None or r is None or math.isnan(val) or math.isnan(r):
-        return (None, None, '', 'FAIL (missing)')
-    allowed, text = spec.get('abs', 0.0), []
+        return (None if missing else val - r, None, None, f'unjudged: {reason}', 'unjudged')
+    if missing:
+        return (None, None, None, '', 'FAIL (missing)')
+    # offset: a known, signed difference value - reference (e.g. YADE's velocity half a step behind)
+    allowed, text, off = spec.get('abs', 0.0), [], spec.get('offset', 0.0)
     if 'rel' in spec:
         allowed += spec['rel'] * abs(r)
         text.append(f'rel {spec["rel"]:g}')
     if 'sigma' in spec:
         std = ref.get('std', {}).get(name)
         if std is None:
-            return (val - r, None, f'{spec["sigma"]:g} sigma', 'FAIL (reference has one run, no sigma)')
+            return (val - r, None, None, f'{spec["sigma"]:g} sigma', 'FAIL (reference has one run, no sigma)')
         allowed += spec['sigma'] * std
         text.append(f'{spec["sigma"]:g} x std {std:.3g}')
     if 'abs' in spec:
         text.append(f'abs {spec["abs"]:g}')
     text = ' + '.join(text) + f' = {allowed:.3g}'
-    return (val - r, allowed, text, 'pass' if abs(val - r) <= allowed else 'FAIL')
+    if 'offset' in spec:
+        text = f'offset {off:g} ± ({text}); gap - offset {val - r - off:.3g}'
+    return (val - r, abs(val - r - off), allowed, text, 'pass' if abs(val - r - off) <= allowed else 'FAIL')
 
 
 def report(deck, h, recs, outdir, notes):
@@ -299,23 +375,35 @@ def report(deck, h, recs, outdir, notes):
                      'the other codes ran once; a "sigma" tolerance allows K standard deviations')
     lines.append('')
     failed, ratios = False, {}
+    for pat, spec, reason, n in dead_rules(h, names):
+        kind = 'unjudged' if spec is None else 'tolerance'
+        lines.append(f'- **FAIL: {os.path.basename(deck)}:{n} `#@ {kind} {pat}` decides no observable** '
+                     '(its pattern matches none, or later lines override every match)')
+        failed = True
+    if any(rule(h, n) is None for n in names):
+        lines.append('- **FAIL: observables with no #@ tolerance or #@ unjudged line** (below)')
+    lines.append('')
     for rec in recs[:-1]:
         lines += [f'| observable | {rec["code"]} | {ref["code"]} | difference | rel. difference | tolerance | result |',
                   '|---|---|---|---|---|---|---|']
         for n in names:
             val, r = rec['observables'].get(n), ref['observables'].get(n)
-            diff, allowed, text, verdict = judge(h, n, val, ref)
+            diff, excess, allowed, text, verdict = judge(h, n, val, ref)
             rshow = fmt(r) + (f' ± {ref["std"][n]:.3g}' if n in ref.get('std', {}) else '')
             rel = fmt(diff / abs(r)) if diff is not None and r else '—'
             lines.append(f'| {n} | {fmt(val)} | {rshow} | {fmt(diff)} | {rel} | {text} | {verdict} |')
             failed |= verdict.startswith('FAIL')
+            # unjudged rows show the gap but never count, and stay out of the ratio plot
             if allowed:
-                ratios.setdefault(rec['code'], {})[n] = abs(diff) / allowed
+                ratios.setdefault(rec['code'], {})[n] = excess / allowed
         lines.append('')
     for rec in recs:
         for e in rec.get('errors', []):
             lines.append(f'- **{rec["code"]} run failed**: `{e}`')
             failed = True
+    judged = sum(1 for n in names if rule(h, n) is not None and h['rules'][rule(h, n)][1] is not None)
+    unjudged = sum(1 for n in names if rule(h, n) is not None and h['rules'][rule(h, n)][1] is None)
+    lines.append(f'\n{judged} observables judged, {unjudged} shown unjudged (not counted)')
     lines.append(f'\n**{"FAIL" if failed else "PASS"}**')
     os.makedirs(outdir, exist_ok=True)
     open(os.path.join(outdir, 'comparison.md'), 'w').write('\n'.join(lines) + '\n')
@@ -384,16 +472,21 @@ def main():
     h = parse_header(deck)
     variables = dict(args.var)
     outdir = os.path.join(args.out, deckname)
-    notes, recs = [], []
+    notes, recs, codes = [], [], []
     for code in args.codes.split(','):
         if code in PACKAGE and not shutil.which(code):
             print(f'{code} is not on PATH: install it with `apt-get install {PACKAGE[code]}` (Debian/Ubuntu); '
                   'using the stored reference results instead', flush=True)
             code += '-stored'
-        if code.endswith('-stored') and code[:-7] in PACKAGE:
-            recs.append(load_stored(deckname, variables, code[:-7]))
+        codes.append(code)
+    # stored results first: one made from another deck stops the comparison before anything runs
+    stored = {c: load_stored(deck, deckname, variables, c[:-7]) for c in codes if c.endswith('-stored') and c[:-7] in PACKAGE}
+    for code in codes:
+        if code in stored:
+            rec, note = stored[code]
+            recs.append(rec)
             notes.append(f'{code}: results stored in reference_runs/reference/{deckname}/{code[:-7]}/ '
-                         f'({code[:-7]} run of {recs[-1].get("date", "?")}), not run now')
+                         f'({code[:-7]} run of {rec.get("date", "?")}; {note}), not run now')
             continue
         if code not in ('sable', 'liggghts', 'yade'):
             sys.exit(f'unknown code {code}: use sable, liggghts, liggghts-stored, yade or yade-stored')
@@ -406,7 +499,7 @@ def main():
         if code in PACKAGE and args.update_reference:
             if recs[-1]['errors']:
                 sys.exit(f'{code} failed, reference not stored: ' + '; '.join(recs[-1]['errors']))
-            store(recs[-1], deckname, code)
+            store(recs[-1], deck, deckname, code)
     if len(recs) < 2:  # one code: just ran it (e.g. to store a reference)
         sys.exit(1 if recs[0]['errors'] else 0)
     sys.exit(1 if report(deck, h, recs, outdir, notes) else 0)

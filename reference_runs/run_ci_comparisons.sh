@@ -2,7 +2,9 @@
 # CI hook: the collision, incline, mesh-wall and group-motion comparisons, sable against real LIGGGHTS
 # when `liggghts` is on PATH, else against the stored LIGGGHTS results in
 # reference_runs/reference/; then the yade_* decks against YADE or its stored
-# results. Exits non-zero if any observable fails.
+# results. Exits non-zero if any judged observable fails, an observable has no
+# #@ tolerance or #@ unjudged line, a line decides none, or a stored result was
+# made from another deck (compare.py refuses it: sha256 of the deck's commands).
 # Usage: bash reference_runs/run_ci_comparisons.sh [SABLE_BINARY]  (default build/sable)
 set -u
 cd "$(dirname "$0")/.."
@@ -17,8 +19,8 @@ for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_ro
   "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
-  echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) (build-compare/$deck/comparison.md)"
-  [ $rc = 0 ] || { status=1; grep -E "FAIL|failed|^no |Error" "/tmp/compare_$deck.$$.txt" | head -n 30; }
+  echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) ($(grep -h 'observables judged' "/tmp/compare_$deck.$$.txt"); build-compare/$deck/comparison.md)"
+  [ $rc = 0 ] || { status=1; grep -E "FAIL|failed|^no |Error|stored reference" "/tmp/compare_$deck.$$.txt" | head -n 30; }
   rm -f "/tmp/compare_$deck.$$.txt"
 done
 # YADE comparisons (sable --export-yade): against YADE where installed, else its stored results.
@@ -30,8 +32,8 @@ for deck in yade_collisions_hertz yade_linear_2d yade_wall yade_wall_avetime yad
   "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$yref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
-  echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) (build-compare/$deck/comparison.md)"
-  [ $rc = 0 ] || { status=1; grep -E "FAIL|failed|^no |Error" "/tmp/compare_$deck.$$.txt" | head -n 30; }
+  echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) ($(grep -h 'observables judged' "/tmp/compare_$deck.$$.txt"); build-compare/$deck/comparison.md)"
+  [ $rc = 0 ] || { status=1; grep -E "FAIL|failed|^no |Error|stored reference" "/tmp/compare_$deck.$$.txt" | head -n 30; }
   rm -f "/tmp/compare_$deck.$$.txt"
 done
 exit $status
