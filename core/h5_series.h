@@ -6,18 +6,34 @@
 
 namespace sable {
 
-// An HDF5 file of growing datasets (rows appended during the run). The file is
-// open only while a row is written: each append opens it in SWMR-write mode,
-// extends, writes, flushes and closes it. So the file of a killed run opens
-// normally (h5py: File(name, 'r')) unless the kill fell inside an append, and
-// then still opens with H5F_ACC_SWMR_READ (h5py: File(name, 'r', swmr=True)).
-// Append the step dataset last: its length is the number of complete records.
+// An HDF5 file of growing datasets (rows appended during the run). Rows are
+// kept in memory and written in blocks, each in one open of the file in
+// SWMR-write mode (extend, write, flush each dataset, close). A record ends
+// with an append to the last-declared series (the step: declare it last, it
+// is written last and its length counts the complete records). Blocks hold
+// 1, 2, 4, ... records, then block_rows (kBlockRows) each: early records
+// reach the disk at once, a long series costs one open per block_rows
+// records. A block is also written at a record's end once kBlockBytes are
+// buffered, at flush(), at flush_all() (Simulation::flush_outputs: the end
+// of every run and before an error stops one) and at destruction. The rows
+// written are those a row by row write gives, bit for bit.
+// The file is closed between blocks, so a killed run's file opens normally
+// (h5py: File(name, 'r')) and holds every record but the buffered ones: a
+// kill loses fewer than block_rows records, and no more than the file
+// already holds, plus the one being appended. A kill inside a block's write
+// leaves the file readable with H5F_ACC_SWMR_READ (h5py: swmr=True).
 class H5Series {
  public:
-  explicit H5Series(const std::string& path);  // creates (truncates) the file
+  // Records per block, chosen so that a row every step costs a small run < 5 %
+  // (input_scripts/bench/h5_record.in, figures in history.md).
+  static constexpr std::size_t kBlockRows = 4096;
+  static constexpr std::size_t kBlockBytes = std::size_t(1) << 20;  // bounds the memory of big rows (grids)
+
+  // Creates (truncates) the file. block_rows: records per block (1: every record written at once).
+  explicit H5Series(const std::string& path, std::size_t block_rows = kBlockRows);
   H5Series(const H5Series&) = delete;
   H5Series& operator=(const H5Series&) = delete;
-  ~H5Series();
+  ~H5Series();  // writes the buffered rows (a failure is printed: destructors do not throw)
   // Before start(): root attributes, constant datasets, growing datasets.
   void attribute(const std::string& name, const std::vector<std::string>& values);
   void constant(const std::string& name, const std::vector<double>& values);
@@ -25,6 +41,11 @@ class H5Series {
   void start();
   void append(int series, const double* row);
   void append(int series, std::int64_t value);  // integer series of scalars (steps)
+  void flush();  // writes the buffered rows now (nothing to do: the file is not opened)
+  // flush() on every H5Series alive. Inside an exception handler a failure is
+  // printed, not thrown, so the error being handled stays the one reported.
+  static void flush_all();
+  std::size_t buffered_records() const { return records_; }
   const std::string& path() const { return path_; }
 
  private:
@@ -32,12 +53,17 @@ class H5Series {
     std::string name;
     std::vector<unsigned long long> shape;  // row shape
     bool integer;
-    unsigned long long rows = 0;
+    unsigned long long rows = 0;            // rows in the file
+    std::size_t row_bytes = 0;
+    std::vector<unsigned char> pending;     // rows not yet written, as appended
   };
   std::string path_;
   std::int64_t file_ = -1;
+  bool started_ = false;
+  std::size_t block_rows_, block_ = 1, records_ = 0, pending_bytes_ = 0;  // block_: records in the next block
   std::vector<Series> series_;
   void append_raw(int series, const void* row);
+  bool write_series(std::int64_t file, Series& s);
 };
 
 }  // namespace sable

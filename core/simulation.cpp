@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/h5_series.h"
 #include "core/input.h"
 #include "core/shrink_wrap.h"
 #include "core/threads.h"
@@ -110,6 +111,7 @@ void Simulation::flush_outputs() {
   if (screen) std::fflush(screen);
   if (logfile) std::fflush(logfile);
   for (auto& d : dumps) d->flush();
+  H5Series::flush_all();  // buffered HDF5 rows (core/h5_series.h)
 }
 
 // True when every velocity (and, with `positions`, every position) is finite.

@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
 """A run killed with SIGKILL leaves HDF5 output that h5py opens plainly (issue 24, item 3).
 
-sable keeps its HDF5 files closed between records (core/h5_series.h), so the file's
-superblock is marked consistent at every instant except inside an append. The run is
-killed after a few records; h5py.File(path, 'r') must open it without h5clear and the
-`step` dataset must hold whole records that match the text file written alongside.
-A kill can land inside an append (then only an SWMR read opens the file); that window
-is a few tens of microseconds per 200 steps, so a plain open is retried with another
-delay and the test fails only if it never succeeds. Exit 77 (skipped) without h5py.
+sable keeps its HDF5 files closed between blocks of records (core/h5_series.h), so the
+file's superblock is marked consistent at every instant except inside a block's write.
+The deck records every step (issue 43: rows are buffered, blocks of 1, 2, 4, ... then
+4096 records); it is killed once the text file written alongside holds more than two
+full blocks. h5py.File(path, 'r') must open the file without h5clear; its `step`
+dataset must hold whole blocks (1 + 2 + ... + 2048 = 4095 records, then multiples of
+4096 more) that match the text file, and lack at most the records of one block (4096):
+what a kill may lose. A kill can land inside a block's write (then only an SWMR read
+opens the file); that window is well under a millisecond per block, so a plain open is
+retried with another delay and the test fails only if it never succeeds. Exit 77
+(skipped) without h5py.
 """
 import os
 import signal
@@ -15,6 +19,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+BLOCK = 4096  # H5Series::kBlockRows
+FIRST = BLOCK - 1  # records in the doubling blocks 1, 2, ..., BLOCK / 2
 
 try:
     import h5py
@@ -44,7 +51,7 @@ set group all diameter 0.002 density 2500
 fix grav all gravity 9.81 vector 0 0 -1
 fix integr all nve/sphere
 compute k all ke
-fix at all ave/time 200 1 200 c_k f_floor[3] file ave.txt hdf5 ave.h5
+fix at all ave/time 1 1 1 c_k f_floor[3] file ave.txt hdf5 ave.h5
 run 100000000
 """
 
@@ -67,10 +74,10 @@ def attempt(sable, delay):
     p = subprocess.Popen([sable, "-in", "kill.in", "-log", "none", "-screen", "none"], cwd=work, env=env)
     h5 = os.path.join(work, "ave.h5")
     t0 = time.time()
-    while time.time() - t0 < 120:  # wait for at least three records, then the extra delay
+    while time.time() - t0 < 240:  # wait for more than two full blocks, then the extra delay
         if p.poll() is not None:
             sys.exit("sable ended by itself before the kill (status %s)" % p.returncode)
-        if os.path.exists(os.path.join(work, "ave.txt")) and len(text_records(os.path.join(work, "ave.txt"))) >= 3:
+        if os.path.exists(os.path.join(work, "ave.txt")) and len(text_records(os.path.join(work, "ave.txt"))) > FIRST + 2 * BLOCK:
             break
         time.sleep(0.05)
     time.sleep(delay)
@@ -86,11 +93,13 @@ def attempt(sable, delay):
             print("  ... opens with swmr=True: %d records" % len(f["step"]))
         return False
     text = text_records(os.path.join(work, "ave.txt"))
-    assert len(steps) >= 3, steps
-    assert steps == text[:len(steps)], (steps, text)  # text is written first; HDF5 may lag by one record
+    assert len(steps) >= FIRST + 2 * BLOCK, len(steps)
+    assert (len(steps) - FIRST) % BLOCK == 0, "not whole blocks: %d records" % len(steps)
+    assert steps == text[:len(steps)], (steps[-3:], text[len(steps) - 3:len(steps)])  # the text is written first
+    assert len(text) - len(steps) <= BLOCK, "the kill lost %d records" % (len(text) - len(steps))
     assert values.shape[0] >= len(steps) and values.shape[1] == 2, values.shape
-    print("delay %.2f s: opened plainly, %d records (steps %d..%d), text has %d" %
-          (delay, len(steps), steps[0], steps[-1], len(text)))
+    print("delay %.2f s: opened plainly, %d records (steps %d..%d), text has %d (%d lost)" %
+          (delay, len(steps), steps[0], steps[-1], len(text), len(text) - len(steps)))
     return True
 
 
