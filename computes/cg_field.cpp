@@ -22,6 +22,19 @@ double gauss_norm(double w) {
   return 1.0 / (s * s * s * (std::pow(2.0 * kPi, 1.5) * gauss_inside() - 36.0 * kPi * std::exp(-4.5)));
 }
 
+// Over the plane: int 2 pi r (1 + 3t)(1 - t)^3 dr = pi w^2 / 5 (t = r/w), and
+// int 2 pi r (exp(-r^2/2s^2) - e^-4.5) dr over r < 3s = pi s^2 (2 (1 - e^-4.5) - 9 e^-4.5).
+double lucy_norm_2d(double w) { return 5.0 / (kPi * w * w); }
+double gauss_norm_2d(double w) {
+  const double s = 0.5 * w;
+  return 1.0 / (kPi * s * s * (2.0 - 11.0 * std::exp(-4.5)));
+}
+
+double norm(CgKernel::Kind kind, double w, int dim) {
+  if (dim == 2) return kind == CgKernel::Kind::Lucy ? lucy_norm_2d(w) : gauss_norm_2d(w);
+  return kind == CgKernel::Kind::Lucy ? lucy_norm(w) : gauss_norm(w);
+}
+
 // int (d^2 + u^2)^(3/2) du from u0 to u1 (d2 = d^2): the algebraic part
 // u (2u^2 + 5d^2) r / 8 at both ends, plus 3 d^4 / 8 (asinh(u1/d) - asinh(u0/d)),
 // the latter as one log of (u + r) ratios (u + r = d^2 / (r - u) for u < 0: no cancellation).
@@ -37,7 +50,8 @@ double cube_root_integral(double d2, double u0, double u1) {
 
 }  // namespace
 
-CgKernel::CgKernel(Kind kind, double w) : kind_(kind), w_(w), norm_(kind == Kind::Lucy ? lucy_norm(w) : gauss_norm(w)) {}
+CgKernel::CgKernel(Kind kind, double w, int dimension)
+    : kind_(kind), w_(w), dim_(dimension == 2 ? 2 : 3), norm_(norm(kind, w, dim_)) {}
 
 double CgKernel::value(double r) const {
   if (r >= support()) return 0.0;
@@ -82,7 +96,8 @@ double CgKernel::line(const double q[3], const double b[3], double L) const {
   return along(d2, u0, u1) / L;
 }
 
-CgField::CgField(const CgKernel& k, const double lo[3], const double hi[3], const int n[3]) : kern_(k) {
+CgField::CgField(const CgKernel& k, const double lo[3], const double hi[3], const int n[3])
+    : kern_(k), plane_(k.dimension() == 2) {
   for (int a = 0; a < 3; ++a) {
     lo_[a] = lo[a];
     n_[a] = n[a];
@@ -94,13 +109,17 @@ CgField::CgField(const CgKernel& k, const double lo[3], const double hi[3], cons
 void CgField::clear() { std::fill(acc_.begin(), acc_.end(), 0.0); }
 
 bool CgField::span(const double a[3], const double b[3], double reach, int i0[3], int i1[3]) const {
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < (plane_ ? 2 : 3); ++k) {
     // Node i is at lo + (i + 1/2) h; clamp in floating point first (far grains must not overflow an int).
     const double f0 = std::ceil((a[k] - reach - lo_[k]) / h_[k] - 0.5);
     const double f1 = std::floor((b[k] + reach - lo_[k]) / h_[k] - 0.5);
     i0[k] = static_cast<int>(std::clamp(f0, 0.0, static_cast<double>(n_[k])));
     i1[k] = static_cast<int>(std::clamp(f1, -1.0, static_cast<double>(n_[k] - 1)));
     if (i1[k] < i0[k]) return false;
+  }
+  if (plane_) {  // z does not count in 2D: the whole column
+    i0[2] = 0;
+    i1[2] = n_[2] - 1;
   }
   return true;
 }
@@ -116,7 +135,7 @@ void CgField::add_grain(const double x[3], const double v[3], double m, double v
     for (int j = i0[1]; j <= i1[1]; ++j) {
       const double dy = coord(1, j) - x[1];
       for (int k = i0[2]; k <= i1[2]; ++k) {
-        const double dz = coord(2, k) - x[2];
+        const double dz = plane_ ? 0.0 : coord(2, k) - x[2];
         const double r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= R * R) continue;
         const double W = kern_.value(std::sqrt(r2));
@@ -130,7 +149,8 @@ void CgField::add_grain(const double x[3], const double v[3], double m, double v
   }
 }
 
-void CgField::add_contact(const double x[3], const double b[3], const double f[3]) {
+void CgField::add_contact(const double x[3], const double bw[3], const double f[3]) {
+  const double b[3] = {bw[0], bw[1], plane_ ? 0.0 : bw[2]};  // 2D: the branch in the plane
   double lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
     lo[k] = std::min(x[k], x[k] - b[k]);
@@ -150,7 +170,7 @@ void CgField::add_contact(const double x[3], const double b[3], const double f[3
       const double ex = qx + t * b[0], ey = qy + t * b[1];
       if (ex * ex + ey * ey >= R * R) continue;
       for (int k = i0[2]; k <= i1[2]; ++k) {
-        const double q[3] = {qx, qy, coord(2, k) - x[2]};
+        const double q[3] = {qx, qy, plane_ ? 0.0 : coord(2, k) - x[2]};
         const double s = kern_.line(q, b, L);
         if (s == 0.0) continue;
         double* a = &acc_[((static_cast<std::size_t>(i) * n_[1] + j) * n_[2] + k) * kAcc];

@@ -12,6 +12,13 @@
 //          A making the integral 1. Without the shift the jump at the cut
 //          (1.1 % of the peak) made a lattice's phi err by 1.6 % at w = 2 d,
 //          against 0.3 % with it.
+// In 2D (dimension 2) the same shapes are normalised over the plane
+// (integral over area = 1), r the distance in the x-y plane:
+//   lucy:  W = 5/(pi w^2) (1 + 3 r/w) (1 - r/w)^3;
+//   gauss: A = 1 / (pi s^2 (2 - 11 exp(-4.5))), kneib2017 App. C's Gaussian
+//          of sd d/2 for w = d, cut and lowered as in 3D.
+// So a field is per unit area: phi the area fraction, rho in kg/m^2, the
+// stresses in N/m (force per length).
 // The line integral int_0^1 W(q + s b) ds is exact (closed form of both
 // kernels along a line), not a quadrature: clip the line to the support,
 // then the antiderivative in the distance along the line.
@@ -24,9 +31,10 @@ namespace sable {
 class CgKernel {
  public:
   enum class Kind { Lucy, Gauss };
-  explicit CgKernel(Kind kind = Kind::Lucy, double w = 1);
+  explicit CgKernel(Kind kind = Kind::Lucy, double w = 1, int dimension = 3);
   Kind kind() const { return kind_; }
   double w() const { return w_; }  // width
+  int dimension() const { return dim_; }  // 2: normalised over the plane
   double support() const { return kind_ == Kind::Lucy ? w_ : 1.5 * w_; }
   double value(double r) const;  // W(r)
   // int_0^1 W(|q + s b|) ds: the share of a branch b starting at q from the node.
@@ -37,13 +45,17 @@ class CgKernel {
 
  private:
   Kind kind_;
-  double w_, norm_;  // norm_: the factor making the integral 1
+  double w_;
+  int dim_;
+  double norm_;  // the factor making the integral 1
   // int W(sqrt(d2 + u^2)) du from u0 to u1 (both inside the support).
   double along(double d2, double u0, double u1) const;
 };
 
 // Nodes at cell centres: x_i = lo + (i + 1/2) (hi - lo) / n per axis, node
-// index (i ny + j) nz + k (z fastest: a C array [nx][ny][nz]).
+// index (i ny + j) nz + k (z fastest: a C array [nx][ny][nz]). With a 2D
+// kernel, positions and branches count in the x-y plane only (their z parts
+// dropped): every node of a column gets the same values.
 // Fields per node, in this order (kNames):
 //   rho, phi, u (3), stress (6), stress_contact (6), stress_kinetic (6);
 // tensors as the 6 components xx yy zz xy xz yz of the symmetrised tensor.
@@ -64,7 +76,7 @@ class CgField {
   const CgKernel& kernel() const { return kern_; }
 
   void clear();
-  // A grain at x (grid coordinates) with velocity v, mass m and volume vol.
+  // A grain at x (grid coordinates) with velocity v, mass m and volume vol (2D: its area).
   void add_grain(const double x[3], const double v[3], double m, double vol);
   // A contact of grain centre x with branch b (from the partner's centre or the
   // wall point to x) and force f on the grain: sym(f (x) b) along the branch.
@@ -74,6 +86,7 @@ class CgField {
 
  private:
   CgKernel kern_;
+  bool plane_;  // a 2D kernel: z dropped
   double lo_[3], h_[3];
   int n_[3];
   // Per node: m W, V W, m v W (3), m v v W (6), contact (6).

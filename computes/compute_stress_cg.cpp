@@ -60,11 +60,16 @@ void ComputeStressCG::parse(const Args& a) {
   if (!have_grid) a.fail(a.size(), "'grid xlo xhi nx ylo yhi ny zlo zhi nz'");
   const double nodes = static_cast<double>(n[0]) * n[1] * n[2];
   if (nodes * CgField::kFields > 2e8) a.fail_line("the grid has too many nodes (" + std::to_string(nodes) + ")");
-  field_ = std::make_unique<CgField>(CgKernel(kind, w), lo_, hi_, n);
+  field_ = std::make_unique<CgField>(CgKernel(kind, w, sim.domain.dimension), lo_, hi_, n);
 }
 
 void ComputeStressCG::init() {
   invoked_step = -1;  // atoms may have changed between runs at the same step
+  const CgField& g = *field_;
+  if (g.kernel().dimension() != sim.domain.dimension) {  // a 2D box made after this compute
+    const CgKernel k(g.kernel().kind(), g.kernel().w(), sim.domain.dimension);
+    field_ = std::make_unique<CgField>(k, lo_, hi_, g.shape());
+  }
   frame_ = nullptr;
   if (frame_id_.empty()) return;
   Fix* f = sim.find_fix(frame_id_);
@@ -112,13 +117,17 @@ void ComputeStressCG::reach_box() {
     reach_lo_[k] = frame_ ? INFINITY : lo[k];
     reach_hi_[k] = frame_ ? -INFINITY : hi[k];
   }
-  if (!frame_) return;
-  for (int c = 0; c < 8; ++c) {  // the world box around the moved grid's corners
-    const Vec3d p = frame_->mesh().to_world({c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]});
-    for (int k = 0; k < 3; ++k) {
-      reach_lo_[k] = std::min(reach_lo_[k], p[k]);
-      reach_hi_[k] = std::max(reach_hi_[k], p[k]);
+  if (frame_)
+    for (int c = 0; c < 8; ++c) {  // the world box around the moved grid's corners
+      const Vec3d p = frame_->mesh().to_world({c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]});
+      for (int k = 0; k < 3; ++k) {
+        reach_lo_[k] = std::min(reach_lo_[k], p[k]);
+        reach_hi_[k] = std::max(reach_hi_[k], p[k]);
+      }
     }
+  if (g.kernel().dimension() == 2) {  // a 2D kernel does not look at z
+    reach_lo_[2] = -INFINITY;
+    reach_hi_[2] = INFINITY;
   }
 }
 
@@ -150,18 +159,21 @@ void ComputeStressCG::evaluate() {
   reach_box();
   CgField& g = *field_;
   g.clear();
+  const bool plane = g.kernel().dimension() == 2;
   const Atoms& at = sim.atoms;
   for (std::size_t i = 0; i < at.n; ++i) {
     if (!(at.mask[i] & groupbit)) continue;
     const double* x = &at.x[3 * i];
     const double r = at.radius[i];
+    // 2D: the grain's area in the plane, pi r^2, for disks and for spheres (their equator) alike.
+    const double vol = plane ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
     double v[3];
     dir_to_grid(&at.v[3 * i], v);
     images(x, x, [&](const double s[3]) {
       const double xs[3] = {x[0] + s[0], x[1] + s[1], x[2] + s[2]};
       double xg[3];
       to_grid(xs, xg);
-      g.add_grain(xg, v, at.rmass[i], 4.0 / 3.0 * std::numbers::pi * r * r * r);
+      g.add_grain(xg, v, at.rmass[i], vol);
     });
   }
   // A contact of grain i: branch b (world), force f on i.

@@ -12,7 +12,8 @@
 //     samples (samples in the window), step (its last step);
 //   constants: x, y, z (node coordinates along each axis), shape (nx ny nz),
 //     bounds (xlo xhi ylo yhi zlo zhi), width, support;
-//   attributes: fields, stress_components, kernel, frame, nodes, compute, fix.
+//   attributes: fields, stress_components, kernel, normalised (per volume, or
+//     per area in 2D: the units), frame, nodes, compute, fix.
 // f_ID[i]: the last window's mean, laid out as the compute's vector.
 #include <memory>
 
@@ -89,6 +90,9 @@ class FixAveCG : public Fix {
     h5_->attribute("fields", names);
     h5_->attribute("stress_components", {"xx", "yy", "zz", "xy", "xz", "yz"});
     h5_->attribute("kernel", {g.kernel().name()});
+    h5_->attribute("normalised", {g.kernel().dimension() == 2
+                                      ? "per area (dimension 2): rho kg/m^2, phi area fraction, stresses N/m"
+                                      : "per volume: rho kg/m^3, phi volume fraction, stresses Pa"});
     h5_->attribute("frame", {cg_->frame()});
     h5_->attribute("nodes", {"cell centres lo + (i + 1/2) (hi - lo) / n; arrays [nx][ny][nz]"});
     h5_->attribute("compute", {cg_->args.joined()});
