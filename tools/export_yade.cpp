@@ -78,6 +78,7 @@ class YadeExporter {
     int axis;
     double pos;
     int material = -1;  // YADE material id
+    int mask = 1;       // YADE groupMask: 1 touches every grain; a bit of its own for a group's wall
   };
   std::vector<Wall> walls_;
   std::string model_;                       // hertz or linear/kneib
@@ -120,6 +121,8 @@ class YadeExporter {
   void bodies();
   void fixes();
   void fix_wall(const Fix& f);
+  int group_mask(const Fix& f);
+  void grain_masks(const std::vector<std::size_t>& order);
   void engines();
   std::string translate(const std::string& expr, const Args& at, int depth = 0) const;
   std::string term(const std::string& name, const std::string& index, const Args& at, int depth) const;
@@ -663,10 +666,12 @@ void YadeExporter::fix_wall(const Fix& f) {
   if (k + 5 < a.size()) a.fail(k + 5, "nothing after the plane position (export-yade)");
   wall_of_fix_[f.id] = static_cast<int>(walls_.size());
   walls_.push_back({&f, type, plane[0] - 'x', a.num(k + 4, "a position")});
+  if (f.groupbit != 1u) walls_.back().mask = group_mask(f);
 }
 
 // fix ID group wall/gran model hertz tangential history mesh n_meshes K meshes ID...
 void YadeExporter::fix_wall_mesh(const Args& a, std::size_t k) {
+  if (a[1] != "all") a.fail(1, "all (export-yade: a mesh wall acting on a group is not translated)");
   if (model_ != "hertz") a.fail(4, "hertz (export-yade translates mesh walls with the Hertz law only)");
   if (a.word(k + 1, "n_meshes") != "n_meshes") a.fail(k + 1, "n_meshes");
   const long n = a.integer(k + 2, "the number of meshes");
@@ -780,7 +785,7 @@ void YadeExporter::walls() {
   for (const Wall& w : walls_)
     py_ << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis
         << ", sense=0, material=" << (w.material >= 0 ? std::to_string(w.material) : "_mats[" + std::to_string(w.type - 1) + "]")
-        << ")))  # fix " << w.fix->id << "\n";
+        << (w.mask != 1 ? ", mask=" + std::to_string(w.mask) : "") << ")))  # fix " << w.fix->id << "\n";
 }
 
 // The grains, by atom id, with sable's own mass and moment of inertia.
@@ -807,9 +812,11 @@ void YadeExporter::bodies() {
     for (int k = 0; k < 3; ++k) py_ << ", " << num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
     py_ << ", " << (fixed_[i] ? "True" : "False") << ", '" << uniq << "'),\n";
   }
-  py_ << "]\n_aid, _m, _type = {}, {}, {}\n"
+  py_ << "]\n";
+  grain_masks(order);
+  py_ << "_aid, _m, _type = {}, {}, {}\n"
          "for (i, t, x, y, z, r, m, I, vx, vy, vz, wx, wy, wz, fixed, dofs) in _grains:\n"
-         "    b = utils.sphere((x, y, z), r, material=_mats[t - 1], fixed=fixed)\n"
+         "    b = utils.sphere((x, y, z), r, material=_mats[t - 1], fixed=fixed, mask=_mask.get(i, 1))\n"
          "    b.state.mass, b.state.inertia = m, Vector3(I, I, I)\n"
          "    b.state.vel, b.state.angVel = Vector3(vx, vy, vz), Vector3(wx, wy, wz)\n"
          "    b.state.blockedDOFs = dofs\n"
@@ -817,6 +824,31 @@ void YadeExporter::bodies() {
          "    _m[i], _type[i] = m, t\n";
   for (const auto& m : moves_) py_ << m << "\n";
   clumps();
+}
+
+// A primitive wall acting on a group (fix ID GROUP wall/gran ...) gets a YADE
+// groupMask bit of its own; every grain has bit 1 (grains touch each other and the
+// walls of group all) plus the bits of the walls whose group holds it.
+int YadeExporter::group_mask(const Fix& f) {
+  for (const Wall& w : walls_)
+    if (w.mask != 1 && w.fix->groupbit == f.groupbit) return w.mask;
+  int used = 1;
+  for (const Wall& w : walls_) used |= w.mask;
+  for (int bit = 1; bit < 30; ++bit)
+    if (!(used & (1 << bit))) return 1 << bit;
+  f.args.fail(1, "all, or fewer groups with their own walls (export-yade: 29 at most, YADE's groupMask bits)");
+}
+
+void YadeExporter::grain_masks(const std::vector<std::size_t>& order) {
+  const Atoms& at = sim_.atoms;
+  py_ << "_mask = {";
+  for (std::size_t i : order) {
+    int m = 1;
+    for (const Wall& w : walls_)
+      if (w.mask != 1 && (at.mask[i] & w.fix->groupbit)) m |= w.mask;
+    if (m != 1) py_ << at.id[i] << ": " << m << ", ";
+  }
+  py_ << "}  # grains in a group with its own wall (groupMask; 1 otherwise)\n";
 }
 
 // Rigid bodies: YADE's clump() computes mass and inertia from the materials'

@@ -607,3 +607,32 @@ TEST(ExportYade, DumpsItCannotTranslateNameTheLine) {
   const std::string e = exported(tmp, deck + "dump v all custom 10 " + tmp / "d.txt" + " id x\nrun 10\n");
   EXPECT_NE(e.find("shrink-wrapped boundaries (boundary f f m)"), std::string::npos) << e;
 }
+
+// A primitive wall acting on a group (issue 43, 5a) touches only that group's grains in
+// YADE too: the wall gets a groupMask bit of its own, the group's grains 1 | that bit,
+// the others 1 (grains still touch each other and the walls of group all).
+TEST(ExportYade, WallOnAGroupGetsItsOwnMaskBit) {
+  TempDir tmp;
+  const std::string s = exported(tmp, kHead + "group first id 1\n"
+                                              "fix floor all wall/gran model hertz tangential history primitive type 1 zplane 0\n"
+                                              "fix lid first wall/gran model hertz tangential history primitive type 1 zplane 0.009\n"
+                                              "fix side first wall/gran model hertz tangential history primitive type 1 xplane -0.009\n"
+                                              "run 10\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_TRUE(std::regex_search(s, std::regex(R"(material=[^,()]*\)\)\)  # fix floor)"))) << s;  // group all: mask 1
+  EXPECT_NE(s.find(", mask=2)))  # fix lid"), std::string::npos) << s;
+  EXPECT_NE(s.find(", mask=2)))  # fix side"), std::string::npos) << s;  // the same group shares the bit
+  EXPECT_NE(s.find("_mask = {1: 3, }"), std::string::npos) << s;             // grain 2: not listed, mask 1
+  EXPECT_NE(s.find("mask=_mask.get(i, 1))"), std::string::npos) << s;
+}
+
+TEST(ExportYade, MeshWallOnAGroupIsRefused) {
+  TempDir tmp;
+  std::ofstream(tmp / "tri.stl") << "solid t\nfacet normal 0 0 1\nouter loop\nvertex -0.01 -0.01 0\nvertex 0.01 -0.01 0\n"
+                                    "vertex 0 0.01 0\nendloop\nendfacet\nendsolid t\n";
+  const std::string e = exported(tmp, kHead + "group first id 1\nfix tri all mesh/surface file " + (tmp / "tri.stl") +
+                                          " type 1\nfix w first wall/gran model hertz tangential history mesh n_meshes 1 meshes tri\n"
+                                          "run 10\n");
+  EXPECT_NE(e.find("deck.in:21: 'first' in 'w first wall/gran"), std::string::npos) << e;
+  EXPECT_NE(e.find("a mesh wall acting on a group is not translated"), std::string::npos) << e;
+}
