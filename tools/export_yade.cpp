@@ -288,7 +288,16 @@ std::string YadeExporter::translate(const std::string& e, const Args& at, int de
       i = k;
     } else if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       std::size_t k = i;
-      while (k < e.size() && (std::isalnum(static_cast<unsigned char>(e[k])) || e[k] == '_' || e[k] == '/')) ++k;
+      auto word_char = [&](std::size_t j) { return std::isalnum(static_cast<unsigned char>(e[j])) || e[j] == '_'; };
+      while (k < e.size() && word_char(k)) ++k;
+      // '/' divides, except inside the ID of a fix defined with one (f_ID, ID of a style-like name):
+      // the name is extended over '/word' only while the longer ID names a fix.
+      while (e.compare(i, 2, "f_") == 0 && k + 1 < e.size() && e[k] == '/' && word_char(k + 1)) {
+        std::size_t j = k + 1;
+        while (j < e.size() && word_char(j)) ++j;
+        if (!sim_.find_fix(e.substr(i + 2, j - i - 2))) break;
+        k = j;
+      }
       const std::string name = e.substr(i, k - i);
       std::string index;
       if (k < e.size() && e[k] == '[') {

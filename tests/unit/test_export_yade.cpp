@@ -636,3 +636,20 @@ TEST(ExportYade, MeshWallOnAGroupIsRefused) {
   EXPECT_NE(e.find("deck.in:21: 'first' in 'w first wall/gran"), std::string::npos) << e;
   EXPECT_NE(e.find("a mesh wall acting on a group is not translated"), std::string::npos) << e;
 }
+
+// Issue 43 item 5, gap 4: a '/' after a variable's name divides (kneib2017's
+// f_c = omega_d / (2 pi) in the cavity deck: v_omd/(2*PI)); a fix whose ID has a
+// '/' in it is still read whole.
+TEST(ExportYade, SlashAfterANameDivides) {
+  TempDir tmp;
+  const std::string s =
+      exported(tmp, kHead + "variable omd equal 6\nvariable fc equal v_omd/(2*PI)\nvariable h equal v_omd/2/v_omd\n"
+                            "fix w/g all wall/gran model hertz tangential history primitive type 2 zplane -0.005\n"
+                            "variable fw equal f_w/g[3]/2\nrun 10\nprint \"FC ${fc} H ${h} FW ${fw}\"\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt(((6)/(2*math.pi)))"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt(((6)/2/(6)))"), std::string::npos) << s;
+  EXPECT_NE(s.find("_fmt((O.forces.f(_walls[0])[2]/2))"), std::string::npos) << s;
+  const std::string e = exported(tmp, kHead + "variable fc equal v_nothere/2\nrun 10\nprint \"FC ${fc}\"\n");
+  EXPECT_NE(e.find("cannot translate 'v_nothere'"), std::string::npos) << e;
+}
