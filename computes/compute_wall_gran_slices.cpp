@@ -1,0 +1,156 @@
+// compute ID group wall/gran/slices WALLFIX N dim x|y|z lo LO hi HI [outside clamp|drop]
+// (sable addition; LIGGGHTS and LAMMPS have no such style.)
+// The force the grains of the group put on a primitive plane wall (fix WALLFIX
+// wall/gran ... primitive xplane|yplane|zplane), split into N equal slices of
+// [LO, HI] along `dim` by the contact point's coordinate (the grain's
+// projection on the plane). kneib2017 Sec. IV splits the right wall's height
+// into ten slices this way (slice 1 at the bottom). LO and HI are numbers or
+// equal-style variables (v_name), evaluated at each invocation, so HI can
+// follow the current bed height.
+//   c_ID[i], i = 1..N: the component along the plane's normal axis of the force
+//   on the wall, the sign of f_WALLFIX[axis] (the right wall of the cavity:
+//   > 0). Contacts outside [LO, HI]: `outside clamp` (default) counts them in
+//   slice 1 (below LO) or N (above HI), so the slices sum to the whole wall's
+//   force; `outside drop` leaves them out.
+// The contacts are those compute wall/gran/local lists, re-evaluated at
+// invocation (history read, not advanced): their sum is f_WALLFIX[axis] to
+// rounding where the velocities have not changed since the force pass, and
+// differs from it by the dashpots' answer to final_integrate's half kick
+// otherwise.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/compute.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+#include "core/variable.h"
+#include "fixes/fix_wall_gran.h"
+
+namespace sable {
+
+namespace {
+
+// A bound: a number, or v_name (equal-style) read at each invocation.
+struct Bound {
+  double value = 0;
+  std::string var;  // empty: a number
+  std::size_t at = 0;
+};
+
+Bound parse_bound(const Args& a, std::size_t i, const std::string& what) {
+  Bound b;
+  b.at = i;
+  const std::string& w = a.word(i, what);
+  if (w.rfind("v_", 0) == 0 && w.size() > 2) b.var = w.substr(2);
+  else b.value = a.num(i, what);
+  return b;
+}
+
+// The plane's normal axis from its fix's words (xplane -> 0); -1 for no plane.
+int plane_axis(const Args& fix_args) {
+  for (const std::string& w : fix_args.words()) {
+    if (w == "xplane") return 0;
+    if (w == "yplane") return 1;
+    if (w == "zplane") return 2;
+  }
+  return -1;
+}
+
+int axis_of(const std::string& w) { return w == "x" ? 0 : w == "y" ? 1 : w == "z" ? 2 : -1; }
+
+}  // namespace
+
+class ComputeWallGranSlices : public Compute {
+ public:
+  ComputeWallGranSlices(Simulation& s, const Args& a) : Compute(s, a) {
+    const std::string usage = "compute ID group wall/gran/slices WALLFIX N dim x|y|z lo LO hi HI [outside clamp|drop]";
+    a.need(12, usage);
+    wall_id_ = a.word(4, "the ID of a fix wall/gran ... primitive plane");
+    const long n = a.integer(5, "the number of slices N");
+    if (n < 1 || n > 100000) a.fail(5, "a number of slices in 1..100000");
+    vector_size = static_cast<int>(n);
+    expect(a, 6, "dim");
+    dim_ = axis_of(a.word(7, "x, y or z"));
+    if (dim_ < 0) a.fail(7, "x, y or z");
+    expect(a, 8, "lo");
+    lo_ = parse_bound(a, 9, "a lower bound (a number or v_name)");
+    expect(a, 10, "hi");
+    hi_ = parse_bound(a, 11, "an upper bound (a number or v_name)");
+    for (std::size_t i = 12; i < a.size(); i += 2) {
+      if (a[i] != "outside") a.fail(i, "the keyword 'outside' (or the end of the line)");
+      const std::string& m = a.word(i + 1, "clamp or drop");
+      if (m != "clamp" && m != "drop") a.fail(i + 1, "clamp or drop");
+      clamp_ = m == "clamp";
+    }
+    for (const Bound* b : {&lo_, &hi_})
+      if (!b->var.empty() && !s.variables->is_equal_style(b->var))
+        a.fail(b->at, "an equal-style variable (v_" + b->var + " is not one)");
+    init();
+  }
+
+  void init() override {
+    Fix* f = sim.find_fix(wall_id_);
+    wall_ = f ? dynamic_cast<FixWallGran*>(f) : nullptr;
+    if (!wall_) args.fail(4, "the ID of a fix wall/gran ... primitive plane defined before this compute");
+    axis_ = plane_axis(wall_->args);
+    if (axis_ < 0) args.fail(4, "a fix wall/gran with a primitive xplane, yplane or zplane (fix " + wall_id_ + " is not one)");
+  }
+
+  double compute_vector(int i) override {
+    if (invoked_step != sim.step) {  // once per step: every c_ID[i] of a step reads the same contacts
+      fill();
+      invoked_step = sim.step;
+    }
+    return slices_[static_cast<std::size_t>(i - 1)];
+  }
+
+ private:
+  static void expect(const Args& a, std::size_t i, const std::string& key) {
+    if (a.word(i, "'" + key + "'") != key) a.fail(i, "'" + key + "'");
+  }
+
+  double bound(const Bound& b) {
+    if (b.var.empty()) return b.value;
+    double v = 0;
+    if (!sim.variables->numeric(b.var, v)) args.fail(b.at, "an equal-style variable (v_" + b.var + ")");
+    return v;
+  }
+
+  // The slice (0-based) of coordinate y, or -1 when it is dropped.
+  long slice_of(double y, double lo, double hi) const {
+    const long n = vector_size;
+    if (y < lo) return clamp_ ? 0 : -1;
+    if (y > hi) return clamp_ ? n - 1 : -1;
+    const long k = static_cast<long>(std::floor((y - lo) / (hi - lo) * static_cast<double>(n)));
+    return std::clamp(k, 0L, n - 1);  // y == hi belongs to the top slice
+  }
+
+  void fill() {
+    const double lo = bound(lo_), hi = bound(hi_);
+    if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi))
+      args.fail_line("compute " + id + ": at step " + std::to_string(sim.step) + " hi = " + std::to_string(hi) +
+                     " is not above lo = " + std::to_string(lo));
+    init();  // the wall may have been redefined since
+    slices_.assign(static_cast<std::size_t>(vector_size), 0.0);
+    wall_->records(groupbit, rec_);
+    for (const ContactRecord& c : rec_.rows) {
+      const long k = slice_of(wall_->point(c.shift)[dim_], lo, hi);
+      // The wall receives minus the force on the grain.
+      if (k >= 0) slices_[static_cast<std::size_t>(k)] -= c.f[axis_];
+    }
+  }
+
+  std::string wall_id_;
+  FixWallGran* wall_ = nullptr;
+  int axis_ = 0, dim_ = 1;
+  Bound lo_, hi_;
+  bool clamp_ = true;
+  ContactRecords rec_;
+  std::vector<double> slices_;
+};
+
+SABLE_COMPUTE("wall/gran/slices", ComputeWallGranSlices);
+
+}  // namespace sable

@@ -1,0 +1,157 @@
+// dump ID group local N file value ...: LAMMPS' `dump local` text format
+//   ITEM: TIMESTEP / ITEM: NUMBER OF ENTRIES / ITEM: BOX BOUNDS / ITEM: ENTRIES
+// with one line per row of the computes' local data (a value is c_ID[k], column
+// k of a local compute such as wall/gran/local or pair/gran/local, or `index`,
+// the row number from 1; LAMMPS' f_ID[k] is not offered: no sable fix has
+// local data). Every value's compute must give the same number of
+// rows (LAMMPS' rule). As in LAMMPS the group is not used: the computes' own
+// groups pick the contacts. Values print as %g, index as %d, each followed by
+// a space (LAMMPS' default formats). A step with no rows writes its header with
+// 0 entries.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "core/compute.h"
+#include "core/dump.h"
+#include "core/error.h"
+#include "core/simulation.h"
+#include "core/style_registry.h"
+
+namespace sable {
+namespace {
+
+class DumpLocal : public Dump {
+ public:
+  DumpLocal(Simulation& s, const Args& a) : Dump(s, a) {
+    a.need(7, "at least one value after the file name (c_ID[k] of a local compute, or index)");
+    bool any_compute = false;
+    for (std::size_t i = 6; i < a.size(); ++i) {
+      cols_.push_back(parse(a, i));
+      any_compute = any_compute || cols_.back().compute;
+      header_ += (i > 6 ? " " : "") + a[i];
+    }
+    if (!any_compute) a.fail(6, "at least one c_ID[k] (index alone names no contacts)");
+  }
+  ~DumpLocal() override {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+  void init() override {
+    for (Column& c : cols_) resolve(args, c);
+  }
+
+ protected:
+  void write_snapshot(long step, const std::string& path, bool append) override {
+    if (!multifile && append && step == last_step_) return;  // a run starting where the last ended
+    last_step_ = step;
+    const std::size_t n = gather();
+    std::string out;
+    out.reserve(256 + n * cols_.size() * 14);
+    char buf[256];
+    const Domain& d = sim.domain;
+    std::snprintf(buf, sizeof buf, "ITEM: TIMESTEP\n%ld\nITEM: NUMBER OF ENTRIES\n%zu\nITEM: BOX BOUNDS %s %s %s\n", step,
+                  n, d.periodic[0] ? "pp" : "ff", d.periodic[1] ? "pp" : "ff", d.periodic[2] ? "pp" : "ff");
+    out += buf;
+    for (int k = 0; k < 3; ++k) {
+      std::snprintf(buf, sizeof buf, "%g %g\n", d.lo[k], d.hi[k]);
+      out += buf;
+    }
+    out += "ITEM: ENTRIES " + header_ + "\n";
+    for (std::size_t r = 0; r < n; ++r) {
+      for (const Column& c : cols_) {
+        const int len = c.compute ? std::snprintf(buf, sizeof buf, "%g ", c.compute->local[r * c.compute->local_cols + c.col])
+                                  : std::snprintf(buf, sizeof buf, "%zu ", r + 1);
+        out.append(buf, static_cast<std::size_t>(std::max(len, 0)));
+      }
+      out += '\n';
+    }
+    write_out(out, path, append);
+  }
+
+ private:
+  struct Column {
+    std::string id;              // compute ID; empty for index
+    int col = 0;                 // 0-based column
+    std::size_t at = 0;          // word in the dump command
+    Compute* compute = nullptr;  // resolved at init
+  };
+
+  Column parse(const Args& a, std::size_t i) {
+    Column c;
+    c.at = i;
+    const std::string& w = a[i];
+    if (w == "index") return c;
+    const std::size_t open = w.find('[');
+    if (w.rfind("c_", 0) != 0 || open == std::string::npos || w.back() != ']' || open < 3)
+      a.fail(i, "c_ID[k] (a column of a local compute) or index");
+    c.id = w.substr(2, open - 2);
+    long k = 0;
+    if (!parse_long(w.substr(open + 1, w.size() - open - 2), k) || k < 1) a.fail(i, "c_ID[k] with k a column number >= 1");
+    c.col = static_cast<int>(k - 1);
+    resolve(a, c);
+    return c;
+  }
+
+  void resolve(const Args& a, Column& c) const {
+    if (c.id.empty()) return;
+    c.compute = sim.find_compute(c.id);
+    if (!c.compute) a.fail(c.at, "a defined compute (no compute '" + c.id + "')");
+    if (!c.compute->local_flag)
+      a.fail(c.at, "a compute with local (per-contact) data (" + c.compute->style + " has none)");
+    if (c.col >= c.compute->local_cols)
+      a.fail(c.at, "a column in 1.." + std::to_string(c.compute->local_cols) + " of compute " + c.id);
+  }
+
+  // Evaluates the computes; returns the common row count.
+  std::size_t gather() {
+    std::size_t n = 0;
+    bool first = true;
+    for (Column& c : cols_) {
+      if (!c.compute) continue;
+      resolve(args, c);  // uncompute / redefinition between runs
+      c.compute->local_now();
+      const std::size_t rows = c.compute->local_rows();
+      if (!first && rows != n)
+        args.fail(c.at, "values with the same number of rows (" + std::to_string(rows) + " here, " + std::to_string(n) +
+                            " before it) at step " + std::to_string(sim.step));
+      n = rows;
+      first = false;
+    }
+    return n;
+  }
+
+  // One write() per snapshot, as dump custom: a kill never cuts an earlier one.
+  void write_out(const std::string& out, const std::string& path, bool append) {
+    if (multifile || fd_ < 0 || path != open_path_) {
+      if (fd_ >= 0) ::close(fd_);
+      fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | (!multifile && append ? 0 : O_TRUNC), 0644);
+      if (fd_ < 0) fail("dump " + id + ": cannot open '" + path + "' for writing: " + std::strerror(errno));
+      open_path_ = path;
+    }
+    for (std::size_t done = 0; done < out.size();) {
+      const ssize_t w = ::write(fd_, out.data() + done, out.size() - done);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) fail("dump " + id + ": writing '" + path + "' failed: " + std::strerror(errno));
+      done += static_cast<std::size_t>(w);
+    }
+    if (multifile) {  // the base renames the finished temporary file
+      ::close(fd_);
+      fd_ = -1;
+    }
+  }
+
+  std::vector<Column> cols_;
+  std::string header_;  // the value words joined by spaces (LAMMPS' ENTRIES line)
+  int fd_ = -1;
+  std::string open_path_;
+  long last_step_ = -1;
+};
+
+}  // namespace
+
+SABLE_DUMP("local", DumpLocal);
+
+}  // namespace sable
