@@ -93,6 +93,8 @@ class YadeExporter {
   void scene(const Args& run);
   void pair_model();
   void periodic_cell();
+  bool yade_periodic(int k) const;  // periodic in the script's YADE cell (periodic_cell)
+  bool boxes_ = false;              // primitive walls written as thin boxes (a periodic cell)
   void materials();
   void wall_materials(const Args& pair);
   int hertz_surface_material(const Fix& f, long type, double s, const std::string& note, const Args& pair, int& next_id);
@@ -416,15 +418,20 @@ void YadeExporter::scene(const Args& run) {
 // boundary p on any axis: YADE's cell is periodic on all three, so a fixed axis
 // gets a cell 100 box lengths long (nothing meets through it). Positions are
 // reported wrapped into sable's box on the periodic axes (YADE keeps them unwrapped).
+// (In 2D z never wraps in sable, Domain::wraps, and gets the long cell too: YADE's
+// periodic collider takes no body longer than half the cell.)
+bool YadeExporter::yade_periodic(int k) const { return sim_.domain.wraps(k); }
+
 void YadeExporter::periodic_cell() {
   const Domain& d = sim_.domain;
   if (!d.wraps(0) && !d.wraps(1) && !d.wraps(2)) return;
   py_ << "O.periodic = True\nO.cell.hSize = Matrix3(";
   for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j) py_ << (j == k ? num(d.wraps(k) ? d.length(k) : 100 * d.length(k)) : "0") << (k == 2 && j == 2 ? ")\n" : ", ");
+    for (int j = 0; j < 3; ++j)
+      py_ << (j == k ? num(yade_periodic(k) ? d.length(k) : 100 * d.length(k)) : "0") << (k == 2 && j == 2 ? ")\n" : ", ");
   py_ << "_wrap = [";
   for (int k = 0; k < 3; ++k)
-    py_ << (d.wraps(k) ? "(" + num(d.lo[k]) + ", " + num(d.length(k)) + ")" : "None") << (k < 2 ? ", " : "]\n");
+    py_ << (yade_periodic(k) ? "(" + num(d.lo[k]) + ", " + num(d.length(k)) + ")" : "None") << (k < 2 ? ", " : "]\n");
 }
 
 // pair_style gran model hertz|linear/kneib tangential history, nothing else.
@@ -748,7 +755,7 @@ void YadeExporter::fix_move_mesh(const Fix& f) {
 void YadeExporter::periodic_fit(const MeshWall& w, std::size_t t) const {
   const Domain& d = sim_.domain;
   for (int k = 0; k < 3; ++k) {
-    if (!d.wraps(k)) continue;
+    if (!yade_periodic(k)) continue;
     double lo = 1e300, hi = -1e300;
     for (int c = 0; c < 3; ++c) {
       const double x = w.mesh->to_world(w.mesh->corner(static_cast<int>(t), c))[k];
@@ -785,16 +792,53 @@ void YadeExporter::mesh_facets() {
   }
 }
 
+// Primitive walls: utils.wall (an infinite plane, both sides) in a box with no
+// periodic axis. In a periodic cell, where YADE's collider takes no body longer than
+// half the cell, each wall is a fixed utils.box instead: thickness 1e-8 of the
+// smallest grain radius, centred on the plane (either side acts, as sable's plane,
+// the face 5e-9 r_min off it), spanning twice sable's box on the other axes (YADE's
+// cell is 100 box lengths there: no periodic image comes near). YADE's box contact
+// (Ig2_Box_Sphere_ScGeom) gives the wall contact's refR = r on both sides, so the
+// same material and law (kn = E r for FrictViscoPhys); its contact point is
+// at r - dn/2 from the centre, sable's lever arm cri = r - dn/2 (utils.wall's lies on
+// the plane). Refused: a wall spanning an axis periodic in the cell (one box cannot
+// span the period, boxes side by side would touch a grain twice at their seams) and
+// a wall along a periodic axis outside sable's box (its plane would not be where the
+// grains meet it).
 void YadeExporter::walls() {
   const Domain& d = sim_.domain;
-  if (!walls_.empty() && (d.wraps(0) || d.wraps(1) || d.wraps(2)))
-    walls_[0].fix->args.fail_line("export-yade: a primitive wall in a periodic box is not translated (YADE's periodic "
-                                  "collider needs every body shorter than the cell, and utils.wall is infinite)");
   py_ << "_walls = []\n";
-  for (const Wall& w : walls_)
-    py_ << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis
-        << ", sense=0, material=" << (w.material >= 0 ? std::to_string(w.material) : "_mats[" + std::to_string(w.type - 1) + "]")
-        << (w.mask != 1 ? ", mask=" + std::to_string(w.mask) : "") << ")))  # fix " << w.fix->id << "\n";
+  boxes_ = !walls_.empty() && (d.wraps(0) || d.wraps(1) || d.wraps(2));
+  double rmin = 1e300;
+  for (std::size_t i = 0; i < sim_.atoms.n; ++i) rmin = std::min(rmin, sim_.atoms.radius[i]);
+  for (const Wall& w : walls_) {
+    const std::string mat = w.material >= 0 ? std::to_string(w.material) : "_mats[" + std::to_string(w.type - 1) + "]";
+    const std::string mask = w.mask != 1 ? ", mask=" + std::to_string(w.mask) : "";
+    if (!boxes_) {
+      py_ << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis << ", sense=0, material="
+          << mat << mask << ")))  # fix " << w.fix->id << "\n";
+      continue;
+    }
+    const Args& a = w.fix->args;
+    for (int k = 0; k < 3; ++k)
+      if (k != w.axis && yade_periodic(k))
+        a.fail_line(std::string("export-yade: this ") + "xyz"[w.axis] + "plane spans the periodic " + "xyz"[k] +
+                    " axis, which YADE cannot take: its periodic collider needs every body shorter than half the "
+                    "cell, and boxes side by side would touch a grain twice at their seams (translated: walls whose "
+                    "plane spans non-periodic axes only, z counting as such in 2D)");
+    if (d.wraps(w.axis) && (w.pos < d.lo[w.axis] || w.pos >= d.hi[w.axis]))
+      a.fail_line(std::string("export-yade: this ") + "xyz"[w.axis] + "plane lies outside the periodic box (" +
+                  num(d.lo[w.axis]) + " to " + num(d.hi[w.axis]) + "); put it inside the period");
+    const double t = 1e-8 * rmin;
+    double c[3], h[3];
+    for (int k = 0; k < 3; ++k) {
+      c[k] = k == w.axis ? w.pos : 0.5 * (d.lo[k] + d.hi[k]);
+      h[k] = k == w.axis ? 0.5 * t : d.length(k);
+    }
+    py_ << "_walls.append(O.bodies.append(utils.box((" << num(c[0]) << ", " << num(c[1]) << ", " << num(c[2]) << "), ("
+        << num(h[0]) << ", " << num(h[1]) << ", " << num(h[2]) << "), fixed=True, material=" << mat << mask
+        << ")))  # fix " << w.fix->id << ": " << "xyz"[w.axis] << "plane " << num(w.pos) << " as a thin box (periodic cell)\n";
+  }
 }
 
 // The grains, by atom id, with sable's own mass and moment of inertia.
@@ -889,8 +933,10 @@ void YadeExporter::engines() {
   // the translational part by (r1 + r2) / (r1 + r2 - dn) and takes the full radii as lever arms.
   py_ << "O.engines = [\n"
          "    ForceResetter(),\n"
-         "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()" << (facets ? ", Bo1_Facet_Aabb()" : "") << "]),\n"
+         "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()" << (facets ? ", Bo1_Facet_Aabb()" : "")
+      << (boxes_ ? ", Bo1_Box_Aabb()" : "") << "]),\n"
          "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(avoidGranularRatcheting=False), Ig2_Wall_Sphere_ScGeom()" << (facets ? ", Ig2_Facet_Sphere_ScGeom()" : "")
+      << (boxes_ ? ", Ig2_Box_Sphere_ScGeom()" : "")
       << "], [_ip2], [_law2]),\n";
   // initRun: a PyRunner first fires at iteration 1, so without it step 1 would go without the deck's forces.
   if (!forces_.empty()) py_ << "    PyRunner(command='_add_forces()', iterPeriod=1, initRun=True),\n";

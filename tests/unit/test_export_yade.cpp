@@ -408,7 +408,7 @@ TEST(ExportYade, WallsAndCellLongTrianglesInAPeriodicBoxAreRefused) {
   const std::string w =
       exported(tmp, deck + "fix floor all wall/gran model hertz tangential history primitive type 2 zplane -0.005\nrun 10\n");
   EXPECT_NE(w.find("deck.in:19"), std::string::npos) << w;
-  EXPECT_NE(w.find("a primitive wall in a periodic box is not translated"), std::string::npos) << w;
+  EXPECT_NE(w.find("this zplane spans the periodic x axis, which YADE cannot take"), std::string::npos) << w;
   std::string mdeck = mesh_deck(tmp, "scale 1.0", "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate\nrun 10\n");
   mdeck.replace(mdeck.find("boundary f f f"), 14, "boundary p f f");
   const std::string m = exported(tmp, mdeck);
@@ -652,4 +652,45 @@ TEST(ExportYade, SlashAfterANameDivides) {
   EXPECT_NE(s.find("_fmt((O.forces.f(_walls[0])[2]/2))"), std::string::npos) << s;
   const std::string e = exported(tmp, kHead + "variable fc equal v_nothere/2\nrun 10\nprint \"FC ${fc}\"\n");
   EXPECT_NE(e.find("cannot translate 'v_nothere'"), std::string::npos) << e;
+}
+
+// Cavity gap 1 (issue 43 item 5): in a periodic box a primitive wall across a
+// non-periodic axis, or across the periodic one inside the period, is a thin fixed
+// YADE box spanning twice sable's box (the cell is 100 box lengths on fixed axes);
+// in 2D z (which never wraps) gets the long cell too. A wall
+// outside the period is refused. The physics: reference_runs YADE deck
+// yade_periodic_wall (a grain bouncing off an xplane in an x-periodic box).
+TEST(ExportYade, WallsInAPeriodicBoxBecomeThinBoxes) {
+  TempDir tmp;
+  std::string deck = kHead;
+  deck.replace(deck.find("boundary f f f"), 14, "boundary p f p");
+  deck.replace(deck.find("atom_modify map array"), 21, "atom_modify map array\ndimension 2");
+  deck.replace(deck.find("vz -0.5"), 7, "vx -0.5");
+  const std::string s =
+      exported(tmp, deck + "fix side all wall/gran model hertz tangential history primitive type 2 xplane -0.002\nrun 10\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("O.cell.hSize = Matrix3(0.02, 0, 0, 0, 2, 0, 0, 0, 2)\n_wrap = [(-0.01, 0.02), None, None]"),
+            std::string::npos) << s;
+  EXPECT_NE(s.find("_walls.append(O.bodies.append(utils.box((-0.002, 0, 0), (5.0000000000000005e-12, 0.02, 0.02), "
+                   "fixed=True, material=2)))  # fix side: xplane -0.002 as a thin box"), std::string::npos) << s;
+  std::string fdeck = deck;
+  fdeck.replace(fdeck.find("boundary p f p"), 14, "boundary f f p");
+  const std::string f =
+      exported(tmp, fdeck + "fix floor all wall/gran model hertz tangential history primitive type 2 yplane -0.005\nrun 10\n");
+  ASSERT_EQ(f.find("ERROR"), std::string::npos) << f;
+  EXPECT_EQ(f.find("O.periodic"), std::string::npos) << f;  // z does not wrap in 2D: no cell, an infinite wall
+  EXPECT_NE(f.find("utils.wall(-0.0050000000000000001, axis=1, sense=0, material=2)"), std::string::npos) << f;
+  EXPECT_NE(s.find("Bo1_Box_Aabb()"), std::string::npos) << s;
+  EXPECT_NE(s.find("Ig2_Box_Sphere_ScGeom()"), std::string::npos) << s;
+  // a 3D box periodic in z: the xplane would span z
+  std::string deck3 = kHead;
+  deck3.replace(deck3.find("boundary f f f"), 14, "boundary p f p");
+  const std::string e3 =
+      exported(tmp, deck3 + "fix side all wall/gran model hertz tangential history primitive type 2 xplane -0.002\nrun 10\n");
+  EXPECT_NE(e3.find("deck.in:19"), std::string::npos) << e3;
+  EXPECT_NE(e3.find("this xplane spans the periodic z axis"), std::string::npos) << e3;
+  const std::string out =
+      exported(tmp, deck + "fix side all wall/gran model hertz tangential history primitive type 2 xplane 0.011\nrun 10\n");
+  EXPECT_NE(out.find("deck.in:20"), std::string::npos) << out;
+  EXPECT_NE(out.find("this xplane lies outside the periodic box"), std::string::npos) << out;
 }
