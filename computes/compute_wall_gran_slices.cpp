@@ -12,16 +12,21 @@
 //   > 0). Contacts outside [LO, HI]: `outside clamp` (default) counts them in
 //   slice 1 (below LO) or N (above HI), so the slices sum to the whole wall's
 //   force; `outside drop` leaves them out.
-// The contacts are those compute wall/gran/local lists, re-evaluated at
-// invocation (history read, not advanced): their sum is f_WALLFIX[axis] to
-// rounding where the velocities have not changed since the force pass, and
-// differs from it by the dashpots' answer to final_integrate's half kick
-// otherwise.
+//   Local rows (dump local c_ID[k]), one per contact of the group's grains with
+//   this wall, every contact (no slicing): id x y z fx fy fz, the grain's id,
+//   the contact point on the wall, the force ON THE WALL (minus the force on
+//   the grain; compute wall/gran/local gives the force on the grain).
+// Both read the wall's last force pass, the one f_WALLFIX reports, so the
+// slices sum to f_WALLFIX[axis] to rounding. (Re-evaluating the contacts at
+// output, as wall/gran/local does, would let the dashpots see final_integrate's
+// half kick: 0.8 % per sample in the cavity.) If grains were deleted or
+// created since that pass, the contacts are re-evaluated now instead.
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/atoms.h"
 #include "core/compute.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
@@ -87,6 +92,9 @@ class ComputeWallGranSlices : public Compute {
     for (const Bound* b : {&lo_, &hi_})
       if (!b->var.empty() && !s.variables->is_equal_style(b->var))
         a.fail(b->at, "an equal-style variable (v_" + b->var + " is not one)");
+    local_flag = true;
+    local_names = {"id", "x", "y", "z", "fx", "fy", "fz"};
+    local_cols = static_cast<int>(local_names.size());
     init();
   }
 
@@ -127,21 +135,44 @@ class ComputeWallGranSlices : public Compute {
     return std::clamp(k, 0L, n - 1);  // y == hi belongs to the top slice
   }
 
+  // Calls fn(atom index, wall point, force on the grain) for each contact of the
+  // group's grains with the wall at its last force pass.
+  template <class Fn>
+  void contacts(Fn&& fn) {
+    init();  // the wall may have been redefined since
+    const Atoms& at = sim.atoms;
+    if (wall_->last_pass_atoms() == at.n) {
+      wall_->last_pass([&](int i, const double* p, const double* f) {
+        if (at.mask[i] & groupbit) fn(i, p, f);
+      });
+      return;
+    }
+    wall_->records(groupbit, rec_);  // atoms changed since the pass: its indices no longer hold
+    for (const ContactRecord& c : rec_.rows) fn(c.i, wall_->point(c.shift), c.f);
+  }
+
   void fill() {
     const double lo = bound(lo_), hi = bound(hi_);
     if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi))
       args.fail_line("compute " + id + ": at step " + std::to_string(sim.step) + " hi = " + std::to_string(hi) +
                      " is not above lo = " + std::to_string(lo));
-    init();  // the wall may have been redefined since
     slices_.assign(static_cast<std::size_t>(vector_size), 0.0);
-    wall_->records(groupbit, rec_);
-    for (const ContactRecord& c : rec_.rows) {
-      const long k = slice_of(wall_->point(c.shift)[dim_], lo, hi);
-      // The wall receives minus the force on the grain.
-      if (k >= 0) slices_[static_cast<std::size_t>(k)] -= c.f[axis_];
-    }
+    contacts([&](int, const double* p, const double* f) {
+      const long k = slice_of(p[dim_], lo, hi);
+      if (k >= 0) slices_[static_cast<std::size_t>(k)] -= f[axis_];  // the wall receives minus the grain's force
+    });
   }
 
+ public:
+  void compute_local() override {
+    local.clear();
+    contacts([&](int i, const double* p, const double* f) {
+      const double row[7] = {static_cast<double>(sim.atoms.id[i]), p[0], p[1], p[2], 0.0 - f[0], 0.0 - f[1], 0.0 - f[2]};
+      local.insert(local.end(), row, row + 7);
+    });
+  }
+
+ private:
   std::string wall_id_;
   FixWallGran* wall_ = nullptr;
   int axis_ = 0, dim_ = 1;

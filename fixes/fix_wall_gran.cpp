@@ -327,6 +327,7 @@ void FixWallGran::begin(FixHook) {
   pass_now_ = now();
   pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
+  pass_atoms_ = sim.atoms.n;
   const std::size_t parts = static_cast<std::size_t>(atom_pass_threads());
   if (parts_.size() < parts) parts_.resize(parts);
   for (auto& p : parts_) p.clear();

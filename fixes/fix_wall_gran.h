@@ -40,6 +40,15 @@ class FixWallGran : public Fix {
   void records(std::uint32_t groupbit, ContactRecords& out);
   const double* vwall(int k) const { return &records_.vwall[3 * k]; }
   const double* point(int k) const { return &records_.point[3 * k]; }
+  // The contacts of the last force pass (the one f_ID reports), in its order:
+  // fn(atom index, wall point, force on the grain). The indices hold while the
+  // atoms are not sorted or deleted: last_pass_atoms() is Atoms::n at that pass.
+  template <class Fn>
+  void last_pass(Fn&& fn) const {
+    for (const Staged& p : parts_)
+      for (std::size_t c = 0; c < p.atom.size(); ++c) fn(p.atom[c], &p.point[3 * c], &p.force[3 * c]);
+  }
+  std::size_t last_pass_atoms() const { return pass_atoms_; }
 
  private:
   std::unique_ptr<ContactKernel> kernel_;
@@ -73,6 +82,7 @@ class FixWallGran : public Fix {
   std::vector<Staged> parts_;
   Now pass_now_{0.0, 0.0};
   bool pass_update_ = true;
+  std::size_t pass_atoms_ = 0;
   Staged records_;  // the contacts of the last records() call
   // Contacts of the last force pass (atom indices), valid while no rebuild or insertion changed the indices.
   std::vector<int> prev_atoms_, atoms_now_;

@@ -182,3 +182,28 @@ TEST(DumpLocal, BadValuesNameTheirWord) {
   EXPECT_NE(e2.find("'c_pl[1]'"), std::string::npos) << e2;
   EXPECT_NE(e2.find("same number of rows"), std::string::npos) << e2;
 }
+
+// dump local over compute wall/gran/slices' rows: the one wall's contacts, the
+// force on the wall (+x on the right wall), summing to f_ID[1].
+TEST(DumpLocal, SlicesRowsOfOneWall) {
+  TempDir tmp;
+  Deck d;
+  setup(d);
+  d("compute sl all wall/gran/slices right 10 dim y lo 0 hi 0.01");
+  d("dump dl all local 1 " + (tmp / "rows.txt") + " c_sl[1] c_sl[3] c_sl[5] c_sl[6]");
+  d("run 0");
+  const std::vector<Record> recs = parse(tmp / "rows.txt");
+  ASSERT_EQ(recs.size(), 1u);
+  ASSERT_EQ(recs[0].n, 3u);
+  EXPECT_EQ(recs[0].columns, "c_sl[1] c_sl[3] c_sl[5] c_sl[6]");
+  double sum = 0;
+  for (const auto& row : recs[0].rows) {
+    ASSERT_EQ(row.size(), 4u);
+    const int id = std::stoi(row[0]);
+    const double f = hertz(kDelta[id - 1]);
+    EXPECT_NEAR(std::stod(row[2]), f, 1e-5 * f);
+    EXPECT_EQ(row[3], "0");
+    sum += std::stod(row[2]);
+  }
+  EXPECT_NEAR(sum, d->find_fix("right")->compute_vector(1), 1e-5 * sum);
+}
