@@ -6,12 +6,14 @@
 // local data). Every value's compute must give the same number of
 // rows (LAMMPS' rule). As in LAMMPS the group is not used: the computes' own
 // groups pick the contacts. Values print as %g, index as %d, each followed by
-// a space (LAMMPS' default formats). A step with no rows writes its header with
+// a space (LAMMPS' default formats; `dump_modify ID format float %.17g` or
+// `format N FMT` for more digits). A step with no rows writes its header with
 // 0 entries.
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstring>
 
 #include "core/compute.h"
@@ -43,6 +45,31 @@ class DumpLocal : public Dump {
     for (Column& c : cols_) resolve(args, c);
   }
 
+  // dump_modify ... format float FMT | format N FMT | format none (LAMMPS' forms for
+  // c_ID[k] values: one e/f/g conversion, e.g. %.17g for full precision).
+  bool modify_param(const Args& a, std::size_t& i) override {
+    if (a[i] == "sort") a.fail(i, "a dump_modify keyword dump local supports (format); LAMMPS cannot sort it by id either");
+    if (a[i] != "format") return false;
+    const std::string& w = a.word(i + 1, "float, a column number or none");
+    if (w == "none") {
+      for (Column& c : cols_) c.format.clear();
+      i += 2;
+      return true;
+    }
+    const std::string& f = a.word(i + 2, "a printf format with one %e, %f or %g conversion");
+    if (!float_format(f)) a.fail(i + 2, "a printf format with one %e, %f or %g conversion and no other %");
+    long n = 0;
+    if (w == "float") {
+      for (Column& c : cols_) c.format = f;
+    } else if (parse_long(w, n) && n >= 1 && n <= static_cast<long>(cols_.size()) && cols_[n - 1].compute) {
+      cols_[n - 1].format = f;
+    } else {
+      a.fail(i + 1, "float, none or the number (1.." + std::to_string(cols_.size()) + ") of a c_ID[k] value");
+    }
+    i += 3;
+    return true;
+  }
+
  protected:
   void write_snapshot(long step, const std::string& path, bool append) override {
     if (!multifile && append && step == last_step_) return;  // a run starting where the last ended
@@ -62,9 +89,14 @@ class DumpLocal : public Dump {
     out += "ITEM: ENTRIES " + header_ + "\n";
     for (std::size_t r = 0; r < n; ++r) {
       for (const Column& c : cols_) {
-        const int len = c.compute ? std::snprintf(buf, sizeof buf, "%g ", c.compute->local[r * c.compute->local_cols + c.col])
-                                  : std::snprintf(buf, sizeof buf, "%zu ", r + 1);
-        out.append(buf, static_cast<std::size_t>(std::max(len, 0)));
+        if (!c.compute) {
+          out += std::to_string(r + 1) + ' ';
+          continue;
+        }
+        const double v = c.compute->local[r * c.compute->local_cols + c.col];
+        const int len = std::snprintf(buf, sizeof buf, c.format.empty() ? "%g" : c.format.c_str(), v);
+        out.append(buf, std::min<std::size_t>(static_cast<std::size_t>(std::max(len, 0)), sizeof buf - 1));
+        out += ' ';
       }
       out += '\n';
     }
@@ -77,7 +109,27 @@ class DumpLocal : public Dump {
     int col = 0;                 // 0-based column
     std::size_t at = 0;          // word in the dump command
     Compute* compute = nullptr;  // resolved at init
+    std::string format;          // dump_modify format; empty: %g
   };
+
+  // One printf conversion of a double (flags, width, precision, then e/E/f/F/g/G),
+  // checked here so that a bad format fails at its line, not inside snprintf.
+  static bool float_format(const std::string& f) {
+    int conversions = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (f[i] != '%') continue;
+      if (i + 1 < f.size() && f[i + 1] == '%') {
+        ++i;
+        continue;
+      }
+      std::size_t j = i + 1;
+      while (j < f.size() && std::strchr("-+ #0123456789.", f[j])) ++j;
+      if (j >= f.size() || !std::strchr("eEfFgG", f[j])) return false;
+      ++conversions;
+      i = j;
+    }
+    return conversions == 1 && f.size() < 64;
+  }
 
   Column parse(const Args& a, std::size_t i) {
     Column c;

@@ -207,3 +207,29 @@ TEST(DumpLocal, SlicesRowsOfOneWall) {
   }
   EXPECT_NEAR(sum, d->find_fix("right")->compute_vector(1), 1e-5 * sum);
 }
+
+// dump_modify format: %.17g gives the compute's doubles back exactly; a bad
+// format or sort names its word.
+TEST(DumpLocal, FormatFloatGivesFullPrecision) {
+  TempDir tmp;
+  Deck d;
+  setup(d);
+  d("compute sl all wall/gran/slices right 10 dim y lo 0 hi 0.01");
+  const std::string pre = "dump dl all local 1 " + (tmp / "rows.txt") + " index c_sl[1] c_sl[5]";
+  d(pre);
+  d("dump_modify dl format float %.17g");
+  d("run 0");
+  sable::Compute* c = d->find_compute("sl");
+  c->local_now();
+  const std::vector<Record> recs = parse(tmp / "rows.txt");
+  ASSERT_EQ(recs.size(), 1u);
+  ASSERT_EQ(recs[0].n, c->local_rows());
+  for (std::size_t r = 0; r < recs[0].n; ++r) {
+    EXPECT_EQ(recs[0].rows[r][0], std::to_string(r + 1));
+    EXPECT_EQ(std::stod(recs[0].rows[r][2]), c->local[r * 7 + 4]);  // bit for bit
+  }
+  EXPECT_NE(error_of(d, "dump_modify dl format float %d").find("'%d'"), std::string::npos);
+  EXPECT_NE(error_of(d, "dump_modify dl format float %g%s").find("'%g%s'"), std::string::npos);
+  EXPECT_NE(error_of(d, "dump_modify dl format 1 %g").find("'1'"), std::string::npos);  // index
+  EXPECT_NE(error_of(d, "dump_modify dl sort id").find("'sort'"), std::string::npos);
+}
