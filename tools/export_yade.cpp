@@ -13,6 +13,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -56,6 +57,26 @@ std::string quoted(const std::string& s) {
   }
   return o + "'";
 }
+
+// A dump_modify format of one column as Python's % operator takes it: C's
+// length modifiers dropped (%ld -> %d); sable checked the conversion at its line.
+std::string python_format(const std::string& spec) {
+  std::string out;
+  for (std::size_t i = 0; i < spec.size(); ++i) {
+    out += spec[i];
+    if (spec[i] != '%' || i + 1 >= spec.size()) continue;
+    if (spec[i + 1] == '%') {
+      out += spec[++i];
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < spec.size() && std::strchr("-+ #0123456789.", spec[j])) out += spec[j++];
+    while (j < spec.size() && std::strchr("lhqjzt", spec[j])) ++j;
+    i = j - 1;
+  }
+  return out;
+}
+
 
 class YadeExporter {
  public:
@@ -128,6 +149,11 @@ class YadeExporter {
   void engines();
   std::string translate(const std::string& expr, const Args& at, int depth = 0) const;
   std::string term(const std::string& name, const std::string& index, const Args& at, int depth) const;
+  bool constant(const std::string& formula, int depth) const;
+  std::set<std::string> snaps_;  // variable NAME equal $(cpu): _snap[NAME], the script's clock then
+  std::map<std::string, std::uint32_t> freeze_bits_;  // fix freeze ID -> its group's bit: f_ID[1-3] its grains' force
+  std::string ids_of(std::uint32_t bits) const;       // the atom ids of a group, a Python list
+  std::string group_function(const std::string& name, const std::string& args, const Args& at) const;
   double type_value(const std::string& prop, int t, const Args& at) const;
   double pair_value(const std::string& prop, int i, int j, const Args& at) const;
   std::uint32_t group_bits(const Fix& f) const { return f.groupbit; }
@@ -166,6 +192,15 @@ bool YadeExporter::intercept(const std::string& line, const DeckLocation& where)
   if (c.empty() || c == "label" || c == "jump" || c == "next" || c == "if" || c == "include" || c == "log" ||
       c == "echo")
     return false;
+  // $(cpu) is sable's wall clock now, not YADE's: `variable NAME equal $(cpu)` becomes
+  // a snapshot of the script's clock at that point; any other use in a command is refused.
+  static const std::regex snap(R"(^\s*variable\s+(\S+)\s+equal\s+\$\(\s*cpu\s*\)\s*(#.*)?$)");
+  static const std::regex cpu(R"(\$\([^)]*\bcpu\b)");
+  std::smatch m;
+  const bool is_snap = std::regex_match(line, m, snap);
+  if (!is_snap && std::regex_search(line, cpu))
+    Args({line}, where).fail_line("export-yade: $(cpu) here is sable's clock at export time, not YADE's; only "
+                                  "`variable NAME equal $(cpu)` (a snapshot of the script's clock) is translated");
   Args a(in_.parse(line, where), where);
   if (a.size() == 0) return false;
   if (c == "run") {
@@ -173,6 +208,11 @@ bool YadeExporter::intercept(const std::string& line, const DeckLocation& where)
     return true;
   }
   record(a);
+  if (is_snap) {
+    formulas_.erase(m[1]);
+    snaps_.insert(m[1]);
+    py_ << "_snap[" << quoted(m[1]) << "] = _cpu()  # " << where.file << ":" << where.line << "\n";
+  }
   return false;
 }
 
@@ -180,6 +220,7 @@ bool YadeExporter::intercept(const std::string& line, const DeckLocation& where)
 // output and flow commands may follow (the scene is translated once).
 void YadeExporter::record(const Args& a) {
   const std::string& c = a.command();
+  if (c == "variable" && a.size() >= 2) snaps_.erase(a[1]);
   if (c == "variable" && a.size() >= 4 && a[2] == "equal") formulas_[a[1]] = a.joined(3);
   if (c == "variable" && a.size() >= 3 && a[2] != "equal") formulas_.erase(a[1]);
   if (c == "thermo_style") {
@@ -230,7 +271,7 @@ void YadeExporter::cmd_print(const std::string& line, const DeckLocation& where)
   std::size_t from = 0;
   for (std::size_t k; (k = text.find('\x01', from)) != std::string::npos;) {
     const std::size_t e = text.find('\x01', k + 1);
-    py_ << " + " << quoted(text.substr(from, k - from)) << " + _fmt(" << exprs[std::stoi(text.substr(k + 1, e - k - 1))] << ")";
+    py_ << " + " << quoted(text.substr(from, k - from)) << " + " << exprs[std::stoi(text.substr(k + 1, e - k - 1))];
     from = e + 1;
   }
   py_ << " + " << quoted(text.substr(from)) << ")\n";
@@ -252,11 +293,20 @@ std::string YadeExporter::substitute(const std::string& line, const Args& at, st
     std::string name;
     if (line[i + 1] == '{' || line[i + 1] == '(') {
       const char close = line[i + 1] == '{' ? '}' : ')';
-      const std::size_t e = line.find(close, i + 2);
+      std::size_t e = line.find(close, i + 2);
+      if (close == ')') {  // $(expr) with parentheses inside: the balancing ')'
+        int depth = 1;
+        for (e = i + 2; e < line.size() && (depth += line[e] == '(' ? 1 : line[e] == ')' ? -1 : 0) > 0;) ++e;
+        if (e >= line.size()) e = std::string::npos;
+      }
       if (e == std::string::npos) at.fail(0, std::string("a closing '") + close + "'");
       name = line.substr(i + 2, e - i - 2);
       if (close == ')') {
-        hold(translate(name, at));
+        const std::size_t f = name.find(":%");  // $(expr:%fmt)
+        if (f != std::string::npos)
+          hold("(" + quoted(python_format(name.substr(f + 1))) + " % (" + translate(name.substr(0, f), at) + "))");
+        else
+          hold("_fmt(" + translate(name, at) + ")");
         i = e;
         continue;
       }
@@ -265,7 +315,7 @@ std::string YadeExporter::substitute(const std::string& line, const Args& at, st
       name = line.substr(i + 1, 1);
       ++i;
     }
-    if (formulas_.count(name)) hold(translate("v_" + name, at));
+    if (formulas_.count(name)) hold("_fmt(" + translate("v_" + name, at) + ")");
     else out += sim_.variables->string_value(name, at);
   }
   return out;
@@ -301,6 +351,13 @@ std::string YadeExporter::translate(const std::string& e, const Args& at, int de
         k = j;
       }
       const std::string name = e.substr(i, k - i);
+      if ((name == "xcm" || name == "count" || name == "mass") && k < e.size() && e[k] == '(') {
+        const std::size_t close = e.find(')', k);
+        if (close == std::string::npos) at.fail_line("export-yade: no ')' in '" + e + "'");
+        out += group_function(name, e.substr(k + 1, close - k - 1), at);
+        i = close + 1;
+        continue;
+      }
       std::string index;
       if (k < e.size() && e[k] == '[') {
         const std::size_t close = e.find(']', k);
@@ -332,6 +389,77 @@ std::string YadeExporter::translate(const std::string& e, const Args& at, int de
   return out;
 }
 
+std::string YadeExporter::ids_of(std::uint32_t bits) const {
+  std::vector<long> ids;
+  for (std::size_t i = 0; i < sim_.atoms.n; ++i)
+    if (sim_.atoms.mask[i] & bits) ids.push_back(sim_.atoms.id[i]);
+  std::sort(ids.begin(), ids.end());
+  std::string o = "[";
+  for (long i : ids) o += std::to_string(i) + ", ";
+  return o + "]";
+}
+
+// Group functions of the group's members now (groups cannot change after the first
+// run, export-yade translates the scene once): count and mass as numbers, xcm as the
+// members' mass centre in YADE.
+std::string YadeExporter::group_function(const std::string& name, const std::string& args, const Args& at) const {
+  std::vector<std::string> w;
+  std::istringstream ss(args);
+  for (std::string t; std::getline(ss, t, ',');) {
+    t.erase(0, t.find_first_not_of(" \t"));
+    t.erase(t.find_last_not_of(" \t") + 1);
+    w.push_back(t);
+  }
+  const int g = w.empty() ? -1 : sim_.groups.find(w[0]);
+  if (g < 0) at.fail_line("export-yade: " + name + "(" + args + "): no such group");
+  const std::uint32_t bit = sim_.groups.bit(g);
+  if (name == "xcm") {
+    if (w.size() != 2 || (w[1] != "x" && w[1] != "y" && w[1] != "z"))
+      at.fail_line("export-yade: xcm(" + args + "): expected xcm(group,x|y|z)");
+    return "_xcm(" + ids_of(bit) + ", " + std::to_string(w[1][0] - 'x') + ")";
+  }
+  if (w.size() != 1) at.fail_line("export-yade: " + name + "(" + args + "): expected " + name + "(group)");
+  double n = 0, m = 0;
+  for (std::size_t i = 0; i < sim_.atoms.n; ++i)
+    if (sim_.atoms.mask[i] & bit) n += 1, m += sim_.atoms.rmass[i];
+  return num(name == "count" ? n : m);
+}
+
+// An equal-style formula of numbers, arithmetic, math functions and variables
+// of such formulas only: its value cannot change during a run.
+bool YadeExporter::constant(const std::string& e, int depth) const {
+  static const std::set<std::string> math{"sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "atan2", "atan",
+                                          "asin", "acos", "floor", "ceil", "min", "max", "PI", "round"};
+  if (depth > 20) return false;
+  for (std::size_t i = 0; i < e.size();) {
+    const char c = e[i];
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+      while (i < e.size() && (std::isalnum(static_cast<unsigned char>(e[i])) || e[i] == '.' ||
+                              ((e[i] == '-' || e[i] == '+') && (e[i - 1] == 'e' || e[i - 1] == 'E'))))
+        ++i;
+    } else if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+      std::size_t k = i;
+      while (k < e.size() && (std::isalnum(static_cast<unsigned char>(e[k])) || e[k] == '_')) ++k;
+      const std::string name = e.substr(i, k - i);
+      if (k < e.size() && e[k] == '[') return false;
+      if (name.rfind("v_", 0) == 0) {
+        const auto it = formulas_.find(name.substr(2));
+        if (it != formulas_.end() ? !constant(it->second, depth + 1) : !sim_.variables->exists(name.substr(2)) ||
+                                                                          sim_.variables->is_atom_style(name.substr(2)))
+          return false;
+      } else if (!math.count(name)) {
+        return false;
+      }
+      i = k;
+    } else if (std::isspace(static_cast<unsigned char>(c)) || std::string("+-*/%^()<>=!&|,?:").find(c) != std::string::npos) {
+      ++i;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
 std::string YadeExporter::term(const std::string& name, const std::string& index, const Args& at, int depth) const {
   static const std::map<std::string, std::string> per_atom{
       {"vx", "state.vel[0]"},
@@ -352,14 +480,20 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
     return "O.forces.f(_bid(" + std::to_string(std::stol(index)) + "))[" + std::to_string(name[1] - 'x') + "]";
   if (index.empty() && funcs.count(name)) return funcs.at(name);
   if (name == "step") return "_step[0]";
-  if (name == "time") return "(_step[0] * O.dt)";
+  if (name == "time") return "(_time0[0] + (_step[0] - _step0[0]) * O.dt)";
   if (name == "dt") return "O.dt";
   if (name == "atoms") return std::to_string(sim_.atoms.n);
   if (name == "ke") return "_ke()";
+  if (name == "cpu") return "_cpu()";
+  if (name.rfind("v_", 0) == 0 && index.empty() && snaps_.count(name.substr(2))) return "_snap[" + quoted(name.substr(2)) + "]";
   if (name.rfind("v_", 0) == 0 && index.empty()) {
     const std::string v = name.substr(2);
-    if (auto it = formulas_.find(v); it != formulas_.end()) return "(" + translate(it->second, at, depth + 1) + ")";
     double value = 0;
+    if (auto it = formulas_.find(v); it != formulas_.end()) {
+      // numbers only (no state, no step): sable's value, whatever operators it uses (%, round, ...)
+      if (constant(it->second, depth) && sim_.variables->numeric(v, value)) return num(value);
+      return "(" + translate(it->second, at, depth + 1) + ")";
+    }
     if (sim_.variables->numeric(v, value)) return num(value);
   }
   if (name.rfind("f_", 0) == 0) {
@@ -372,8 +506,19 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
     if (const auto m = std::find(mesh_order_.begin(), mesh_order_.end(), name.substr(2));
         m != mesh_order_.end() && k >= 1 && k <= 9)  // force, torque about the reference point, the point
       return "_mesh_out(" + std::to_string(m - mesh_order_.begin()) + ", " + std::to_string(k) + ")";
+    if (std::any_of(ave_times_.begin(), ave_times_.end(), [&](const Fix* f) { return f->id == name.substr(2); }) &&
+        k >= 1 && index.find(']') == std::string::npos)  // fix ave/time's last output (scalar mode: one per value)
+      return "_avt[" + quoted(name.substr(2)) + "].out[" + std::to_string(k - 1) + "]";
+    if (const auto fz = freeze_bits_.find(name.substr(2)); fz != freeze_bits_.end() && k >= 1 && k <= 3 &&
+                                                           index.find(']') == std::string::npos)
+      return "_sumf(" + ids_of(fz->second) + ", " + std::to_string(k - 1) + ")";
     if (const auto b = clumps_of_.find(name.substr(2)); b != clumps_of_.end() && index.find("][") != std::string::npos) {
       const long i = std::stol(index), j = std::stol(index.substr(index.find("][") + 2));
+      if (i >= 1 && i <= static_cast<long>(b->second.second) && j >= 7 && j <= 9) {  // body i's force: its members'
+        std::string ids = "[";
+        for (long id : clumps_[b->second.first + i - 1].ids) ids += std::to_string(id) + ", ";
+        return "_sumf(" + ids + "], " + std::to_string(j - 7) + ")";
+      }
       if (i >= 1 && i <= static_cast<long>(b->second.second) && j >= 1 && j <= 6)  // body i's centre and velocity
         return j <= 3 ? "_wrapped(O.bodies[_cid[" + std::to_string(b->second.first + i - 1) + "]].state.pos[" +
                             std::to_string(j - 1) + "], " + std::to_string(j - 1) + ")"
@@ -383,7 +528,8 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
   at.fail_line("export-yade: cannot translate '" + name + (index.empty() ? "" : "[" + index + "]") +
                "' to YADE (atom values x y z vx vy vz omegax omegay omegaz fx fy fz mass radius [id], "
                "step, time, dt, atoms, ke, v_ of equal-style variables, f_ of a primitive wall's force [1-3], f_ID[1-9] of a mesh, "
-               "f_ID[i][1-6] of a rigid body's centre and velocity, f_ID[1-3] of aveforce/setforce)");
+               "f_ID[i][1-9] of a rigid body's centre, velocity and force, f_ID[1-3] of aveforce/setforce and freeze, f_ID[k] of ave/time, "
+               "xcm(group,dim), count(group), mass(group))");
 }
 
 // ------------------------------------------------------------------ the scene
@@ -404,6 +550,9 @@ double YadeExporter::pair_value(const std::string& prop, int i, int j, const Arg
 
 void YadeExporter::scene(const Args& run) {
   if (!sim_.pair) run.fail_line("export-yade needs a pair_style before the first run");
+  // sable's step and time where YADE's O.iter is 0 (a restart's step, reset_timestep):
+  // the recorders' schedules and step/time values count from there.
+  py_ << "_step0[0], _step[0], _time0[0] = " << sim_.step << ", " << sim_.step << ", " << num(sim_.time) << "\n";
   pair_model();
   periodic_cell();
   fixes();
@@ -588,6 +737,7 @@ void YadeExporter::fixes() {
       ave_times_.push_back(&f);  // translated once every wall, mesh and body is known
     } else if (f.style == "freeze") {
       members([&](std::size_t i) { fixed_[i] = 1; });
+      freeze_bits_[f.id] = f.groupbit;
     } else if (f.style == "addforce") {
       if (f.args.size() > 7) f.args.fail(7, "nothing after fx fy fz (export-yade translates no every or region)");
       std::string F[3];
@@ -925,6 +1075,7 @@ void YadeExporter::clumps() {
 
 void YadeExporter::engines() {
   py_ << "O.dt = " << num(sim_.dt) << "\n";
+  py_ << "_g = Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", " << num(gravity_[2]) << ")\n";
   py_ << "def _add_forces():\n    pass\n";
   for (const auto& f : forces_) py_ << "    " << f << "\n";
   const bool facets = !mesh_order_.empty();
@@ -986,7 +1137,6 @@ void YadeExporter::recorder(const Fix& f) {
       a.fail(i, "an ave/time keyword export-yade translates: mode scalar, ave one, start, off, file, title1, title2");
     }
   }
-  if (o.file.empty()) a.fail_line("export-yade: an ave/time without 'file F' writes nothing YADE can show; not translated");
   for (const auto& w : words) cols.push_back("lambda: " + translate(w, a));  // after the options: those errors first
   // Header as fix_ave_time.cpp writes it in scalar mode (title3 is for vector mode only).
   std::string h = o.title_or(0, "# Time-averaged data for fix " + f.id) + "\n";
@@ -1001,10 +1151,10 @@ void YadeExporter::recorder(const Fix& f) {
   for (std::size_t j = 0; j < cols.size(); ++j)
     offs += std::string(std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end() ? "True" : "False") + ", ";
   py_ << "# " << a.where().file << ":" << a.where().line << ": fix " << f.id << " ave/time\n"
-      << "_recorders.append(_AveTime(" << quoted(o.file) << ", " << quoted(h) << ", " << sched.nevery << ", "
+      << "_avt[" << quoted(f.id) << "] = _AveTime(" << (o.file.empty() ? "None" : quoted(o.file)) << ", " << quoted(h) << ", " << sched.nevery << ", "
       << sched.nrepeat << ", " << sched.nfreq << ", " << sched.start << ", [";
   for (const auto& c : cols) py_ << c << ", ";
-  py_ << "], [" << offs << "]))\n";
+  py_ << "], [" << offs << "])\n_recorders.append(_avt[" << quoted(f.id) << "])\n";
 }
 
 void YadeExporter::dump_recorders() {
@@ -1012,28 +1162,6 @@ void YadeExporter::dump_recorders() {
     if (!dumps_done_.count(d->id)) dump_recorder(*d);
 }
 
-namespace {
-
-// A dump_modify format of one column as Python's % operator takes it: C's
-// length modifiers dropped (%ld -> %d); sable checked the conversion at its line.
-std::string python_format(const std::string& spec) {
-  std::string out;
-  for (std::size_t i = 0; i < spec.size(); ++i) {
-    out += spec[i];
-    if (spec[i] != '%' || i + 1 >= spec.size()) continue;
-    if (spec[i + 1] == '%') {
-      out += spec[++i];
-      continue;
-    }
-    std::size_t j = i + 1;
-    while (j < spec.size() && std::strchr("-+ #0123456789.", spec[j])) out += spec[j++];
-    while (j < spec.size() && std::strchr("lhqjzt", spec[j])) ++j;
-    i = j - 1;
-  }
-  return out;
-}
-
-}  // namespace
 
 // dump ID group custom N file columns...: a _DumpCustom recorder (head()) writing
 // core/dump_custom.cpp's text on YADE's bodies: the same schedule, header,
@@ -1112,8 +1240,10 @@ std::string YadeExporter::head() const {
   std::string cols;
   for (const auto& c : thermo_cols_) cols += (cols.empty() ? "" : " ") + (c == "step" ? std::string("Step") : c);
   return "# YADE 2023 script written by sable --export-yade (tools/export_yade.cpp); run: yade -j1 -n -x THIS.py\n"
-         "import math\nfrom yade import utils\n"
-         "_step = [0]\n_thermo = {'every': 0, 'cols': []}\n"
+         "import math, time\nfrom yade import utils\n"
+         "_t_start, _snap = time.time(), {}\n"
+         "def _cpu():  # sable's cpu: wall seconds since the start\n    return time.time() - _t_start\n"
+         "_step, _step0, _time0 = [0], [0], [0.0]  # sable's step now; sable's step and time at O.iter 0\n_thermo = {'every': 0, 'cols': []}\n"
          "def _bid(i):\n    return _aid[i]\n"
          "def _b(i):\n    return O.bodies[_aid[i]]\n"
          "def _fmt(v):\n    return '%.15g' % v\n"
@@ -1125,6 +1255,11 @@ std::string YadeExporter::head() const {
          "def _ke():  # sable's: every grain's own mass\n"
          "    return sum(0.5 * _m[i] * _b(i).state.vel.squaredNorm() for i in _aid)\n"
          "_fixf = {}\n"
+         "_g = None  # NewtonIntegrator's gravity (set with the engines)\n"
+         "def _sumf(ids, k):  # total force on grains ids after this step's force pass (sable's f holds fix gravity's weight)\n"
+         "    return sum((O.forces.f(_aid[i], sync=True) + _g * _m[i] for i in ids), Vector3.Zero)[k]\n"
+         "def _xcm(ids, k):  # xcm(group, dim): mass centre, unwrapped\n"
+         "    return sum(_m[i] * _b(i).state.pos[k] for i in ids) / sum(_m[i] for i in ids)\n"
          "def _set_forces(name, ids, F, g, ave):  # fix aveforce (ave) / setforce; g: the weight sable counts in already\n"
          "    fs = [O.forces.f(_aid[i], sync=True) + g * _m[i] for i in ids]\n"
          "    total = sum(fs, Vector3.Zero)\n"
@@ -1170,9 +1305,11 @@ std::string YadeExporter::head() const {
          "    def __init__(self, path, header, nevery, nrepeat, nfreq, start, cols, off):\n"
          "        self.nevery, self.nrepeat, self.nfreq, self.start = nevery, nrepeat, nfreq, start\n"
          "        self.cols, self.off, self.irepeat = cols, off, 0\n"
-         "        self.file = open(path, 'w')\n"
-         "        self.file.write(header)\n"
-         "        self.file.flush()\n"
+         "        self.out = [0.0] * len(cols)  # f_ID[k]: the last output (0 before the first)\n"
+         "        self.file = open(path, 'w') if path else None\n"
+         "        if self.file:\n"
+         "            self.file.write(header)\n"
+         "            self.file.flush()\n"
          "        self.nvalid = self.first_after(_step[0])\n"
          "    def first_after(self, step):  # LIGGGHTS' nextvalid()\n"
          "        n = (step // self.nfreq) * self.nfreq + self.nfreq\n"
@@ -1200,8 +1337,10 @@ std::string YadeExporter::head() const {
          "            return\n"
          "        self.irepeat, self.nvalid = 0, s + self.nfreq - (self.nrepeat - 1) * self.nevery\n"
          "        out = [x if off else x / self.nrepeat for x, off in zip(self.sum, self.off)]\n"
-         "        self.file.write('%d' % s + ''.join(' %g' % x for x in out) + '\\n')\n"
-         "        self.file.flush()\n"
+         "        self.out = out\n"
+         "        if self.file:\n"
+         "            self.file.write('%d' % s + ''.join(' %g' % x for x in out) + '\\n')\n"
+         "            self.file.flush()\n"
          "class _DumpCustom:  # dump custom: core/dump_custom.cpp's schedule and text\n"
          "    def __init__(self, name, path, every, ids, box, head, cols):\n"
          "        self.name, self.path, self.every, self.ids, self.box, self.head, self.cols = name, path, every, ids, box, head, cols\n"
@@ -1224,23 +1363,23 @@ std::string YadeExporter::head() const {
          "            self.file = open(self.path, 'w')\n"
          "        self.file.write(text)\n"
          "        self.file.flush()\n"
-         "_recorders = []\n"
+         "_recorders, _avt = [], {}\n"
          "def _row():\n    print(' '.join('%.10g' % c() for c in _thermo['cols']), flush=True)\n"
          "def _thermo_tick():\n"
-         "    _step[0] = O.iter + 1  # this engine runs after NewtonIntegrator, before O.iter counts the step\n"
+         "    _step[0] = _step0[0] + O.iter + 1  # this engine runs after NewtonIntegrator, before O.iter counts the step\n"
          "    for r in _recorders:\n"
          "        r.tick()\n"
          "    if _thermo['every'] and (_step[0] % _thermo['every'] == 0 or _step[0] == _thermo['last']):\n"
          "        _row()\n"
          "def _run(n, every, deck):\n"
-         "    _thermo.update(every=every, cols=_thermo_cols, last=O.iter + n)\n"
+         "    _thermo.update(every=every, cols=_thermo_cols, last=_step0[0] + O.iter + n)\n"
          "    for r in _recorders:  # sable: init() and setup() of fix ave/time\n"
          "        r.init()\n"
          "        r.tick()\n"
          "    print(" + quoted(cols) + ", flush=True)\n"
          "    _row()\n"
          "    O.run(n, True)\n"
-         "    _step[0] = O.iter\n"
+         "    _step[0] = _step0[0] + O.iter\n"
          "    print('Loop time of run %d steps (YADE)' % n, flush=True)\n";
 }
 
