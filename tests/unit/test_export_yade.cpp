@@ -694,3 +694,38 @@ TEST(ExportYade, WallsInAPeriodicBoxBecomeThinBoxes) {
   EXPECT_NE(out.find("deck.in:20"), std::string::npos) << out;
   EXPECT_NE(out.find("this xplane lies outside the periodic box"), std::string::npos) << out;
 }
+
+// The cavity's shear phase (issue 43 item 5): constant formulas take sable's value,
+// $(expr:%fmt) and nested parentheses in prints, group functions, fix freeze's force,
+// a rigid body's force, one ave/time reading another, $(cpu) snapshots, and the
+// recorders' steps counted from sable's step at the first run (reset_timestep).
+TEST(ExportYade, CavityShearObservablesAreTranslated) {
+  TempDir tmp;
+  const std::string s = exported(
+      tmp, kScene + "create_atoms 1 single 0 0 0.0011 units box\ncreate_atoms 1 single 0.003 0 0.0011 units box\n"
+                    "create_atoms 1 single 0.006 0 0.0011 units box\nset group all diameter 0.002 density 2500\n"
+                    "group fl id 3\ngroup b id 1 2\nfix fr fl freeze\nfix r b rigid single\n"
+                    "variable k equal (7-round(2.5))%3\nvariable c equal xcm(b,z)+count(b)\nvariable ff equal -f_fr[3]\n"
+                    "variable fb equal f_r[1][9]\nfix blk all ave/time 1 2 2 v_ff start 5\n"
+                    "fix rec all ave/time 2 2 4 f_blk[1] start 5\nreset_timestep 3\n"
+                    "variable t0 equal $(cpu)\nrun 10\nvariable t1 equal $(cpu)\n"
+                    "print \"K ${k} C ${c} FB $(v_fb:%.3e) R $((f_rec[1]+1)*2) W $(v_t1-v_t0)\"\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_step0[0], _step[0], _time0[0] = 3, 3, "), std::string::npos) << s;
+  EXPECT_NE(s.find("_snap['t0'] = _cpu()"), std::string::npos) << s;
+  EXPECT_NE(s.find("_avt['blk'] = _AveTime(None, "), std::string::npos) << s;
+  EXPECT_NE(s.find("[lambda: _avt['blk'].out[0], ]"), std::string::npos) << s;
+  EXPECT_NE(s.find("'K ' + _fmt(1)"), std::string::npos) << s;  // sable's (7 - round(2.5)) % 3 = (7 - 3) % 3
+  EXPECT_NE(s.find("' C ' + _fmt((_xcm([1, 2, ], 2)+2))"), std::string::npos) << s;
+  EXPECT_NE(s.find("' FB ' + ('%.3e' % ((_sumf([1, 2, ], 2))))"), std::string::npos) << s;
+  EXPECT_NE(s.find("' R ' + _fmt((_avt['rec'].out[0]+1)*2)"), std::string::npos) << s;
+  EXPECT_NE(s.find("' W ' + _fmt(_snap['t1']-_snap['t0'])"), std::string::npos) << s;
+  EXPECT_NE(s.find("[lambda: (-_sumf([3, ], 2)), ]"), std::string::npos) << s;
+}
+
+TEST(ExportYade, CpuAtExportTimeIsRefused) {
+  TempDir tmp;
+  const std::string e = exported(tmp, kHead + "variable t0 equal $(cpu)+1\nrun 10\n");
+  EXPECT_NE(e.find("deck.in:19"), std::string::npos) << e;
+  EXPECT_NE(e.find("$(cpu) here is sable's clock at export time"), std::string::npos) << e;
+}
