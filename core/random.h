@@ -38,6 +38,10 @@ long parse_prime_seed(const Args& a, std::size_t i);
 struct Pdf {
   enum Style { Constant, Uniform, Gaussian } style = Constant;
   double a = 1.0, b = 0.0;  // constant: a; uniform: [a, b]; gaussian: mu a, sigma b
+  // gaussian: values outside mu +- cut sigma are drawn again. LIGGGHTS' fixed
+  // +-3 sigma unless `cut K` was given (cut_given), when moments are the truncated law's.
+  double cut = 3.0;
+  bool cut_given = false;
   double min() const;
   double max() const;
   double mean() const;

@@ -10,6 +10,22 @@
 namespace sable {
 
 
+// Optional `cut K` after a gaussian's MU SIGMA (sable extension, petit2017's
+// +-1 sigma radii): values outside mu +- K sigma are drawn again, and any
+// sigma is allowed while mu - K sigma > 0. Without it LIGGGHTS' +-3 sigma and
+// its refusal of mu - 3 sigma < 0 (delta > 33 %) stand, so its decks mean the same.
+static void parse_cut(const Args& a, std::size_t& i, Pdf& p) {
+  if (i < a.size() && a[i] == "cut") {
+    p.cut = a.num(i + 1, "the cut K (values outside mu +- K sigma are drawn again)");
+    if (!(p.cut >= 0.1 && p.cut <= 10)) a.fail(i + 1, "a cut K between 0.1 and 10 (in sigmas)");
+    if (!(p.a - p.cut * p.b > 0)) a.fail(i + 1, "a cut K with mu - K sigma > 0 (radii stay positive)");
+    p.cut_given = true;
+    i += 2;
+  } else if (p.a - 3 * p.b < 0) {
+    a.fail(i - 1, "mu - 3 sigma >= 0 (values are drawn within +-3 sigma; 'cut K' after sigma narrows it)");
+  }
+}
+
 // Parses `constant V | uniform [number] MIN MAX | gaussian [number] MU SIGMA` at word i
 // (the `number` word is required for radius, as in LIGGGHTS-PUBLIC, and absent for density).
 static Pdf parse_pdf(const Args& a, std::size_t& i, const char* what, bool number_word) {
@@ -39,9 +55,9 @@ static Pdf parse_pdf(const Args& a, std::size_t& i, const char* what, bool numbe
   if (p.style == Pdf::Gaussian) {
     if (!(p.a > 0)) a.fail(i, "mu > 0");
     if (!(p.b > 0)) a.fail(i + 1, "sigma > 0");
-    if (p.a - 3 * p.b < 0) a.fail(i + 1, "mu - 3 sigma >= 0 (values are drawn within +-3 sigma)");
   }
   i += 2;
+  if (p.style == Pdf::Gaussian) parse_cut(a, i, p);
   return p;
 }
 

@@ -3,7 +3,8 @@
 //     [radius constant R] [volume_limit V] [relative no]
 // One kind of grain for insertion (LIGGGHTS 3.8). As an extension (syntax of
 // later LIGGGHTS-PUBLIC), `radius uniform number MIN MAX`, `radius gaussian
-// number MU SIGMA` (truncated at +-3 sigma) and `density uniform|gaussian A B`.
+// number MU SIGMA [cut K]` (truncated at +-3 sigma, or at +-K sigma with sable's
+// `cut`) and `density uniform|gaussian A B [cut K]`.
 // Random numbers and distributions: core/random.h.
 #include <cstdint>
 #include <functional>
