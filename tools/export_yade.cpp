@@ -169,6 +169,8 @@ class YadeExporter {
   std::set<std::string> set_force_fixes_;  // aveforce / setforce fix IDs: f_ID[1..3] from the script's _fixf
   std::string force_component(const Args& a, std::size_t i) const;
   void clumps();
+  void contact_history();
+  const Args* run_ = nullptr;  // the first run (scene): errors of what the scene holds name it
   std::vector<const Fix*> ave_times_;  // fix ave/time: recorders written after the engines
   void recorders();
   void recorder(const Fix& f);
@@ -550,6 +552,7 @@ double YadeExporter::pair_value(const std::string& prop, int i, int j, const Arg
 
 void YadeExporter::scene(const Args& run) {
   if (!sim_.pair) run.fail_line("export-yade needs a pair_style before the first run");
+  run_ = &run;
   // sable's step and time where YADE's O.iter is 0 (a restart's step, reset_timestep):
   // the recorders' schedules and step/time values count from there.
   py_ << "_step0[0], _step[0], _time0[0] = " << sim_.step << ", " << sim_.step << ", " << num(sim_.time) << "\n";
@@ -1029,6 +1032,47 @@ void YadeExporter::bodies() {
   clumps();
 }
 
+// A restart's grain-grain contacts keep their tangential spring in sable (read_restart:
+// the history is injected at the next run's set-up). YADE's CundallStrack laws keep
+// the spring as a force: shearForce = ks * shear (sable's Ft on i = -kt shear, YADE's
+// force on id1 = -shearForce, and the shear increment it subtracts is id2's motion
+// relative to id1). The interaction is made now, marked not fresh (a fresh one's shear
+// force is zeroed on its first step). linear/kneib only: YADE's Mindlin law grows its
+// spring incrementally with a stiffness of the overlap, not a stored displacement, so a
+// Hertz deck's restart history is refused.
+void YadeExporter::contact_history() {
+  const auto& r = sim_.restart;
+  if (r.contacts.count() == 0) return;
+  const std::size_t ns = r.slots.size();
+  int sx = -1;
+  for (std::size_t k = 0; k < ns; ++k)
+    if (r.slots[k].name == "shearx") sx = static_cast<int>(k);
+  if (model_ != "linear/kneib" || sx < 0 || sx + 2 >= static_cast<int>(ns) || r.slots[sx + 1].name != "sheary" ||
+      r.slots[sx + 2].name != "shearz")
+    run_->fail_line("export-yade: the restart " + r.file + " holds " + std::to_string(r.contacts.count()) +
+         " contacts with tangential history, which export-yade carries into YADE for model linear/kneib only "
+         "(shearx sheary shearz, FrictViscoPhys' shear force); not translated");
+  py_ << "# the restart's " << r.contacts.count() << " contacts: id_i, id_j, sable's shear (x, y, z); YADE's shearForce = ks shear\n"
+         "_hist = [\n";
+  for (std::size_t c = 0; c < r.contacts.count(); ++c) {
+    py_ << " (" << r.contacts.ids[2 * c] << ", " << r.contacts.ids[2 * c + 1];
+    for (int k = 0; k < 3; ++k) py_ << ", " << num(r.contacts.hist[c * ns + sx + k]);
+    py_ << "),\n";
+  }
+  py_ << "]\n"
+         "_hist_lost = 0\n"
+         "for (i, j, sx, sy, sz) in _hist:\n"
+         "    try:\n"
+         "        I = utils.createInteraction(_aid[i], _aid[j])\n"
+         "    except Exception:\n"
+         "        _hist_lost += 1\n"
+         "        continue\n"
+         "    I.iterMadeReal = -1  # not fresh: the law keeps the shear force set here\n"
+         "    I.phys.shearForce = I.phys.ks * Vector3(sx, sy, sz)\n"
+         "if _hist_lost:\n"
+         "    print('export-yade: %d of the restart\\'s %d contacts do not touch in YADE; their tangential springs are lost' % (_hist_lost, len(_hist)), flush=True)\n";
+}
+
 // A primitive wall acting on a group (fix ID GROUP wall/gran ...) gets a YADE
 // groupMask bit of its own; every grain has bit 1 (grains touch each other and the
 // walls of group all) plus the bits of the walls whose group holds it.
@@ -1100,6 +1144,7 @@ void YadeExporter::engines() {
   py_ << "    NewtonIntegrator(damping=0, gravity=Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", "
       << num(gravity_[2]) << ")),\n"
       << "    PyRunner(command='_thermo_tick()', iterPeriod=1, initRun=True),\n]\n";  // initRun: step 1's rows and samples too
+  contact_history();  // utils.createInteraction takes the laws from O.engines
 }
 
 // fix ave/time (scalar mode, ave one) as a _AveTime recorder (head()): the
