@@ -1,8 +1,9 @@
 #!/usr/bin/python3
-"""Compare a random deck's statistics between sable and LIGGGHTS over seeds.
+"""Compare a random deck's statistics between sable and LIGGGHTS (or YADE) over seeds.
 
     /usr/bin/python3 reference_runs/compare_seeds.py DECK [--out DIR] [--sable PATH]
-        [--var NAME VALUE ...] [--seeds N] [--seed-values V ...] [--timeout S]
+        [--var NAME VALUE ...] [--seeds N] [--seed-values V ...] [--seed-var NAME] [--timeout S]
+        [--ref liggghts|yade] [--prepare NAME VALUE ...] [--results]
 
 Insertion places grains differently in each code for the same seed, so a single
 run of one code cannot be judged against one run of the other. This runs the
@@ -13,6 +14,16 @@ SE = sqrt(sd_s^2 / n + sd_l^2 / n). It passes when |mean_s - mean_l| <= K SE,
 K from the deck's `#@ tolerance NAME sigma K` (an `abs X` tolerance is an
 absolute bound on the difference of the means; `none` is not judged).
 Writes DIR/DECKNAME/seeds.md and seeds.json; exit status 0 when all pass.
+
+--ref yade: the reference is YADE on the script sable --export-yade writes from the
+deck (reference_runs/README.md, YADE section). --prepare NAME VALUE (repeatable):
+before each judged run of either code, sable runs the deck in that run's directory
+with these variables (e.g. the cavity's `phase deposit`, which writes the restart its
+`phase shear` reads): both codes then start from the same sable state, as YADE must
+where the exporter translates a scene once (the cavity: deposit in sable, shear in
+both). --results: the key=value pairs of the deck's RESULT lines are observables too
+(the last value of a key wins). --seed-var NAME: the seed variable of a deck without
+a `#@ seeds` line (give --seed-values).
 """
 import argparse, datetime, json, math, os, shutil, sys
 
@@ -30,12 +41,29 @@ def stats(values):
     return float(v.mean()), sd, len(v)
 
 
+def result_values(screen):
+    """key=value pairs of the RESULT lines of a run's screen (numbers only; the last wins)."""
+    out = {}
+    if not os.path.exists(screen):
+        return out
+    for line in open(screen, errors='replace'):
+        if not line.startswith('RESULT '):
+            continue
+        for w in line.split()[1:]:
+            k, _, v = w.partition('=')
+            try:
+                out[k] = float(v)
+            except ValueError:
+                pass
+    return out
+
+
 def judge(spec, ms, mlig, se):
     """(pass?, text) for the difference of the means under a tolerance spec."""
     if spec is None:
         return None, 'not judged'
-    d = abs(ms - mlig)
-    allowed, parts = 0.0, []
+    d = abs(ms - mlig - spec.get('offset', 0.0))
+    allowed, parts = 0.0, [f'offset {spec["offset"]:g}, '] if 'offset' in spec else []
     if 'abs' in spec:
         allowed += spec['abs']
         parts.append(f'abs {spec["abs"]:g}')
@@ -47,7 +75,7 @@ def judge(spec, ms, mlig, se):
             return False, 'no spread (one seed)'
         allowed += spec['sigma'] * se
         parts.append(f'{spec["sigma"]:g} SE')
-    return d <= allowed, ' + '.join(parts) + f' = {allowed:.3g}'
+    return d <= allowed, ' + '.join(parts).replace(', + ', ', ') + f' = {allowed:.3g}'
 
 
 def main():
@@ -60,53 +88,79 @@ def main():
     p.add_argument('--seed-values', nargs='+', default=None, metavar='V',
                    help="these seed values instead of the deck's (primes > 10000 for LIGGGHTS)")
     p.add_argument('--timeout', type=float, default=1800)
+    p.add_argument('--ref', choices=['liggghts', 'yade'], default='liggghts', help='the reference code')
+    p.add_argument('--prepare', nargs=2, action='append', default=[], metavar=('NAME', 'VALUE'),
+                   help='variables of a sable run of the deck before each judged run, in its directory')
+    p.add_argument('--results', action='store_true', help="the RESULT lines' key=value pairs are observables")
+    p.add_argument('--seed-var', default=None, help='the seed variable (decks without "#@ seeds")')
     args = p.parse_args()
     args.sable = os.path.abspath(args.sable)
-    if not shutil.which('liggghts'):
-        sys.exit('liggghts is not on PATH (apt-get install liggghts): this comparison runs both codes')
+    ref = args.ref
+    if not shutil.which(ref):
+        sys.exit(f'{ref} is not on PATH (apt-get install {ref}): this comparison runs both codes')
     h = compare.parse_header(args.deck)
-    if not h['seeds']:
-        sys.exit(f'{args.deck}: no "#@ seeds VAR V1 V2 ..." line')
-    var, seeds = h['seeds'][0], (args.seed_values or h['seeds'][1])[:args.seeds or None]
+    if h['seeds']:
+        var, seeds = h['seeds'][0], (args.seed_values or h['seeds'][1])[:args.seeds or None]
+    elif args.seed_var and args.seed_values:
+        var, seeds = args.seed_var, args.seed_values[:args.seeds or None]
+    else:
+        sys.exit(f'{args.deck}: no "#@ seeds VAR V1 V2 ..." line (or give --seed-var and --seed-values)')
     name = os.path.splitext(os.path.basename(args.deck))[0]
     outdir = os.path.join(args.out, name)
-    values = {'sable': {}, 'liggghts': {}}
+    values = {'sable': {}, ref: {}}
     errors = []
     for code in values:
         for s in seeds:
-            obs, _, err, _ = compare.run_once(code, args.deck, os.path.join(outdir, code, f'{var}_{s}'),
-                                              {**dict(args.var), var: s}, h, args)
+            rundir = os.path.join(outdir, code, f'{var}_{s}')
+            variables = {**dict(args.var), var: s}
+            if args.prepare:
+                _, _, err, _ = compare.run_once('sable', args.deck, rundir, {**variables, **dict(args.prepare)}, h, args)
+                os.replace(os.path.join(rundir, 'screen.txt'), os.path.join(rundir, 'prepare.txt'))
+                if err:
+                    errors.append(f'{code} {var}={s}: the sable run before it (--prepare): {err}')
+                    continue
+            obs, _, err, _ = compare.run_once(code, args.deck, rundir, variables, h, args)
             if err:
                 errors.append(f'{code} {var}={s}: {err}')
+            if args.results:
+                obs.update(result_values(os.path.join(rundir, 'screen.txt')))
             for k, v in obs.items():
                 values[code].setdefault(k, []).append(v)
-    names = list(dict.fromkeys(list(values['sable']) + list(values['liggghts'])))
+    names = list(dict.fromkeys(list(values['sable']) + list(values[ref])))
     rows, ok = [], not errors
     for n in names:
         ms, ss, ns = stats(values['sable'].get(n, []))
-        ml, sl, nl = stats(values['liggghts'].get(n, []))
+        ml, sl, nl = stats(values[ref].get(n, []))
         se = math.sqrt(ss ** 2 / ns + sl ** 2 / nl) if ns > 1 and nl > 1 else math.nan
-        passed, text = judge(compare.tolerance(h, n), ms, ml, se)
+        k = compare.rule(h, n)
+        if k is None:  # compare.py's rule: every observable is judged or explicitly unjudged
+            passed, text = False, 'no #@ tolerance or #@ unjudged line matches'
+        elif h['rules'][k][1] is None:
+            passed, text = None, 'unjudged: ' + h['rules'][k][2]
+        else:
+            passed, text = judge(h['rules'][k][1], ms, ml, se)
         ok = ok and passed is not False
         z = abs(ms - ml) / se if se > 0 else (0.0 if ms == ml else math.inf)
-        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, 'liggghts_mean': ml, 'liggghts_sd': sl,
+        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, f'{ref}_mean': ml, f'{ref}_sd': sl,
                      'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
                      'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
-    lines = [f'# {name}: sable vs LIGGGHTS over {len(seeds)} seeds ({datetime.date.today().isoformat()})', '',
+    REF = 'LIGGGHTS' if ref == 'liggghts' else 'YADE'
+    lines = [f'# {name}: sable vs {REF} over {len(seeds)} seeds ({datetime.date.today().isoformat()})', '',
              f'Deck `{compare.show(args.deck)}`' + ''.join(f' -var {k} {v}' for k, v in args.var) +
+             ''.join(f' (after a sable run with -var {k} {v})' for k, v in args.prepare) +
              f', {var} = {" ".join(seeds)}; each code ran once per seed. '
              'SE = sqrt(sd_s^2/n + sd_l^2/n), the standard error of the difference of the means.', '',
-             '| observable | sable mean ± sd | LIGGGHTS mean ± sd | n | diff / SE | tolerance | result |',
+             f'| observable | sable mean ± sd | {REF} mean ± sd | n | diff / SE | tolerance | result |',
              '|---|---|---|---|---|---|---|']
     for r in rows:
         lines.append(f'| {r["observable"]} | {r["sable_mean"]:.6g} ± {r["sable_sd"]:.3g} | '
-                     f'{r["liggghts_mean"]:.6g} ± {r["liggghts_sd"]:.3g} | {r["n"]} | {r["diff_over_se"]:.2f} | '
+                     f'{r[ref + "_mean"]:.6g} ± {r[ref + "_sd"]:.3g} | {r["n"]} | {r["diff_over_se"]:.2f} | '
                      f'{r["tolerance"]} | {r["result"]} |')
     lines += [''] + [f'- error: {e}' for e in errors]
     os.makedirs(outdir, exist_ok=True)
     open(os.path.join(outdir, 'seeds.md'), 'w').write('\n'.join(lines) + '\n')
     with open(os.path.join(outdir, 'seeds.json'), 'w') as f:
-        json.dump({'deck': name, 'vars': dict(args.var), 'seeds': seeds, 'values': values, 'rows': rows, 'errors': errors}, f, indent=1,
+        json.dump({'deck': name, 'ref': ref, 'vars': dict(args.var), 'prepare': dict(args.prepare), 'seeds': seeds, 'values': values, 'rows': rows, 'errors': errors}, f, indent=1,
                   allow_nan=True)
     print('\n'.join(lines))
     print(f'written: {compare.show(os.path.join(outdir, "seeds.md"))}')
