@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/args.h"
+#include "core/compute.h"
 #include "core/atoms.h"
 #include "core/dump.h"
 #include "core/error.h"
@@ -150,6 +151,7 @@ class YadeExporter {
   std::string translate(const std::string& expr, const Args& at, int depth = 0) const;
   std::string term(const std::string& name, const std::string& index, const Args& at, int depth) const;
   bool constant(const std::string& formula, int depth) const;
+  std::string slice_term(const Compute& c, long k, const Args& at) const;
   std::set<std::string> snaps_;  // variable NAME equal $(cpu): _snap[NAME], the script's clock then
   std::map<std::string, std::uint32_t> freeze_bits_;  // fix freeze ID -> its group's bit: f_ID[1-3] its grains' force
   std::string ids_of(std::uint32_t bits) const;       // the atom ids of a group, a Python list
@@ -427,6 +429,27 @@ std::string YadeExporter::group_function(const std::string& name, const std::str
   return num(name == "count" ? n : m);
 }
 
+// compute ID group wall/gran/slices WALLFIX N dim x|y|z lo LO hi HI [outside clamp|drop]
+// (computes/compute_wall_gran_slices.cpp): c_ID[k] from YADE's interactions with the
+// wall's body after the step's force pass (the pass O.forces.f of the wall reports, as
+// sable's slices read the wall's last pass): minus the normal + shear force on the grain,
+// sliced by the grain's coordinate (its projection on the plane).
+std::string YadeExporter::slice_term(const Compute& c, long k, const Args& at) const {
+  const Args& a = c.args;
+  const long n = a.integer(5, "N");
+  if (k < 1 || k > n) at.fail_line("export-yade: c_" + c.id + "[" + std::to_string(k) + "]: slices 1.." + std::to_string(n));
+  const auto w = wall_of_fix_.find(a[4]);
+  if (w == wall_of_fix_.end())
+    a.fail(4, "a primitive wall export-yade translated (fix " + a[4] + " is not one of its walls)");
+  auto bound = [&](std::size_t i) {
+    return "lambda: " + (a[i].rfind("v_", 0) == 0 ? translate(a[i], a) : num(a.num(i, "a bound")));
+  };
+  const bool clamp = a.size() < 14 || a[13] == "clamp";
+  return "_slice(" + quoted(c.id) + ", " + std::to_string(k - 1) + ", " + std::to_string(w->second) + ", " +
+         std::to_string(walls_[w->second].axis) + ", " + ids_of(c.groupbit) + ", " + std::to_string(n) + ", " +
+         std::to_string(a[7][0] - 'x') + ", " + bound(9) + ", " + bound(11) + ", " + (clamp ? "True" : "False") + ")";
+}
+
 // An equal-style formula of numbers, arithmetic, math functions and variables
 // of such formulas only: its value cannot change during a run.
 bool YadeExporter::constant(const std::string& e, int depth) const {
@@ -487,6 +510,9 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
   if (name == "atoms") return std::to_string(sim_.atoms.n);
   if (name == "ke") return "_ke()";
   if (name == "cpu") return "_cpu()";
+  if (name.rfind("c_", 0) == 0 && !index.empty() && index.find(']') == std::string::npos)
+    if (const Compute* c = sim_.find_compute(name.substr(2)); c && c->style == "wall/gran/slices")
+      return slice_term(*c, std::stol(index), at);
   if (name.rfind("v_", 0) == 0 && index.empty() && snaps_.count(name.substr(2))) return "_snap[" + quoted(name.substr(2)) + "]";
   if (name.rfind("v_", 0) == 0 && index.empty()) {
     const std::string v = name.substr(2);
@@ -531,7 +557,7 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
                "' to YADE (atom values x y z vx vy vz omegax omegay omegaz fx fy fz mass radius [id], "
                "step, time, dt, atoms, ke, v_ of equal-style variables, f_ of a primitive wall's force [1-3], f_ID[1-9] of a mesh, "
                "f_ID[i][1-9] of a rigid body's centre, velocity and force, f_ID[1-3] of aveforce/setforce and freeze, f_ID[k] of ave/time, "
-               "xcm(group,dim), count(group), mass(group))");
+               "xcm(group,dim), count(group), mass(group), c_ID[k] of compute wall/gran/slices)");
 }
 
 // ------------------------------------------------------------------ the scene
@@ -1027,7 +1053,8 @@ void YadeExporter::bodies() {
          "    b.state.vel, b.state.angVel = Vector3(vx, vy, vz), Vector3(wx, wy, wz)\n"
          "    b.state.blockedDOFs = dofs\n"
          "    _aid[i] = O.bodies.append(b)\n"
-         "    _m[i], _type[i] = m, t\n";
+         "    _m[i], _type[i] = m, t\n"
+         "_atom_of = {b: i for i, b in _aid.items()}\n";
   for (const auto& m : moves_) py_ << m << "\n";
   clumps();
 }
@@ -1303,6 +1330,28 @@ std::string YadeExporter::head() const {
          "_g = None  # NewtonIntegrator's gravity (set with the engines)\n"
          "def _sumf(ids, k):  # total force on grains ids after this step's force pass (sable's f holds fix gravity's weight)\n"
          "    return sum((O.forces.f(_aid[i], sync=True) + _g * _m[i] for i in ids), Vector3.Zero)[k]\n"
+         "_slice_cache, _slice_members = {}, {}\n"
+         "def _slice(name, k, w, axis, ids, n, dim, lo, hi, clamp):  # compute wall/gran/slices: c_ID[k + 1], once per step\n"
+         "    c = _slice_cache.get(name)\n"
+         "    if c is None or c[0] != _step[0]:\n"
+         "        members = _slice_members.setdefault(name, set(ids))\n"
+         "        lo, hi = lo(), hi()\n"
+         "        if not hi > lo:\n"
+         "            raise RuntimeError('compute %s: at step %d hi = %g is not above lo = %g' % (name, _step[0], hi, lo))\n"
+         "        v, wid = [0.0] * n, _walls[w]\n"
+         "        for I in O.interactions.withBody(wid):\n"
+         "            other = I.id2 if I.id1 == wid else I.id1\n"
+         "            if not I.isReal or _atom_of.get(other) not in members:\n"
+         "                continue\n"
+         "            F = I.phys.normalForce + I.phys.shearForce  # the force on id2, minus that on id1\n"
+         "            fw = -F[axis] if I.id1 == wid else F[axis]  # on the wall\n"
+         "            y = _wrapped(O.bodies[other].state.pos[dim], dim)  # the contact point's, on the plane\n"
+         "            s = (0 if clamp else -1) if y < lo else (n - 1 if clamp else -1) if y > hi else \\\n"
+         "                min(max(int(math.floor((y - lo) / (hi - lo) * n)), 0), n - 1)\n"
+         "            if s >= 0:\n"
+         "                v[s] += fw\n"
+         "        c = _slice_cache[name] = (_step[0], v)\n"
+         "    return c[1][k]\n"
          "def _xcm(ids, k):  # xcm(group, dim): mass centre, unwrapped\n"
          "    return sum(_m[i] * _b(i).state.pos[k] for i in ids) / sum(_m[i] for i in ids)\n"
          "def _set_forces(name, ids, F, g, ave):  # fix aveforce (ave) / setforce; g: the weight sable counts in already\n"

