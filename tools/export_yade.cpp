@@ -151,7 +151,7 @@ class YadeExporter {
   std::string translate(const std::string& expr, const Args& at, int depth = 0) const;
   std::string term(const std::string& name, const std::string& index, const Args& at, int depth) const;
   bool constant(const std::string& formula, int depth) const;
-  std::string slice_term(const Compute& c, long k, const Args& at) const;
+  std::string slice_term(const Compute& c, long k, const Args& at, const std::string& k_expr = "") const;
   std::set<std::string> snaps_;  // variable NAME equal $(cpu): _snap[NAME], the script's clock then
   std::map<std::string, std::uint32_t> freeze_bits_;  // fix freeze ID -> its group's bit: f_ID[1-3] its grains' force
   std::string ids_of(std::uint32_t bits) const;       // the atom ids of a group, a Python list
@@ -434,7 +434,7 @@ std::string YadeExporter::group_function(const std::string& name, const std::str
 // wall's body after the step's force pass (the pass O.forces.f of the wall reports, as
 // sable's slices read the wall's last pass): minus the normal + shear force on the grain,
 // sliced by the grain's coordinate (its projection on the plane).
-std::string YadeExporter::slice_term(const Compute& c, long k, const Args& at) const {
+std::string YadeExporter::slice_term(const Compute& c, long k, const Args& at, const std::string& k_expr) const {
   const Args& a = c.args;
   const long n = a.integer(5, "N");
   if (k < 1 || k > n) at.fail_line("export-yade: c_" + c.id + "[" + std::to_string(k) + "]: slices 1.." + std::to_string(n));
@@ -445,7 +445,7 @@ std::string YadeExporter::slice_term(const Compute& c, long k, const Args& at) c
     return "lambda: " + (a[i].rfind("v_", 0) == 0 ? translate(a[i], a) : num(a.num(i, "a bound")));
   };
   const bool clamp = a.size() < 14 || a[13] == "clamp";
-  return "_slice(" + quoted(c.id) + ", " + std::to_string(k - 1) + ", " + std::to_string(w->second) + ", " +
+  return "_slice(" + quoted(c.id) + ", " + (k_expr.empty() ? std::to_string(k - 1) : k_expr) + ", " + std::to_string(w->second) + ", " +
          std::to_string(walls_[w->second].axis) + ", " + ids_of(c.groupbit) + ", " + std::to_string(n) + ", " +
          std::to_string(a[7][0] - 'x') + ", " + bound(9) + ", " + bound(11) + ", " + (clamp ? "True" : "False") + ")";
 }
@@ -535,8 +535,8 @@ std::string YadeExporter::term(const std::string& name, const std::string& index
         m != mesh_order_.end() && k >= 1 && k <= 9)  // force, torque about the reference point, the point
       return "_mesh_out(" + std::to_string(m - mesh_order_.begin()) + ", " + std::to_string(k) + ")";
     if (std::any_of(ave_times_.begin(), ave_times_.end(), [&](const Fix* f) { return f->id == name.substr(2); }) &&
-        k >= 1 && index.find(']') == std::string::npos)  // fix ave/time's last output (scalar mode: one per value)
-      return "_avt[" + quoted(name.substr(2)) + "].out[" + std::to_string(k - 1) + "]";
+        k >= 1 && index.find(']') == std::string::npos)  // fix ave/time's last output (value k; row k in vector mode)
+      return "_avt[" + quoted(name.substr(2)) + "].value(" + std::to_string(k - 1) + ")";
     if (const auto fz = freeze_bits_.find(name.substr(2)); fz != freeze_bits_.end() && k >= 1 && k <= 3 &&
                                                            index.find(']') == std::string::npos)
       return "_sumf(" + ids_of(fz->second) + ", " + std::to_string(k - 1) + ")";
@@ -1197,36 +1197,66 @@ void YadeExporter::recorder(const Fix& f) {
   std::vector<long> off;
   while (i < a.size()) {
     const std::string& k = a[i];
-    if (k == "mode" && a.word(i + 1, "scalar") != "scalar")
-      a.fail(i + 1, "mode scalar (export-yade translates no vector-mode ave/time)");
     if (k == "ave" && a.word(i + 1, "one") != "one")
       a.fail(i + 1, "ave one (export-yade translates no running or window averages)");
-    if (k == "hdf5" || k == "overwrite") a.fail(i, "file F (export-yade writes the text file only, no " + k + ")");
+    if (k == "overwrite") a.fail(i, "file F or hdf5 F (export-yade writes no overwrite files)");
     if (k == "off") {
       off.push_back(a.integer(i + 1, "a value number"));
       i += 2;
     } else if (!o.parse(a, i, sched, "the first step to average from")) {
-      a.fail(i, "an ave/time keyword export-yade translates: mode scalar, ave one, start, off, file, title1, title2");
+      a.fail(i, "an ave/time keyword export-yade translates: mode, ave one, start, off, file, hdf5, title1, title2, title3");
     }
   }
-  for (const auto& w : words) cols.push_back("lambda: " + translate(w, a));  // after the options: those errors first
-  // Header as fix_ave_time.cpp writes it in scalar mode (title3 is for vector mode only).
+  // Vector mode: each value a whole vector; export-yade knows compute wall/gran/slices' (c_ID).
+  long nrows = 1;
+  for (std::size_t j = 0; j < words.size(); ++j) {
+    if (!o.vector_mode) {
+      cols.push_back("lambda: " + translate(words[j], a));  // after the options: those errors first
+      continue;
+    }
+    const Compute* c = words[j].rfind("c_", 0) == 0 ? sim_.find_compute(words[j].substr(2)) : nullptr;
+    if (!c || c->style != "wall/gran/slices")
+      a.fail(7 + j, "c_ID of a compute wall/gran/slices (export-yade's vector-mode ave/time takes no other vector)");
+    const long n = c->args.integer(5, "N");
+    if (j > 0 && n != nrows) a.fail(7 + j, "vectors of one length");
+    nrows = n;
+    cols.push_back("lambda: [" + slice_term(*c, 1, a, "r") + " for r in range(" + std::to_string(n) + ")]");
+  }
+  // Header as fix_ave_time.cpp writes it.
   std::string h = o.title_or(0, "# Time-averaged data for fix " + f.id) + "\n";
   if (o.titled[1]) {
     h += o.title[1] + "\n";
-  } else {
+  } else if (!o.vector_mode) {
     h += "# TimeStep";
     for (const auto& w : words) h += " " + w;
     h += "\n";
+  } else {
+    h += "# TimeStep Number-of-rows\n";
   }
-  std::string offs;
-  for (std::size_t j = 0; j < cols.size(); ++j)
+  if (o.vector_mode) {
+    if (o.titled[2]) {
+      h += o.title[2] + "\n";
+    } else {
+      h += "# Row";
+      for (const auto& w : words) h += " " + w;
+      h += "\n";
+    }
+  }
+  std::string offs, names;
+  for (std::size_t j = 0; j < cols.size(); ++j) {
     offs += std::string(std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end() ? "True" : "False") + ", ";
+    names += quoted(words[j]) + ", ";
+  }
   py_ << "# " << a.where().file << ":" << a.where().line << ": fix " << f.id << " ave/time\n"
       << "_avt[" << quoted(f.id) << "] = _AveTime(" << (o.file.empty() ? "None" : quoted(o.file)) << ", " << quoted(h) << ", " << sched.nevery << ", "
       << sched.nrepeat << ", " << sched.nfreq << ", " << sched.start << ", [";
   for (const auto& c : cols) py_ << c << ", ";
-  py_ << "], [" << offs << "])\n_recorders.append(_avt[" << quoted(f.id) << "])\n";
+  py_ << "], [" << offs << "]";
+  if (o.vector_mode) py_ << ", rows=" << nrows;
+  if (!o.h5file.empty())
+    py_ << ", h5=(" << quoted(o.h5file) << ", [" << names << "], [" << quoted(f.id) << ", " << quoted(f.style) << ", "
+        << quoted(a.joined(1)) << "])";
+  py_ << ")\n_recorders.append(_avt[" << quoted(f.id) << "])\n";
 }
 
 void YadeExporter::dump_recorders() {
@@ -1395,16 +1425,29 @@ std::string YadeExporter::head() const {
          "        b.state.vel = c.state.vel + c.state.angVel.cross(b.state.pos - c.state.pos)\n"
          "        b.state.angVel = c.state.angVel\n"
          "    return c.id\n"
-         "class _AveTime:  # fix ave/time, mode scalar, ave one: fixes/fix_ave_time.cpp's schedule, averages and file\n"
-         "    def __init__(self, path, header, nevery, nrepeat, nfreq, start, cols, off):\n"
+         "class _AveTime:  # fix ave/time, ave one, scalar or vector mode: fixes/fix_ave_time.cpp's schedule, averages and files\n"
+         "    def __init__(self, path, header, nevery, nrepeat, nfreq, start, cols, off, rows=None, h5=None):\n"
          "        self.nevery, self.nrepeat, self.nfreq, self.start = nevery, nrepeat, nfreq, start\n"
-         "        self.cols, self.off, self.irepeat = cols, off, 0\n"
-         "        self.out = [0.0] * len(cols)  # f_ID[k]: the last output (0 before the first)\n"
+         "        self.cols, self.off, self.irepeat, self.rows = cols, off, 0, rows\n"
+         "        self.width = len(cols) * (rows or 1)\n"
+         "        self.out = [0.0] * self.width  # the last output (0 before the first); row r, value j at r * len(cols) + j\n"
          "        self.file = open(path, 'w') if path else None\n"
          "        if self.file:\n"
          "            self.file.write(header)\n"
          "            self.file.flush()\n"
+         "        self.h5 = None\n"
+         "        if h5:  # datasets step (records) and values (records x [rows x] values), attributes columns and fix\n"
+         "            import h5py, numpy\n"
+         "            self.h5 = h5py.File(h5[0], 'w')\n"
+         "            shape = ((rows,) if rows else ()) + (len(cols),)\n"
+         "            self.h5.create_dataset('values', (0,) + shape, maxshape=(None,) + shape, dtype='f8', chunks=True)\n"
+         "            self.h5.create_dataset('step', (0,), maxshape=(None,), dtype='i8', chunks=True)\n"
+         "            self.h5.attrs.create('columns', numpy.array(h5[1], dtype=object), dtype=h5py.string_dtype())\n"
+         "            self.h5.attrs.create('fix', numpy.array(h5[2], dtype=object), dtype=h5py.string_dtype())\n"
+         "            self.h5.flush()\n"
          "        self.nvalid = self.first_after(_step[0])\n"
+         "    def value(self, k):  # f_ID[k + 1]: value k, or row k of the first value in vector mode\n"
+         "        return self.out[k * len(self.cols) if self.rows else k]\n"
          "    def first_after(self, step):  # LIGGGHTS' nextvalid()\n"
          "        n = (step // self.nfreq) * self.nfreq + self.nfreq\n"
          "        while n < self.start:\n"
@@ -1422,19 +1465,33 @@ std::string YadeExporter::head() const {
          "        if s != self.nvalid:\n"
          "            return\n"
          "        if self.irepeat == 0:\n"
-         "            self.sum = [0.0] * len(self.cols)\n"
+         "            self.sum = [0.0] * self.width\n"
+         "        nv = len(self.cols)\n"
          "        for j, c in enumerate(self.cols):\n"
-         "            self.sum[j] = c() if self.off[j] else self.sum[j] + c()\n"
+         "            x = c()\n"
+         "            for r, xr in enumerate(x if self.rows else [x]):\n"
+         "                self.sum[r * nv + j] = xr if self.off[j] else self.sum[r * nv + j] + xr\n"
          "        self.irepeat += 1\n"
          "        if self.irepeat < self.nrepeat:\n"
          "            self.nvalid += self.nevery\n"
          "            return\n"
          "        self.irepeat, self.nvalid = 0, s + self.nfreq - (self.nrepeat - 1) * self.nevery\n"
-         "        out = [x if off else x / self.nrepeat for x, off in zip(self.sum, self.off)]\n"
+         "        out = [x if self.off[k % nv] else x / self.nrepeat for k, x in enumerate(self.sum)]\n"
          "        self.out = out\n"
          "        if self.file:\n"
-         "            self.file.write('%d' % s + ''.join(' %g' % x for x in out) + '\\n')\n"
+         "            if self.rows:\n"
+         "                self.file.write('%d %d\\n' % (s, self.rows) + ''.join(\n"
+         "                    '%d' % (r + 1) + ''.join(' %g' % x for x in out[r * nv:(r + 1) * nv]) + '\\n' for r in range(self.rows)))\n"
+         "            else:\n"
+         "                self.file.write('%d' % s + ''.join(' %g' % x for x in out) + '\\n')\n"
          "            self.file.flush()\n"
+         "        if self.h5:\n"
+         "            v, st = self.h5['values'], self.h5['step']\n"
+         "            v.resize(v.shape[0] + 1, axis=0)\n"
+         "            v[-1] = [out[r * nv:(r + 1) * nv] for r in range(self.rows)] if self.rows else out\n"
+         "            st.resize(st.shape[0] + 1, axis=0)\n"
+         "            st[-1] = s  # last: the record is complete\n"
+         "            self.h5.flush()\n"
          "class _DumpCustom:  # dump custom: core/dump_custom.cpp's schedule and text\n"
          "    def __init__(self, name, path, every, ids, box, head, cols):\n"
          "        self.name, self.path, self.every, self.ids, self.box, self.head, self.cols = name, path, every, ids, box, head, cols\n"
