@@ -182,6 +182,7 @@ class YadeExporter {
   std::string boundary_;  // the boundary command's styles, as written
   void dump_recorders();
   void dump_recorder(const Dump& d);
+  void dump_local(const Dump& d);
   double gravity_[3] = {0, 0, 0};
   bool rotation_ = false;
 };
@@ -446,7 +447,7 @@ std::string YadeExporter::slice_term(const Compute& c, long k, const Args& at, c
   };
   const bool clamp = a.size() < 14 || a[13] == "clamp";
   return "_slice(" + quoted(c.id) + ", " + (k_expr.empty() ? std::to_string(k - 1) : k_expr) + ", " + std::to_string(w->second) + ", " +
-         std::to_string(walls_[w->second].axis) + ", " + ids_of(c.groupbit) + ", " + std::to_string(n) + ", " +
+         std::to_string(walls_[w->second].axis) + ", " + num(walls_[w->second].pos) + ", " + ids_of(c.groupbit) + ", " + std::to_string(n) + ", " +
          std::to_string(a[7][0] - 'x') + ", " + bound(9) + ", " + bound(11) + ", " + (clamp ? "True" : "False") + ")";
 }
 
@@ -1270,10 +1271,69 @@ void YadeExporter::dump_recorders() {
 // box, %g / %d values with a trailing space (or the dump_modify format), rows in
 // id order (sable: memory order unless dump_modify sort id). Forces add m g to
 // YADE's contact forces (sable's f holds fix gravity's).
+// dump ID group local N file c_ID[k]... | index: the local rows of one compute
+// wall/gran/slices (id x y z fx fy fz: the grain, the contact point on the plane, the
+// force on the wall) as a _DumpLocal recorder writing core/dump_local.cpp's text. Rows
+// in grain id order (sable: its wall pass's order, atom memory order).
+void YadeExporter::dump_local(const Dump& d) {
+  const Args& a = d.args;  // dump ID group local N file values...
+  std::string comp, head;
+  std::vector<std::pair<std::string, std::string>> cols;  // format, Python of row r (None: index)
+  for (std::size_t k = 6; k < a.size(); ++k) {
+    head += (k > 6 ? " " : "") + a[k];
+    if (a[k] == "index") {
+      cols.push_back({"%d ", "None"});
+      continue;
+    }
+    const std::size_t open = a[k].find('[');
+    const Compute* c = a[k].rfind("c_", 0) == 0 && open != std::string::npos ? sim_.find_compute(a[k].substr(2, open - 2)) : nullptr;
+    if (!c || c->style != "wall/gran/slices")
+      a.fail(k, "c_ID[k] of a compute wall/gran/slices (export-yade's dump local takes no other local data)");
+    if (!comp.empty() && c->id != comp) a.fail(k, "columns of one compute (export-yade)");
+    comp = c->id;
+    const int col = std::stoi(a[k].substr(open + 1)) - 1;
+    cols.push_back({"%g ", col == 0 ? "lambda r: r[0]" : "lambda r: r[" + std::to_string(col <= 3 ? 1 : 2) + "][" +
+                                                             std::to_string((col - 1) % 3) + "]"});
+  }
+  for (const Args& m : dump_mods_[d.id])
+    for (std::size_t k = 2; k < m.size();) {
+      if (m[k] != "format") m.fail(k, "format (export-yade translates dump local's format only)");
+      if (m.word(k + 1, "float, none or a column") == "none") {
+        for (auto& c : cols) c.first = c.second == "None" ? "%d " : "%g ";
+        k += 2;
+      } else if (m[k + 1] == "float") {
+        for (auto& c : cols)
+          if (c.second != "None") c.first = python_format(m.word(k + 2, "a format")) + " ";
+        k += 3;
+      } else {
+        const long n = m.integer(k + 1, "a column number");
+        if (n < 1 || n > static_cast<long>(cols.size())) m.fail(k + 1, "a column number of the dump");
+        cols[n - 1].first = python_format(m.word(k + 2, "a format")) + " ";
+        k += 3;
+      }
+    }
+  const Compute& c = *sim_.find_compute(comp);
+  const auto w = wall_of_fix_.find(c.args[4]);
+  if (w == wall_of_fix_.end()) c.args.fail(4, "a primitive wall export-yade translated");
+  const Domain& dom = sim_.domain;
+  char box[256];
+  std::snprintf(box, sizeof box, "ITEM: BOX BOUNDS %s %s %s\n%g %g\n%g %g\n%g %g\n", dom.periodic[0] ? "pp" : "ff",
+                dom.periodic[1] ? "pp" : "ff", dom.periodic[2] ? "pp" : "ff", dom.lo[0], dom.hi[0], dom.lo[1], dom.hi[1],
+                dom.lo[2], dom.hi[2]);
+  py_ << "# " << a.where().file << ":" << a.where().line << ": dump " << d.id << " local\n"
+      << "_recorders.append(_DumpLocal(" << quoted(d.id) << ", " << quoted(d.file) << ", " << d.every << ", " << quoted(box)
+      << ", " << quoted("ITEM: ENTRIES " + head + "\n") << ", lambda: _wall_rows(" << quoted(comp) << ", " << w->second << ", "
+      << walls_[w->second].axis << ", " << num(walls_[w->second].pos) << ", " << ids_of(c.groupbit) << "), [";
+  for (const auto& [f, py] : cols) py_ << "(" << quoted(f) << ", " << py << "), ";
+  py_ << "]))\n";
+  dumps_done_.insert(d.id);
+}
+
 void YadeExporter::dump_recorder(const Dump& d) {
   const Args& a = d.args;  // dump ID group custom N file cols... (a[0]: the command)
+  if (d.style == "local") return dump_local(d);
   if (d.style != "custom")
-    a.fail(3, "dump custom (export-yade translates text dumps only; '" + d.style + "' is not translated)");
+    a.fail(3, "dump custom or local (export-yade translates these text dumps only; '" + d.style + "' is not translated)");
   if (boundary_.find_first_of("sm") != std::string::npos)
     a.fail_line("export-yade: a dump with shrink-wrapped boundaries (boundary " + boundary_ +
                 ") writes a box YADE does not have; not translated");
@@ -1360,28 +1420,61 @@ std::string YadeExporter::head() const {
          "_g = None  # NewtonIntegrator's gravity (set with the engines)\n"
          "def _sumf(ids, k):  # total force on grains ids after this step's force pass (sable's f holds fix gravity's weight)\n"
          "    return sum((O.forces.f(_aid[i], sync=True) + _g * _m[i] for i in ids), Vector3.Zero)[k]\n"
-         "_slice_cache, _slice_members = {}, {}\n"
-         "def _slice(name, k, w, axis, ids, n, dim, lo, hi, clamp):  # compute wall/gran/slices: c_ID[k + 1], once per step\n"
-         "    c = _slice_cache.get(name)\n"
+         "_rows_cache, _slice_cache, _slice_members = {}, {}, {}\n"
+         "def _wall_rows(name, w, axis, pos, ids):  # compute wall/gran/slices' local rows, by grain id, once per step:\n"
+         "    c = _rows_cache.get(name)  # (id, contact point on the plane, force on the wall) after the step's force pass\n"
          "    if c is None or c[0] != _step[0]:\n"
          "        members = _slice_members.setdefault(name, set(ids))\n"
-         "        lo, hi = lo(), hi()\n"
-         "        if not hi > lo:\n"
-         "            raise RuntimeError('compute %s: at step %d hi = %g is not above lo = %g' % (name, _step[0], hi, lo))\n"
-         "        v, wid = [0.0] * n, _walls[w]\n"
+         "        wid, rows = _walls[w], []\n"
          "        for I in O.interactions.withBody(wid):\n"
          "            other = I.id2 if I.id1 == wid else I.id1\n"
          "            if not I.isReal or _atom_of.get(other) not in members:\n"
          "                continue\n"
          "            F = I.phys.normalForce + I.phys.shearForce  # the force on id2, minus that on id1\n"
-         "            fw = -F[axis] if I.id1 == wid else F[axis]  # on the wall\n"
-         "            y = _wrapped(O.bodies[other].state.pos[dim], dim)  # the contact point's, on the plane\n"
+         "            p = [_wrapped(O.bodies[other].state.pos[k], k) for k in range(3)]\n"
+         "            p[axis] = pos  # the grain's projection on the plane\n"
+         "            rows.append((_atom_of[other], p, -F if I.id1 == wid else F))\n"
+         "        rows.sort(key=lambda r: r[0])\n"
+         "        c = _rows_cache[name] = (_step[0], rows)\n"
+         "    return c[1]\n"
+         "def _slice(name, k, w, axis, pos, ids, n, dim, lo, hi, clamp):  # compute wall/gran/slices: c_ID[k + 1], once per step\n"
+         "    c = _slice_cache.get(name)\n"
+         "    if c is None or c[0] != _step[0]:\n"
+         "        lo, hi = lo(), hi()\n"
+         "        if not hi > lo:\n"
+         "            raise RuntimeError('compute %s: at step %d hi = %g is not above lo = %g' % (name, _step[0], hi, lo))\n"
+         "        v = [0.0] * n\n"
+         "        for i, p, fw in _wall_rows(name, w, axis, pos, ids):\n"
+         "            y = p[dim]\n"
          "            s = (0 if clamp else -1) if y < lo else (n - 1 if clamp else -1) if y > hi else \\\n"
          "                min(max(int(math.floor((y - lo) / (hi - lo) * n)), 0), n - 1)\n"
          "            if s >= 0:\n"
-         "                v[s] += fw\n"
+         "                v[s] += fw[axis]\n"
          "        c = _slice_cache[name] = (_step[0], v)\n"
          "    return c[1][k]\n"
+         "class _DumpLocal:  # dump local of compute wall/gran/slices' rows: core/dump_local.cpp's schedule and text\n"
+         "    def __init__(self, name, path, every, box, head, rows, cols):\n"
+         "        self.name, self.path, self.every, self.box, self.head, self.rows, self.cols = name, path, every, box, head, rows, cols\n"
+         "        self.last, self.file = -1, None\n"
+         "    def init(self):\n"
+         "        pass\n"
+         "    def tick(self):\n"
+         "        s = _step[0]\n"
+         "        if s % self.every or s == self.last:\n"
+         "            return\n"
+         "        self.last = s\n"
+         "        rows = self.rows()\n"
+         "        text = 'ITEM: TIMESTEP\\n%d\\nITEM: NUMBER OF ENTRIES\\n%d\\n' % (s, len(rows)) + self.box + self.head\n"
+         "        for n, r in enumerate(rows):\n"
+         "            text += ''.join((f % (n + 1) if c is None else f % c(r)) for f, c in self.cols) + '\\n'\n"
+         "        if '*' in self.path:\n"
+         "            with open(self.path.replace('*', str(s)), 'w') as f:\n"
+         "                f.write(text)\n"
+         "            return\n"
+         "        if self.file is None:\n"
+         "            self.file = open(self.path, 'w')\n"
+         "        self.file.write(text)\n"
+         "        self.file.flush()\n"
          "def _xcm(ids, k):  # xcm(group, dim): mass centre, unwrapped\n"
          "    return sum(_m[i] * _b(i).state.pos[k] for i in ids) / sum(_m[i] for i in ids)\n"
          "def _set_forces(name, ids, F, g, ave):  # fix aveforce (ave) / setforce; g: the weight sable counts in already\n"
