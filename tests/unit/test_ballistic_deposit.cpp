@@ -196,6 +196,27 @@ TEST(BallisticDeposit, MonodisperseBulkFraction) {
   std::printf("monodisperse bulk area fraction %.4f (%zu disks)\n", phi, g.size());
 }
 
+// A second deposit (other seed, other template) lands on the first: grains
+// already in the box are obstacles. `floor 5`: the lowest disks rest at y = 5 + r.
+TEST(BallisticDeposit, SecondDepositOnFirstAndFloorHeight) {
+  Deck d;
+  d(deck(30, 80, 0.5, "300") + "fix small all particletemplate/sphere 15485867 density constant 1 radius constant 0.4\n"
+                               "ballistic_deposit 300 small seed 32452867\n");
+  ASSERT_EQ(d->atoms.n, 600u);
+  auto g = disks(d);
+  EXPECT_GE(min_gap(g, 30), 1 - 1e-9);
+  EXPECT_EQ(unsupported(g, 30), 0);
+  double low1 = 1e300, low2 = 1e300;
+  for (const auto& k : g) (k.id <= 300 ? low1 : low2) = std::min(k.id <= 300 ? low1 : low2, k.y);
+  EXPECT_GT(low2, low1);  // the small disks sit in and on the first deposit
+  Deck f;
+  f(deck(30, 80, 0.0, "100").substr(0, deck(30, 80, 0.0, "100").rfind("ballistic")) +
+    "ballistic_deposit 100 pt seed 32452843 floor 5\n");
+  double low = 1e300;
+  for (const auto& k : disks(f)) low = std::min(low, k.y);
+  EXPECT_DOUBLE_EQ(low, 6.0);
+}
+
 TEST(BallisticDeposit, BadInput) {
   const std::string box2d = "units si\natom_style granular\ndimension 2\nboundary p f p\n"
                             "region box block 0 10 0 20 -0.5 0.5 units box\ncreate_box 1 box\n"
