@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "core/dump_columns.h"
+#include "core/dump_file.h"
 #include "core/style_registry.h"
 
 namespace sable {
@@ -58,9 +59,6 @@ class DumpCustom : public Dump {
       header_ += a[i] + " ";
     }
     fmt_.resize(cols_.size());
-  }
-  ~DumpCustom() override {
-    if (fd_ >= 0) ::close(fd_);
   }
 
   bool modify_param(const Args& a, std::size_t& i) override {
@@ -148,23 +146,7 @@ class DumpCustom : public Dump {
       out += '\n';
     }
 
-    if (multifile || fd_ < 0 || path != open_path_) {
-      if (fd_ >= 0) ::close(fd_);
-      const bool keep = !multifile && (append || append_file_);
-      fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | (keep ? 0 : O_TRUNC), 0644);
-      if (fd_ < 0) fail("dump " + id + ": cannot open '" + path + "' for writing: " + std::strerror(errno));
-      open_path_ = path;
-    }
-    for (std::size_t done = 0; done < out.size();) {
-      const ssize_t w = ::write(fd_, out.data() + done, out.size() - done);
-      if (w < 0 && errno == EINTR) continue;
-      if (w <= 0) fail("dump " + id + ": writing '" + path + "' failed: " + std::strerror(errno));
-      done += static_cast<std::size_t>(w);
-    }
-    if (multifile) {  // the base renames the finished temporary file
-      ::close(fd_);
-      fd_ = -1;
-    }
+    file_.write(out, path, !multifile && (append || append_file_), multifile, id);
   }
 
  private:
@@ -223,8 +205,7 @@ class DumpCustom : public Dump {
   DumpFilter filter_;
   int sort_col_ = 0;              // dump_modify sort N (>0 ascending, <0 descending)
   bool append_file_ = false;      // dump_modify append yes: keep an existing file
-  int fd_ = -1;                   // single-file mode keeps the file open between snapshots
-  std::string open_path_;
+  DumpFile file_;
   long last_step_ = -1;
 };
 

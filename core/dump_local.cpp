@@ -18,6 +18,7 @@
 
 #include "core/compute.h"
 #include "core/dump.h"
+#include "core/dump_file.h"
 #include "core/error.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
@@ -36,9 +37,6 @@ class DumpLocal : public Dump {
       header_ += (i > 6 ? " " : "") + a[i];
     }
     if (!any_compute) a.fail(6, "at least one c_ID[k] (index alone names no contacts)");
-  }
-  ~DumpLocal() override {
-    if (fd_ >= 0) ::close(fd_);
   }
 
   void init() override {
@@ -100,7 +98,7 @@ class DumpLocal : public Dump {
       }
       out += '\n';
     }
-    write_out(out, path, append);
+    file_.write(out, path, !multifile && append, multifile, id);
   }
 
  private:
@@ -175,30 +173,9 @@ class DumpLocal : public Dump {
     return n;
   }
 
-  // One write() per snapshot, as dump custom: a kill never cuts an earlier one.
-  void write_out(const std::string& out, const std::string& path, bool append) {
-    if (multifile || fd_ < 0 || path != open_path_) {
-      if (fd_ >= 0) ::close(fd_);
-      fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | (!multifile && append ? 0 : O_TRUNC), 0644);
-      if (fd_ < 0) fail("dump " + id + ": cannot open '" + path + "' for writing: " + std::strerror(errno));
-      open_path_ = path;
-    }
-    for (std::size_t done = 0; done < out.size();) {
-      const ssize_t w = ::write(fd_, out.data() + done, out.size() - done);
-      if (w < 0 && errno == EINTR) continue;
-      if (w <= 0) fail("dump " + id + ": writing '" + path + "' failed: " + std::strerror(errno));
-      done += static_cast<std::size_t>(w);
-    }
-    if (multifile) {  // the base renames the finished temporary file
-      ::close(fd_);
-      fd_ = -1;
-    }
-  }
-
   std::vector<Column> cols_;
   std::string header_;  // the value words joined by spaces (LAMMPS' ENTRIES line)
-  int fd_ = -1;
-  std::string open_path_;
+  DumpFile file_;
   long last_step_ = -1;
 };
 
