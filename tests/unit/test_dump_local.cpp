@@ -14,6 +14,7 @@
 
 #include "core/compute.h"
 #include "tests/unit/deck_runner.h"
+#include "tests/unit/right_wall_scene.h"
 
 using sable::test::Deck;
 using sable::test::error_of;
@@ -21,22 +22,8 @@ using sable::test::TempDir;
 
 namespace {
 
-constexpr double kR = 0.0008, kRho = 2500, kE = 5e7, kNu = 0.3;
-
-const char* kHead = R"(units si
-atom_style granular
-boundary f f f
-region box block -0.01 0.011 -0.005 0.02 -0.01 0.01 units box
-create_box 1 box
-neighbor 0.0002 bin
-fix m1 all property/global youngsModulus peratomtype 5e7
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 1e-6
-fix right all wall/gran model hertz tangential history primitive type 1 xplane 0.01
+using namespace sable::test::right_wall;
+const std::string kHead = std::string(kScene) + R"(
 create_atoms 1 single 0.00921 0.0005 0 units box
 create_atoms 1 single 0.00922 0.0035 0 units box
 create_atoms 1 single 0.009204 0.0075 0 units box
@@ -45,7 +32,6 @@ compute wl all wall/gran/local pos id force)";
 const double kDelta[3] = {1e-5, 2e-5, 4e-6};
 
 // LIGGGHTS' Hertz against a wall: F = 4/3 Y* sqrt(r) delta^1.5, Y* = E / (2 (1 - nu^2)).
-double hertz(double delta) { return 4.0 / 3.0 * kE / (2 * (1 - kNu * kNu)) * std::sqrt(kR) * std::pow(delta, 1.5); }
 
 void setup(Deck& d) {
   d(kHead);

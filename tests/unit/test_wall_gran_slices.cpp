@@ -15,6 +15,7 @@
 #include "core/fix.h"
 #include "core/variable.h"
 #include "tests/unit/deck_runner.h"
+#include "tests/unit/right_wall_scene.h"
 
 using sable::test::Deck;
 using sable::test::error_of;
@@ -22,29 +23,8 @@ using sable::test::TempDir;
 
 namespace {
 
-constexpr double kR = 0.0008, kRho = 2500, kE = 5e7, kNu = 0.3;
-constexpr double kWall = 0.01;  // the right wall, x = 0.01
-
-const char* kHead = R"(units si
-atom_style granular
-boundary f f f
-region box block -0.01 0.011 -0.005 0.02 -0.01 0.01 units box
-create_box 1 box
-neighbor 0.0002 bin
-fix m1 all property/global youngsModulus peratomtype 5e7
-fix m2 all property/global poissonsRatio peratomtype 0.3
-fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep 1e-6
-fix right all wall/gran model hertz tangential history primitive type 1 xplane 0.01)";
-
-// LIGGGHTS' Hertz against a wall (R* = r, Y* = E / (2 (1 - nu^2))): F = 4/3 Y* sqrt(r) delta^1.5.
-double hertz(double delta) {
-  const double ystar = kE / (2 * (1 - kNu * kNu));
-  return 4.0 / 3.0 * ystar * std::sqrt(kR) * std::pow(delta, 1.5);
-}
+using namespace sable::test::right_wall;
+const char* kHead = kScene;
 
 struct Grain {
   double y, delta;
