@@ -498,9 +498,11 @@ Rheology local_rheology(const Grid2D& g, const Region& r, double d, double rho_p
         ++out.skipped;
         continue;
       }
-      double tr = 0;  // Tr(sigma' D'), both symmetric
+      // Tr(sigma' D') with D taken compression positive as sigma is (-sym grad v): a flow that
+      // dissipates gives tr > 0 (u = gd y carries sxy = -tau in fix ave/cg's convention)
+      double tr = 0;
       for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) tr += S[a][b] * D[b][a];
+        for (int b = 0; b < 3; ++b) tr -= S[a][b] * D[b][a];
       p.i = d * std::sqrt(rho_p) * p.norm_d / std::sqrt(p.p);
       p.mu_loc = tr / 3 / (p.p * p.norm_d);
       p.mu_norm = p.norm_s / p.p;

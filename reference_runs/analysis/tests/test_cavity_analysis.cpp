@@ -238,14 +238,15 @@ TEST(CavityVortex, CavityLikeVortexShiftedTowardsTheRightWall) {
 
 namespace {
 
-// Simple shear u = gd y (+ a uniform drift), v = 0 under sigma = [[P, tau], [tau, P]], szz.
+// Simple shear u = gd y (+ a uniform drift), v = 0 resisted by a shear stress tau > 0: compression
+// positive (fix ave/cg's convention), sigma = [[P, -tau], [-tau, P]], szz.
 Grid2D simple_shear(double gd, double P, double tau, double szz) {
   Grid2D g = cells(40, 20, 0.8, 0.4);
   fill_velocity(g, [&](double, double y) { return std::pair{0.3 + gd * y, 0.0}; });
   const std::size_t n = g.nx() * g.ny();
   g.sxx.assign(n, P);
   g.syy.assign(n, P);
-  g.sxy.assign(n, tau);
+  g.sxy.assign(n, -tau);
   g.szz.assign(n, szz);
   return g;
 }
@@ -253,8 +254,9 @@ Grid2D simple_shear(double gd, double P, double tau, double szz) {
 }  // namespace
 
 TEST(CavityRheology, SimpleShearGivesKnownIAndMu) {
-  // D' = [[0, gd/2], [gd/2, 0]]: ||D'|| = gd/2 (Eq. 16). With szz = P: p = P, sigma' = tau
-  // off the diagonal, ||sigma'|| = tau, Tr(sigma' D') = tau gd, so Eq. 18 gives
+  // D' = [[0, gd/2], [gd/2, 0]]: ||D'|| = gd/2 (Eq. 16). With szz = P: p = P, sigma' = -tau
+  // off the diagonal, ||sigma'|| = tau, Tr(sigma' D') = tau gd with D compression positive as
+  // sigma (-sym grad v; a dissipating flow has mu_loc > 0), so Eq. 18 gives
   // I = d sqrt(rho_p) gd / (2 sqrt(P)) and Eq. 19 mu_loc = (tau gd / 3)/(P gd / 2) = 2 tau/(3 P),
   // mu_norm = tau/P. Linear fields: finite differences exact, rounding only (1e-13).
   const double gd = 7.5, P = 1200, tau = 0.35 * P, d = 1e-3, rho = 2500;
@@ -277,6 +279,10 @@ TEST(CavityRheology, SimpleShearGivesKnownIAndMu) {
     EXPECT_NEAR(q.i, d * std::sqrt(rho) * gd / 2 / std::sqrt(2 * P / 3), 1e-13 * I);
     EXPECT_NEAR(q.mu_loc, tau / P, 1e-13);
   }
+  // Control on the sign: a stress that drives the shear instead of resisting it (sxy = +tau)
+  // gives a negative friction.
+  for (const RheologyPoint& q : local_rheology(simple_shear(gd, P, -tau, P), Region{}, d, rho).points)
+    EXPECT_NEAR(q.mu_loc, -2 * tau / (3 * P), 1e-13);
 }
 
 TEST(CavityRheology, PaperRegionIgnoresEverythingOutsideIt) {
@@ -331,7 +337,7 @@ TEST(CavityRheology, BinnedMeansOverLogBinsInI) {
   g.sxx.assign(n, 1000);
   g.syy.assign(n, 1000);
   g.szz.assign(n, 1000);
-  g.sxy.assign(n, 300);
+  g.sxy.assign(n, -300);  // compression positive: the stress resisting u = 5 y^2
   const Rheology r = local_rheology(g, paper_region(g), 1e-3, 2500);
   const std::vector<RheologyBin> b = bin_rheology(r.points, 5);
   std::size_t total = 0;
@@ -362,7 +368,7 @@ TEST(CavityRheology, Eq20RecoveredThroughTheLocalRheology) {
   for (std::size_t i = 0; i < g.nx(); ++i)
     for (std::size_t j = 0; j < g.ny(); ++j) {
       const double I = d * std::sqrt(rho) * A * g.ys[j] / std::sqrt(P);
-      g.sxy[g.at(i, j)] = 1.5 * sigmoid(I, 0.12, 0.40, 0.13) * P;
+      g.sxy[g.at(i, j)] = -1.5 * sigmoid(I, 0.12, 0.40, 0.13) * P;  // compression positive
     }
   const Rheology r = local_rheology(g, Region{}, d, rho);
   Vec I, mu;

@@ -1,0 +1,275 @@
+#!/usr/bin/python3
+"""The cavity sweep of reference_runs/cavity/sweep/PLAN.md: run, then reduce each run.
+
+    /usr/bin/python3 input_scripts/cavity/sweep.py run [--work DIR] [--only NU,NP] [--seeds 1 2 3]
+    /usr/bin/python3 input_scripts/cavity/sweep.py reduce [--work DIR]
+    /usr/bin/python3 input_scripts/cavity/sweep.py yade [--work DIR] [--only NU,NP] [--seeds 1 2 3]
+
+`run` runs the plan's points (seed 1 first, the table's order, each deposit once per
+(N_P, seed)) that have no reduced result yet, and reduces each as it ends; a killed
+sweep resumes where it stopped. Raw outputs (HDF5 series, slices and fields, contact
+rows) go to DIR (default /tmp/cavity_sweep); what is committed goes to
+reference_runs/cavity/sweep/runs/NU<nu>_NP<np>_s<seed>/: the run's log, block means and
+reduced.json (the RESULT and CAVITY values, l/L, the ACF times, the paper-region nodes'
+I and mu_loc). `reduce` redoes the reductions from DIR. The seeds' normalised force
+samples are kept in DIR for sweep_figures.py (pooled PDFs and Eq. 7 fits).
+"""
+import argparse, json, os, subprocess, sys, time
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DECK = os.path.join(ROOT, 'input_scripts', 'cavity', 'cavity.in')
+SABLE = os.path.join(ROOT, 'build', 'sable')
+ANALYZE = os.path.join(ROOT, 'build', 'sable-analyze')
+OUT = os.path.join(ROOT, 'reference_runs', 'cavity', 'sweep', 'runs')
+
+HD, TSHEAR, TREC = 12, 6, 1
+if os.environ.get('CAVITY_SWEEP_SMOKE'):  # a seconds-long check of this script itself, not the plan
+    HD, TSHEAR, TREC = 8, 0.3, 0.1
+    OUT = os.path.join(os.environ['CAVITY_SWEEP_SMOKE'], 'runs')
+POINTS = [(1, 100), (1, 10), (1, 1), (2, 4), (2, 1), (5, 1), (10, 1), (1, 0.01), (20, 1)]
+SEEDS = [1, 2, 3]
+YADE_POINTS = [(1, 1), (10, 1)]  # I_M 0.024 and 0.24
+D, RHO_P = 1e-3, 2500.0
+
+
+def tag(nu, np_, seed):
+    return f'NU{nu:g}_NP{np_:g}_s{seed}'
+
+
+def key_values(path, prefix):
+    """key=value pairs of the lines starting with prefix (numbers only; the last wins)."""
+    out = {}
+    for line in open(path, errors='replace'):
+        if line.startswith(prefix + ' '):
+            for w in line.split()[1:]:
+                k, _, v = w.partition('=')
+                try:
+                    out[k] = float(v)
+                except ValueError:
+                    pass
+    return out
+
+
+def sable(args, log, cwd):
+    cmd = [SABLE, '-in', DECK, '-log', log, '-echo', 'none'] + args
+    env = dict(os.environ, OMP_NUM_THREADS='1')
+    with open(log + '.screen', 'w') as scr:
+        rc = subprocess.run(cmd, cwd=cwd, stdout=scr, stderr=subprocess.STDOUT, env=env).returncode
+    if rc != 0:
+        sys.exit(f'sweep: {" ".join(cmd)} failed (exit {rc}); see {log}.screen')
+
+
+def analyze(args):
+    r = subprocess.run([ANALYZE] + args, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f'sweep: sable-analyze {" ".join(args)} failed: {r.stderr.strip()}')
+    return r.stdout
+
+
+def csv_table(path):
+    """A sable-analyze CSV (# lines are metadata, then a header) as {column: array}."""
+    lines = [l.strip() for l in open(path) if l.strip() and not l.startswith('#')]
+    names = lines[0].split(',')
+    rows = np.array([[float(v) for v in l.split(',')] for l in lines[1:]]).reshape(-1, len(names))
+    return {n: rows[:, k] for k, n in enumerate(names)}
+
+
+def deposit(work, np_, seed):
+    rs = os.path.join(work, f'dep_NP{np_:g}_s{seed}.restart')
+    if not os.path.exists(rs):
+        vs = ['-var', 'Hd', str(HD), '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
+              '-var', 'phase', 'deposit', '-var', 'restart', rs]
+        sable(vs, rs + '.log', work)
+    return rs
+
+
+def shear(work, nu, np_, seed):
+    t = tag(nu, np_, seed)
+    raw = os.path.join(work, t)
+    os.makedirs(raw, exist_ok=True)
+    rs = deposit(work, np_, seed)
+    vs = ['-var', 'Hd', str(HD), '-var', 'NU', f'{nu:g}', '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
+          '-var', 'tshear', str(TSHEAR), '-var', 'trec', str(TREC), '-var', 'phase', 'shear',
+          '-var', 'restart', rs, '-var', 'fields', '1', '-var', 'contacts', '1', '-var', 'out', 'cav']
+    t0 = time.time()
+    sable(vs, os.path.join(raw, 'log.sable'), raw)
+    return raw, time.time() - t0
+
+
+def yade_shear(work, nu, np_, seed):
+    t = tag(nu, np_, seed)
+    raw = os.path.join(work, 'yade', t)
+    os.makedirs(raw, exist_ok=True)
+    rs = deposit(work, np_, seed)
+    vs = ['-var', 'Hd', str(HD), '-var', 'NU', f'{nu:g}', '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
+          '-var', 'tshear', str(TSHEAR), '-var', 'trec', str(TREC), '-var', 'phase', 'shear',
+          '-var', 'restart', rs, '-var', 'fields', '0', '-var', 'contacts', '1', '-var', 'out', 'cav']
+    script = os.path.join(raw, 'shear.py')
+    with open(os.path.join(raw, 'export.screen'), 'w') as scr:
+        rc = subprocess.run([SABLE, '--export-yade', DECK] + vs + ['-o', script], cwd=raw, stdout=scr,
+                            stderr=subprocess.STDOUT).returncode
+    if rc != 0:
+        sys.exit(f'sweep: the export of {t} failed (exit {rc}); see {raw}/export.screen')
+    t0 = time.time()
+    with open(os.path.join(raw, 'log.yade'), 'w') as log:
+        rc = subprocess.run(['yade', '-j1', '-n', '-x', script], cwd=raw, stdout=log, stderr=subprocess.STDOUT,
+                            env=dict(os.environ, OMP_NUM_THREADS='1')).returncode
+    if rc != 0:
+        sys.exit(f'sweep: YADE on {script} failed (exit {rc}); see {raw}/log.yade')
+    return raw, time.time() - t0
+
+
+ACF_LAGS = 400  # samples of C kept per series (40 ms at 10 kHz) for the figures
+
+
+def acf_time(path, column, dt, skip=0):
+    """sable-analyze acf's metadata (first_lag_below in rows, g) and C's first ACF_LAGS values
+    of one column, threshold C < 0.15 (kneib2017 Sec. IV B)."""
+    out = os.path.join(os.path.dirname(path), 'acf_tmp.csv')
+    analyze(['acf', path, '--column', column, '--threshold', '0.15', '--dt', repr(dt), '--out', out])
+    meta = {}
+    for l in open(out):
+        if l.startswith('# ') and ':' in l:
+            k, _, v = l[2:].partition(':')
+            meta[k.strip()] = v.strip()
+    meta['c'] = [round(float(x), 4) for x in csv_table(out)['c'][:ACF_LAGS]]
+    os.remove(out)
+    return meta
+
+
+def reduce_run(work, nu, np_, seed, wall=None, code='sable'):
+    t = tag(nu, np_, seed)
+    raw = os.path.join(work, t) if code == 'sable' else os.path.join(work, code, t)
+    log = os.path.join(raw, 'log.' + code)
+    res = key_values(log, 'RESULT')
+    cav = key_values(log, 'CAVITY')
+    first = int(cav['record_from'])
+    dt, U, L = res['dt'], res['U'], res['L']
+    red = {'code': code, 'NU': nu, 'NP': np_, 'seed': seed, 'Hd': HD, 'tshear': TSHEAR, 'trec': TREC,
+           'result': res, 'cavity': cav}
+    if wall is not None:
+        red['wall_s_run'] = wall
+    # time series at 10 kHz: F and its slices, each normalised by its own mean
+    with h5py.File(os.path.join(raw, 'cav_series.h5'), 'r') as h:
+        cols = [c.decode() if isinstance(c, bytes) else str(c) for c in h.attrs['columns']]
+        ser = np.asarray(h['values'])
+        steps = np.asarray(h['step'])
+    F = ser[:, cols.index('v_F')]
+    with h5py.File(os.path.join(raw, 'cav_slices.h5'), 'r') as h:
+        sl = np.asarray(h['values'])[:, :, 0]
+    dts = float(steps[1] - steps[0]) * dt
+    red['samples'] = int(len(F))
+    red['sample_dt'] = dts
+    red['first_step'] = int(steps[0])
+    red['slice_means_over_F'] = (sl.mean(axis=0) / F.mean()).tolist()
+    red['slices_sum_max_dev'] = float(np.max(np.abs(sl.sum(axis=1) - F)))
+    # contact rows after the recording's start: f = fx on the wall
+    fc = contact_forces(os.path.join(raw, 'cav_contacts.txt'), first)
+    red['contact_rows'] = int(len(fc))
+    np.save(os.path.join(raw, 'F_norm.npy'), F / F.mean())
+    np.save(os.path.join(raw, 'Fi_norm.npy'), (sl[:, 2:9] / sl[:, 2:9].mean(axis=0)).ravel())
+    np.save(os.path.join(raw, 'f_norm.npy'), fc / fc.mean())
+    # autocorrelation times (threshold 0.15, Sec. IV B): the whole wall and each slice
+    tmp = os.path.join(raw, 'slices.csv')
+    np.savetxt(tmp, np.column_stack([F, sl]), delimiter=',',
+               header=','.join(['F'] + [f'F{i}' for i in range(1, 11)]), comments='')
+    acf = {}
+    for c in ['F'] + [f'F{i}' for i in range(1, 11)]:
+        m = acf_time(tmp, c, dts)
+        lag = float(m['first_lag_below'])  # rows; < 0 when C never falls under 0.15
+        acf[c] = {'dt_c': lag * dts if lag >= 0 else float('nan'), 'g': float(m['g']), 'c': m['c']}
+    red['acf'] = acf
+    dst = os.path.join(OUT, t) if code == 'sable' else os.path.join(OUT, code, t)
+    os.makedirs(dst, exist_ok=True)
+    for f in ('log.' + code, 'cav_blocks.txt'):
+        subprocess.run(['cp', os.path.join(raw, f), dst], check=True)
+    if code == 'sable':
+        red.update(fields(raw, cav, L))
+    json.dump(red, open(os.path.join(dst, 'reduced.json'), 'w'), indent=1)
+    return red
+
+
+def fields(raw, cav, L):
+    """The vortex centre and the paper region's mu_loc(I) from the recording's mean fields."""
+    red = {}
+    skip = int(cav['fields_skip'])
+    fld = os.path.join(raw, 'cav_fields.h5')
+    vc = os.path.join(raw, 'vortex.csv')
+    analyze(['vortex-centre', fld, '--skip', str(skip), '--xlo', '0', '--xhi', repr(L), '--out', vc])
+    red['vortex'] = {k: float(v[0]) for k, v in csv_table(vc).items()}
+    pts = os.path.join(raw, 'rheology_points.csv')
+    # 2D stresses are N/m: rho_p d (kg/m^2) in Eq. 18 gives I with the 3D stress sigma_2D / d
+    analyze(['local-rheology', fld, '--skip', str(skip), '--d', repr(D), '--rho-p', repr(RHO_P * D),
+             '--region', 'paper', '--xlo', '0', '--xhi', repr(L), '--out', pts])
+    a = csv_table(pts)
+    red['rheology'] = {'I': a['I'].tolist(), 'mu_loc': a['mu_loc'].tolist(), 'align': a['align'].tolist()}
+    return red
+
+
+def contact_forces(path, first):
+    """fx of every dump local row whose step is >= first (the recording)."""
+    f, keep, step, want = [], False, None, None
+    with open(path) as fh:
+        for line in fh:
+            if line.startswith('ITEM: TIMESTEP'):
+                want = 'step'
+                continue
+            if want == 'step':
+                step, want = int(line), None
+                keep = step >= first
+                continue
+            if line.startswith('ITEM: ENTRIES'):
+                want = 'rows'
+                continue
+            if line.startswith('ITEM:'):
+                want = None
+                continue
+            if want == 'rows' and keep:
+                f.append(float(line.split()[2]))
+    return np.array(f)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('what', choices=['run', 'reduce', 'yade'])
+    p.add_argument('--work', default='/tmp/cavity_sweep')
+    p.add_argument('--only', help='NU,NP of one point')
+    p.add_argument('--seeds', type=int, nargs='+', default=SEEDS)
+    a = p.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    pts = YADE_POINTS if a.what == 'yade' else POINTS
+    if a.only:
+        nu, np_ = (float(x) for x in a.only.split(','))
+        pts = [q for q in pts if q == (nu, np_)]
+    for seed in a.seeds:
+        for nu, np_ in pts:
+            t = tag(nu, np_, seed)
+            done = os.path.exists(os.path.join(OUT, t, 'reduced.json'))
+            if a.what == 'run' and not done:
+                print(f'{time.strftime("%H:%M:%S")} {t}: running', flush=True)
+                _, wall = shear(a.work, nu, np_, seed)
+                red = reduce_run(a.work, nu, np_, seed, wall)
+                r = red['result']
+                print(f'{time.strftime("%H:%M:%S")} {t}: F/(PLd) {r["F_PLd"]:.4f} +- {r["F_PLd_err"]:.4f} '
+                      f'I_M {r["I_M"]:.3g} l/L {red["vortex"]["ell_over_l"]:.3f} '
+                      f'wall {wall:.0f} s', flush=True)
+                for f in ('cav_contacts.txt', 'slices.csv'):
+                    os.remove(os.path.join(a.work, t, f))
+            elif a.what == 'yade' and not os.path.exists(os.path.join(OUT, 'yade', t, 'reduced.json')):
+                print(f'{time.strftime("%H:%M:%S")} yade {t}: running', flush=True)
+                raw, wall = yade_shear(a.work, nu, np_, seed)
+                red = reduce_run(a.work, nu, np_, seed, wall, code='yade')
+                r = red['result']
+                print(f'{time.strftime("%H:%M:%S")} yade {t}: F/(PLd) {r["F_PLd"]:.4f} +- {r["F_PLd_err"]:.4f} '
+                      f'wall {wall:.0f} s', flush=True)
+                for f in ('cav_contacts.txt', 'slices.csv'):
+                    os.remove(os.path.join(raw, f))
+            elif a.what == 'reduce' and os.path.exists(os.path.join(a.work, t, 'log.sable')):
+                reduce_run(a.work, nu, np_, seed)
+
+
+if __name__ == '__main__':
+    main()
