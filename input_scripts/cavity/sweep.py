@@ -14,7 +14,7 @@ reduced.json (the RESULT and CAVITY values, l/L, the ACF times, the paper-region
 I and mu_loc). `reduce` redoes the reductions from DIR. The seeds' normalised force
 samples are kept in DIR for sweep_figures.py (pooled PDFs and Eq. 7 fits).
 """
-import argparse, json, os, subprocess, sys, time
+import argparse, fcntl, json, os, subprocess, sys, time
 
 import h5py
 import numpy as np
@@ -78,11 +78,15 @@ def csv_table(path):
 
 
 def deposit(work, np_, seed):
+    """The (N_P, seed) deposit's restart, written once (a lock: sweeps in parallel share it)."""
     rs = os.path.join(work, f'dep_NP{np_:g}_s{seed}.restart')
-    if not os.path.exists(rs):
-        vs = ['-var', 'Hd', str(HD), '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
-              '-var', 'phase', 'deposit', '-var', 'restart', rs]
-        sable(vs, rs + '.log', work)
+    with open(rs + '.lock', 'w') as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not os.path.exists(rs):
+            vs = ['-var', 'Hd', str(HD), '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
+                  '-var', 'phase', 'deposit', '-var', 'restart', rs + '.part']
+            sable(vs, rs + '.log', work)
+            os.rename(rs + '.part', rs)
     return rs
 
 
@@ -177,7 +181,11 @@ def reduce_run(work, nu, np_, seed, wall=None, code='sable'):
     np.savetxt(tmp, np.column_stack([F, sl]), delimiter=',',
                header=','.join(['F'] + [f'F{i}' for i in range(1, 11)]), comments='')
     acf = {}
-    for c in ['F'] + [f'F{i}' for i in range(1, 11)]:
+    for k, c in enumerate(['F'] + [f'F{i}' for i in range(1, 11)]):
+        x = F if k == 0 else sl[:, k - 1]
+        if np.ptp(x) == 0:  # e.g. a slice no grain touched: no correlation to measure
+            acf[c] = {'dt_c': float('nan'), 'g': float('nan'), 'c': [], 'constant': float(x[0])}
+            continue
         m = acf_time(tmp, c, dts)
         lag = float(m['first_lag_below'])  # rows; < 0 when C never falls under 0.15
         acf[c] = {'dt_c': lag * dts if lag >= 0 else float('nan'), 'g': float(m['g']), 'c': m['c']}
