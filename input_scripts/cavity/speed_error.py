@@ -1,0 +1,206 @@
+#!/usr/bin/python3
+"""Speed against error for the cavity (issue 43, item 6): run, then report.
+
+    /usr/bin/python3 input_scripts/cavity/speed_error.py run [--work DIR] [--seeds 11 12 13 14] [--no-yade]
+    /usr/bin/python3 input_scripts/cavity/speed_error.py report [--work DIR]
+
+One scene, H/d 8, N_U 1, N_P 1 (I_M 0.044), 1.5 s recorded after 0.5 s, four seeds. Each
+setting changes one knob from the deck's defaults (dtfrac 0.1, N0 1.5e4, 10 kHz, H/d 8):
+dtfrac 0.025-0.2, N0 5e3-5e4, recording 5-20 kHz, and H/d 12 at the same I_M (N_U 1.837).
+The error of a setting is measured against the finest setting of its knob (dtfrac 0.025,
+N0 5e4, 20 kHz, H/d 12): |mean F/(PLd) - finest| / finest over the seeds' means, with the
+seed standard errors combined, and the KS distance between the seeds' pooled F/F̄ samples.
+YADE runs the default setting and dtfrac 0.2 from the same sable deposits (the shear
+exported by `sable --export-yade`); its error is against sable's finest dtfrac. Raw outputs
+in DIR (default /tmp/cavity_speed); per-run RESULT values, the report and the figure in
+reference_runs/cavity/speed_error/.
+"""
+import argparse, json, os, subprocess, sys, time
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sweep  # noqa: E402  (the deck, the binaries, key_values, csv_table)
+
+OUT = os.path.join(sweep.ROOT, 'reference_runs', 'cavity', 'speed_error')
+BASE = {'Hd': 8, 'NU': 1, 'NP': 1, 'tshear': 2, 'trec': 0.5, 'dtfrac': 0.1, 'N0': 1.5e4, 'rate': 10}
+# (knob, value, extra variables); the first of each knob is its finest
+SETTINGS = [('dtfrac', 0.025, {}), ('dtfrac', 0.05, {}), ('dtfrac', 0.1, {}), ('dtfrac', 0.2, {}),
+            ('N0', 5e4, {}), ('N0', 1.5e4, {}), ('N0', 5e3, {}),
+            ('rate', 20, {}), ('rate', 10, {}), ('rate', 5, {}),
+            ('Hd', 12, {'NU': 1.8371173070873836}), ('Hd', 8, {})]
+YADE = [('dtfrac', 0.1), ('dtfrac', 0.2)]
+SEEDS = [11, 12, 13, 14]
+
+
+def variables(knob, value, extra):
+    v = dict(BASE, **extra)
+    v[knob] = value
+    return v
+
+
+def name(knob, value, seed, code='sable'):
+    return f'{code}_{knob}{value:g}_s{seed}'
+
+
+def args_of(v):
+    out = []
+    for k, x in v.items():
+        out += ['-var', k, f'{x:.17g}' if isinstance(x, float) else str(x)]
+    return out
+
+
+def run_sable(work, knob, value, extra, seed):
+    d = os.path.join(work, name(knob, value, seed))
+    os.makedirs(d, exist_ok=True)
+    v = dict(variables(knob, value, extra), seed=seed, fields=0, contacts=0, out='cav',
+             restart=os.path.join(d, 'dep.restart'))
+    sweep.sable(args_of(v), os.path.join(d, 'log.sable'), d)
+    return d
+
+
+def run_yade(work, knob, value, seed):
+    """The shear in YADE from the sable deposit of the default setting's run of this seed."""
+    d = os.path.join(work, name(knob, value, seed, 'yade'))
+    os.makedirs(d, exist_ok=True)
+    dep = os.path.join(work, name('dtfrac', 0.1, seed), 'dep.restart')
+    v = dict(variables(knob, value, {}), seed=seed, fields=0, contacts=0, out='cav', phase='shear', restart=dep)
+    script = os.path.join(d, 'shear.py')
+    with open(os.path.join(d, 'export.screen'), 'w') as scr:
+        if subprocess.run([sweep.SABLE, '--export-yade', sweep.DECK] + args_of(v) + ['-o', script], cwd=d,
+                          stdout=scr, stderr=subprocess.STDOUT).returncode:
+            sys.exit(f'speed_error: export failed, see {d}/export.screen')
+    with open(os.path.join(d, 'log.yade'), 'w') as log:
+        if subprocess.run(['yade', '-j1', '-n', '-x', script], cwd=d, stdout=log, stderr=subprocess.STDOUT,
+                          env=dict(os.environ, OMP_NUM_THREADS='1')).returncode:
+            sys.exit(f'speed_error: YADE failed, see {d}/log.yade')
+    return d
+
+
+def record(d, code):
+    """RESULT values of a finished run, and its F/F̄ samples saved beside it."""
+    res = sweep.key_values(os.path.join(d, 'log.' + code), 'RESULT')
+    with h5py.File(os.path.join(d, 'cav_series.h5'), 'r') as h:
+        cols = [c.decode() if isinstance(c, bytes) else str(c) for c in h.attrs['columns']]
+        F = np.asarray(h['values'])[:, cols.index('v_F')]
+    np.save(os.path.join(d, 'F_norm.npy'), F / F.mean())
+    return res
+
+
+def run_all(a):
+    os.makedirs(OUT, exist_ok=True)
+    path = os.path.join(OUT, 'runs.json')
+    runs = json.load(open(path)) if os.path.exists(path) else {}
+    jobs = [(k, v, e, 'sable') for k, v, e in SETTINGS if (k, v) != ('N0', 1.5e4) and (k, v) != ('rate', 10)
+            and (k, v) != ('Hd', 8)]  # the default setting runs once, as dtfrac 0.1
+    if not a.no_yade:
+        jobs += [(k, v, {}, 'yade') for k, v in YADE]
+    for seed in a.seeds:
+        for knob, value, extra, code in jobs:
+            key = name(knob, value, seed, code)
+            if key in runs:
+                continue
+            t0 = time.time()
+            d = run_sable(a.work, knob, value, extra, seed) if code == 'sable' else run_yade(a.work, knob, value, seed)
+            runs[key] = dict(record(d, code), code=code, knob=knob, value=value, seed=seed, wall_total=time.time() - t0)
+            json.dump(runs, open(path, 'w'), indent=1)
+            r = runs[key]
+            print(f'{time.strftime("%H:%M:%S")} {key}: F/(PLd) {r["F_PLd"]:.4f} wall_s {r["wall_s"]:.1f} '
+                  f'PS/s {r["PS_per_s"]:.3g}', flush=True)
+
+
+def group(runs, code, knob, value):
+    """The runs of one setting (the default is stored under dtfrac 0.1)."""
+    if code == 'sable' and (knob, value) in (('N0', 1.5e4), ('rate', 10), ('Hd', 8)):
+        knob, value = 'dtfrac', 0.1
+    return [r for k, r in runs.items() if r['code'] == code and r['knob'] == knob and r['value'] == value]
+
+
+def ks(work, a, b, tag):
+    """sable-analyze ks of two sets of runs' pooled F/F̄ samples: D and its 5 % critical value."""
+    files = []
+    for rs, side in ((a, 'a'), (b, 'b')):
+        x = np.concatenate([np.load(os.path.join(work, name(r['knob'], r['value'], r['seed'], r['code']), 'F_norm.npy'))
+                            for r in rs])
+        f = os.path.join(work, f'ks_{tag}_{side}.csv')
+        np.savetxt(f, x, header='x', comments='')
+        files.append(f)
+    out = os.path.join(work, f'ks_{tag}.csv')
+    sweep.analyze(['ks', files[0], files[1], '--column', 'x', '--out', out])
+    t = sweep.csv_table(out)
+    return float(t['d'][0]), float(t['critical'][0])
+
+
+def mean_se(rs, key):
+    x = np.array([r[key] for r in rs])
+    return x.mean(), (x.std(ddof=1) / np.sqrt(len(x)) if len(x) > 1 else float('nan'))
+
+
+def report(a):
+    runs = json.load(open(os.path.join(OUT, 'runs.json')))
+    rows = []
+    finest = {}
+    for knob, value, _ in SETTINGS:
+        finest.setdefault(knob, value)
+    for code, knob, value in [('sable', k, v) for k, v, _ in SETTINGS] + [('yade', k, v) for k, v in YADE]:
+        rs = group(runs, code, knob, value)
+        ref = group(runs, 'sable', knob, finest[knob])
+        if not rs or not ref:
+            continue
+        m, se = mean_se(rs, 'F_PLd')
+        mr, ser = mean_se(ref, 'F_PLd')
+        same = code == 'sable' and value == finest[knob]
+        D, Dc = (0.0, float('nan')) if same else ks(a.work, rs, ref, f'{code}_{knob}{value:g}')
+        rows.append(dict(code=code, knob=knob, value=value, n=len(rs), F=m, F_se=se,
+                         err=abs(m - mr) / mr, err_se=np.hypot(se, ser) / mr if not same else 0.0, ks=D, ks_crit=Dc,
+                         wall=np.mean([r['wall_s'] for r in rs]), ps=np.mean([r['PS_per_s'] for r in rs])))
+    json.dump(rows, open(os.path.join(OUT, 'summary.json'), 'w'), indent=1)
+    lines = ['| code | knob | value | seeds | F/(PLd) ± SE | error vs finest ± SE | KS D (crit 5 %) | shear wall s | PS/s |',
+             '|---|---|---|---|---|---|---|---|---|']
+    for r in rows:
+        lines.append(f'| {r["code"]} | {r["knob"]} | {r["value"]:g} | {r["n"]} | {r["F"]:.4f} ± {r["F_se"]:.4f} | '
+                     f'{100 * r["err"]:.1f} % ± {100 * r["err_se"]:.1f} % | {r["ks"]:.3f} ({r["ks_crit"]:.3f}) | '
+                     f'{r["wall"]:.1f} | {r["ps"]:.3g} |')
+    open(os.path.join(OUT, 'table.md'), 'w').write('\n'.join(lines) + '\n')
+    print('\n'.join(lines))
+    figure(rows)
+
+
+def figure(rows):
+    sys.path.insert(0, os.path.join(sweep.ROOT, 'reference_runs', 'analysis'))
+    import figstyle
+    figstyle.use()
+    import matplotlib.pyplot as plt
+    fig, axs = plt.subplots(1, 2, figsize=(7.0, 3.0))
+    marks = {'dtfrac': 'o', 'N0': 's', 'rate': '^', 'Hd': 'D'}
+    for r in rows:
+        c = 'C0' if r['code'] == 'sable' else 'C1'
+        lab = f'{r["code"]} {r["knob"]} {r["value"]:g}'
+        axs[0].errorbar(r['wall'], 100 * r['err'], yerr=100 * r['err_se'], fmt=marks[r['knob']], color=c, ms=4)
+        axs[0].annotate(lab, (r['wall'], 100 * r['err']), fontsize=5)
+        axs[1].plot(r['wall'], r['ks'], marks[r['knob']], color=c, ms=4)
+    axs[0].axhline(5, ls='--', color='grey', lw=0.8)
+    axs[0].set_xscale('log')
+    axs[1].set_xscale('log')
+    axs[0].set_xlabel('shear wall time (s, one core)')
+    axs[1].set_xlabel('shear wall time (s, one core)')
+    axs[0].set_ylabel('|F/(PLd) - finest| / finest (%)')
+    axs[1].set_ylabel('KS distance of F/F̄ to the finest')
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, 'speed_error.png'), dpi=150)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('what', choices=['run', 'report'])
+    p.add_argument('--work', default='/tmp/cavity_speed')
+    p.add_argument('--seeds', type=int, nargs='+', default=SEEDS)
+    p.add_argument('--no-yade', action='store_true')
+    a = p.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    run_all(a) if a.what == 'run' else report(a)
+
+
+if __name__ == '__main__':
+    main()
