@@ -39,5 +39,19 @@ rm -rf "$out/drag"  # fresh runs of this build, not the last job's
   > "$out/drag_runs.txt" 2>&1 || { status=1; tail -n 30 "$out/drag_runs.txt"; }
 /usr/bin/python3 reference_runs/drag/report_drag.py --out "$out/drag" > "$out/drag_report.txt" 2>&1 || true
 grep -E '^\| |^###' "$out/drag/results.md" || cat "$out/drag_report.txt"
-echo "logs, tables (comparison.md, drag/results.md) and figures (comparison.png, drag/*.png) in $out"
+
+# The cavity study's smoke scene (input_scripts/cavity/README.md, "YADE export"): sable
+# runs each seed's deposit and shear now (~1 s a seed); YADE's shears of the same sable
+# deposits are always the stored ones (reference_runs/reference/cavity/yade/), even where
+# `yade` is installed: its three shears take minutes. The stored results are refused when
+# the deck's commands or these settings changed since. The means are judged at 3 combined
+# standard errors (input_scripts/cavity/compare_smoke.tol); a failed comparison fails the job.
+echo "== cavity smoke (sable vs YADE stored; 3 seeds, H/d 8, 0.2 s recorded)"
+rm -rf "$out/cavity"
+/usr/bin/python3 reference_runs/compare_seeds.py input_scripts/cavity/cavity.in --ref yade-stored \
+  --tolerances input_scripts/cavity/compare_smoke.tol --prepare phase deposit --results \
+  --seed-var seed --seed-values 7 8 9 --var Hd 8 --var NU 1 --var NP 1 --var tshear 0.3 --var trec 0.1 \
+  --var phase shear --var fields 0 --sable "$root/build/sable" --out "$out" > "$out/cavity_smoke.txt" 2>&1 || status=1
+grep -E '^\| |^\*\*|^- ' "$out/cavity/seeds.md" || tail -n 5 "$out/cavity_smoke.txt"
+echo "logs, tables (comparison.md, drag/results.md, cavity/seeds.md) and figures (comparison.png, drag/*.png) in $out"
 exit $status

@@ -26,31 +26,39 @@ def show(path):
 
 
 # ---------------------------------------------------------------- deck header
-def parse_header(deck):
+def parse_header(deck, tolerances=None):
     """#@ tolerance PATTERN rel X | abs X | sigma K | offset D | none (keys combine),
     #@ unjudged PATTERN REASON..., #@ seeds VAR V1 V2 ..., #@ coordination NAME
     DUMPFILE, #@ avetime NAME FILE. Tolerance and unjudged lines form one list
-    (h['rules']: pattern, spec or None, reason, line number) in deck order."""
+    (h['rules']: pattern, spec or None, reason, 'file:line') in deck order, then
+    those of the file tolerances (its #@ tolerance / #@ unjudged lines only:
+    judgement kept next to a deck, e.g. for one comparison of it; later lines win)."""
     h = {'rules': [], 'seeds': None, 'coord': [], 'files': []}
-    for n, line in enumerate(open(deck), 1):
+    lines = [(deck, n, line) for n, line in enumerate(open(deck), 1)]
+    if tolerances:
+        lines += [(tolerances, n, line) for n, line in enumerate(open(tolerances), 1)]
+    for path, n, line in lines:
         if not line.startswith('#@'):
             continue
-        w = line[2:].split()
+        where, w = f'{os.path.basename(path)}:{n}', line[2:].split()
+        if path == tolerances and w[:1] not in (['tolerance'], ['unjudged']):
+            sys.exit(f'{path}:{n}: a tolerances file holds #@ tolerance and #@ unjudged lines only '
+                     f'(what a run does belongs in the deck): {line.strip()}')
         if w[0] == 'tolerance' and len(w) >= 3:
             if w[2:] == ['none']:
-                h['rules'].append((w[1], None, 'tolerance none', n))
+                h['rules'].append((w[1], None, 'tolerance none', where))
                 continue
             if len(w) % 2:
-                sys.exit(f'{deck}:{n}: tolerance PATTERN then KEY VALUE pairs (rel, abs, sigma, offset) or none')
+                sys.exit(f'{path}:{n}: tolerance PATTERN then KEY VALUE pairs (rel, abs, sigma, offset) or none')
             try:
                 spec = dict(zip(w[2::2], map(float, w[3::2])))
             except ValueError:
-                sys.exit(f'{deck}:{n}: tolerance values must be numbers: {line.strip()}')
+                sys.exit(f'{path}:{n}: tolerance values must be numbers: {line.strip()}')
             if not set(spec) <= {'rel', 'abs', 'sigma', 'offset'} or set(spec) == {'offset'}:
-                sys.exit(f'{deck}:{n}: tolerance keys are rel, abs, sigma, offset (with rel or abs), or none')
-            h['rules'].append((w[1], spec, None, n))
+                sys.exit(f'{path}:{n}: tolerance keys are rel, abs, sigma, offset (with rel or abs), or none')
+            h['rules'].append((w[1], spec, None, where))
         elif w[0] == 'unjudged' and len(w) >= 3:
-            h['rules'].append((w[1], None, ' '.join(w[2:]), n))
+            h['rules'].append((w[1], None, ' '.join(w[2:]), where))
         elif w[0] == 'seeds' and len(w) >= 3:
             h['seeds'] = (w[1], w[2:])
         elif w[0] == 'coordination' and len(w) == 3:
@@ -58,7 +66,7 @@ def parse_header(deck):
         elif w[0] == 'avetime' and len(w) == 3:
             h['files'].append((w[1], w[2]))
         else:
-            sys.exit(f'{deck}:{n}: unknown or incomplete directive (unjudged needs a reason): {line.strip()}')
+            sys.exit(f'{path}:{n}: unknown or incomplete directive (unjudged needs a reason): {line.strip()}')
     return h
 
 
@@ -284,20 +292,30 @@ def deck_hashes(deck):
             'commands_sha256': sha256(commands.encode()), 'files_sha256': files}
 
 
-def load_stored(deck, deckname, variables, code='liggghts'):
+# What a stored record was run with, besides the deck: a record that lacks a key was
+# made with its default here (compare.py runs no --prepare and reads no RESULT lines).
+MADE_WITH = {'vars': {}, 'prepare': {}, 'results': False}
+
+
+def load_stored(deck, deckname, variables, code='liggghts', made_with=None):
     """The stored results of code for this deck; refused when they were made
     from other commands or files (a stored result of another deck is not a
-    reference). Returns (record, note)."""
+    reference), or with other -var values or other settings made_with names
+    (compare_seeds.py: seeds, prepare, results; a record made after a
+    --prepare run is never one for a run without it). Returns (record, note)."""
     path = os.path.join(STORED, deckname, code, 'results.json')
+    redo = (f'run {code} on it and store it (compare.py --update-reference, compare_seeds.py --store; '
+            f'apt-get install {PACKAGE[code]})')
     if not os.path.exists(path):
-        sys.exit(f'no stored {code} reference for {deckname} ({show(path)}); '
-                 f'install it (apt-get install {PACKAGE[code]}) and rerun with --update-reference')
+        sys.exit(f'no stored {code} reference for {deckname} ({show(path)}); {redo}')
     rec = json.load(open(path))
-    if rec.get('vars', {}) != variables:
-        sys.exit(f'the stored reference {show(path)} was made with -var {rec.get("vars")}, '
-                 f'not {variables}; run {code} itself for other values')
+    for key, want in {**MADE_WITH, 'vars': variables, **(made_with or {})}.items():
+        had = rec.get(key, MADE_WITH.get(key))
+        if had != want:
+            what = '-var' if key == 'vars' else key
+            sys.exit(f'the stored reference {show(path)} was made with {what} {had}, '
+                     f'not {want}; run {code} itself for other values')
     stored, now = rec.get('made_from'), deck_hashes(deck)
-    redo = f'run {code} on it with --update-reference (apt-get install {PACKAGE[code]})'
     if stored is None:
         sys.exit(f'the stored reference {show(path)} records no sha256 of the deck it came from, so nothing '
                  f'says it is a reference for {show(deck)}; {redo}')
@@ -315,12 +333,17 @@ def load_stored(deck, deckname, variables, code='liggghts'):
     return rec, note
 
 
-def store(rec, deck, deckname, code='liggghts'):
+def store(rec, deck, deckname, code='liggghts', before=None):
+    """Write rec as the stored reference; before: deck_hashes(deck) taken before the
+    runs, which must still hold (a deck edited while it ran is not what was run)."""
+    made_from = deck_hashes(deck)
+    if before is not None and before != made_from:
+        sys.exit(f'{show(deck)} (or a file it names) changed while {code} ran: reference not stored; rerun')
     d = os.path.join(STORED, deckname, code)
     os.makedirs(d, exist_ok=True)
     rec_tail = rec['log_tail']
     rec = {k: v for k, v in rec.items() if k != 'log_tail'}
-    rec['made_from'] = deck_hashes(deck)
+    rec['made_from'] = made_from
     with open(os.path.join(d, 'results.json'), 'w') as f:
         json.dump(rec, f, indent=1, allow_nan=True)
     open(os.path.join(d, 'log_tail.txt'), 'w').write(rec_tail + '\n')
@@ -377,7 +400,7 @@ def report(deck, h, recs, outdir, notes):
     failed, ratios = False, {}
     for pat, spec, reason, n in dead_rules(h, names):
         kind = 'unjudged' if spec is None else 'tolerance'
-        lines.append(f'- **FAIL: {os.path.basename(deck)}:{n} `#@ {kind} {pat}` decides no observable** '
+        lines.append(f'- **FAIL: {n} `#@ {kind} {pat}` decides no observable** '
                      '(its pattern matches none, or later lines override every match)')
         failed = True
     if any(rule(h, n) is None for n in names):
@@ -470,6 +493,7 @@ def main():
     deck = args.deck
     deckname = os.path.splitext(os.path.basename(deck))[0]
     h = parse_header(deck)
+    hashes = deck_hashes(deck)  # what runs now, for --update-reference
     variables = dict(args.var)
     outdir = os.path.join(args.out, deckname)
     notes, recs, codes = [], [], []
@@ -499,7 +523,7 @@ def main():
         if code in PACKAGE and args.update_reference:
             if recs[-1]['errors']:
                 sys.exit(f'{code} failed, reference not stored: ' + '; '.join(recs[-1]['errors']))
-            store(recs[-1], deck, deckname, code)
+            store(recs[-1], deck, deckname, code, hashes)
     if len(recs) < 2:  # one code: just ran it (e.g. to store a reference)
         sys.exit(1 if recs[0]['errors'] else 0)
     sys.exit(1 if report(deck, h, recs, outdir, notes) else 0)
