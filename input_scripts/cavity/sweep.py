@@ -31,7 +31,8 @@ if os.environ.get('CAVITY_SWEEP_SMOKE'):  # a seconds-long check of this script 
     OUT = os.path.join(os.environ['CAVITY_SWEEP_SMOKE'], 'runs')
 POINTS = [(1, 100), (1, 10), (1, 1), (2, 4), (2, 1), (5, 1), (10, 1), (1, 0.01), (20, 1)]
 SEEDS = [1, 2, 3]
-YADE_POINTS = [(1, 1), (10, 1)]  # I_M 0.024 and 0.24
+YADE_HD = 8  # the code comparison: H/d 8, where YADE's 6 s shear takes ~7 min, not ~30 at H/d 12
+YADE_POINTS = [(0.45, 1), (4.5, 1)]  # I_M 0.020 and 0.199 at H/d 8
 D, RHO_P = 1e-3, 2500.0
 
 
@@ -77,46 +78,49 @@ def csv_table(path):
     return {n: rows[:, k] for k, n in enumerate(names)}
 
 
-def deposit(work, np_, seed):
-    """The (N_P, seed) deposit's restart, written once (a lock: sweeps in parallel share it)."""
-    rs = os.path.join(work, f'dep_NP{np_:g}_s{seed}.restart')
+def deposit(work, np_, seed, hd=None):
+    """The (H/d, N_P, seed) deposit's restart, written once (a lock: sweeps in parallel share it)."""
+    hd = hd or HD
+    rs = os.path.join(work, f'dep_NP{np_:g}_s{seed}.restart' if hd == HD else f'dep_Hd{hd}_NP{np_:g}_s{seed}.restart')
     with open(rs + '.lock', 'w') as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not os.path.exists(rs):
-            vs = ['-var', 'Hd', str(HD), '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
+            vs = ['-var', 'Hd', str(hd), '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
                   '-var', 'phase', 'deposit', '-var', 'restart', rs + '.part']
             sable(vs, rs + '.log', work)
             os.rename(rs + '.part', rs)
     return rs
 
 
-def shear(work, nu, np_, seed):
-    t = tag(nu, np_, seed)
-    raw = os.path.join(work, t)
+def raw_dir(work, nu, np_, seed, code='sable', cmp=False):
+    """Raw outputs: the sweep's sable runs in work/TAG, the code comparison's in work/compare/CODE/TAG."""
+    return os.path.join(work, 'compare', code, tag(nu, np_, seed)) if cmp else os.path.join(work, tag(nu, np_, seed))
+
+
+def out_dir(nu, np_, seed, code='sable', cmp=False):
+    return os.path.join(OUT, 'compare', code, tag(nu, np_, seed)) if cmp else os.path.join(OUT, tag(nu, np_, seed))
+
+
+def shear(work, nu, np_, seed, code='sable', cmp=False):
+    """The shear phase from the seed's sable deposit, in sable (fields on) or in YADE through
+    `sable --export-yade` (fields off: the exporter has no translation of stress/cg)."""
+    hd = YADE_HD if cmp else HD
+    raw = raw_dir(work, nu, np_, seed, code, cmp)
     os.makedirs(raw, exist_ok=True)
-    rs = deposit(work, np_, seed)
-    vs = ['-var', 'Hd', str(HD), '-var', 'NU', f'{nu:g}', '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
-          '-var', 'tshear', str(TSHEAR), '-var', 'trec', str(TREC), '-var', 'phase', 'shear',
-          '-var', 'restart', rs, '-var', 'fields', '1', '-var', 'contacts', '1', '-var', 'out', 'cav']
+    rs = deposit(work, np_, seed, hd)
+    vs = ['-var', 'Hd', str(hd), '-var', 'NU', f'{nu:g}', '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
+          '-var', 'tshear', str(TSHEAR), '-var', 'trec', str(TREC), '-var', 'phase', 'shear', '-var', 'restart', rs,
+          '-var', 'fields', '1' if code == 'sable' else '0', '-var', 'contacts', '1', '-var', 'out', 'cav']
     t0 = time.time()
-    sable(vs, os.path.join(raw, 'log.sable'), raw)
-    return raw, time.time() - t0
-
-
-def yade_shear(work, nu, np_, seed):
-    t = tag(nu, np_, seed)
-    raw = os.path.join(work, 'yade', t)
-    os.makedirs(raw, exist_ok=True)
-    rs = deposit(work, np_, seed)
-    vs = ['-var', 'Hd', str(HD), '-var', 'NU', f'{nu:g}', '-var', 'NP', f'{np_:g}', '-var', 'seed', str(seed),
-          '-var', 'tshear', str(TSHEAR), '-var', 'trec', str(TREC), '-var', 'phase', 'shear',
-          '-var', 'restart', rs, '-var', 'fields', '0', '-var', 'contacts', '1', '-var', 'out', 'cav']
+    if code == 'sable':
+        sable(vs, os.path.join(raw, 'log.sable'), raw)
+        return raw, time.time() - t0
     script = os.path.join(raw, 'shear.py')
     with open(os.path.join(raw, 'export.screen'), 'w') as scr:
         rc = subprocess.run([SABLE, '--export-yade', DECK] + vs + ['-o', script], cwd=raw, stdout=scr,
                             stderr=subprocess.STDOUT).returncode
     if rc != 0:
-        sys.exit(f'sweep: the export of {t} failed (exit {rc}); see {raw}/export.screen')
+        sys.exit(f'sweep: the export of {raw} failed (exit {rc}); see {raw}/export.screen')
     t0 = time.time()
     with open(os.path.join(raw, 'log.yade'), 'w') as log:
         rc = subprocess.run(['yade', '-j1', '-n', '-x', script], cwd=raw, stdout=log, stderr=subprocess.STDOUT,
@@ -144,15 +148,14 @@ def acf_time(path, column, dt, skip=0):
     return meta
 
 
-def reduce_run(work, nu, np_, seed, wall=None, code='sable'):
-    t = tag(nu, np_, seed)
-    raw = os.path.join(work, t) if code == 'sable' else os.path.join(work, code, t)
+def reduce_run(work, nu, np_, seed, wall=None, code='sable', cmp=False):
+    raw = raw_dir(work, nu, np_, seed, code, cmp)
     log = os.path.join(raw, 'log.' + code)
     res = key_values(log, 'RESULT')
     cav = key_values(log, 'CAVITY')
     first = int(cav['record_from'])
     dt, U, L = res['dt'], res['U'], res['L']
-    red = {'code': code, 'NU': nu, 'NP': np_, 'seed': seed, 'Hd': HD, 'tshear': TSHEAR, 'trec': TREC,
+    red = {'code': code, 'NU': nu, 'NP': np_, 'seed': seed, 'Hd': YADE_HD if cmp else HD, 'tshear': TSHEAR, 'trec': TREC,
            'result': res, 'cavity': cav}
     if wall is not None:
         red['wall_s_run'] = wall
@@ -190,7 +193,7 @@ def reduce_run(work, nu, np_, seed, wall=None, code='sable'):
         lag = float(m['first_lag_below'])  # rows; < 0 when C never falls under 0.15
         acf[c] = {'dt_c': lag * dts if lag >= 0 else float('nan'), 'g': float(m['g']), 'c': m['c']}
     red['acf'] = acf
-    dst = os.path.join(OUT, t) if code == 'sable' else os.path.join(OUT, code, t)
+    dst = out_dir(nu, np_, seed, code, cmp)
     os.makedirs(dst, exist_ok=True)
     for f in ('log.' + code, 'cav_blocks.txt'):
         subprocess.run(['cp', os.path.join(raw, f), dst], check=True)
@@ -254,29 +257,29 @@ def main():
         pts = [q for q in pts if q == (nu, np_)]
     for seed in a.seeds:
         for nu, np_ in pts:
-            t = tag(nu, np_, seed)
-            done = os.path.exists(os.path.join(OUT, t, 'reduced.json'))
-            if a.what == 'run' and not done:
-                print(f'{time.strftime("%H:%M:%S")} {t}: running', flush=True)
-                _, wall = shear(a.work, nu, np_, seed)
-                red = reduce_run(a.work, nu, np_, seed, wall)
-                r = red['result']
-                print(f'{time.strftime("%H:%M:%S")} {t}: F/(PLd) {r["F_PLd"]:.4f} +- {r["F_PLd_err"]:.4f} '
-                      f'I_M {r["I_M"]:.3g} l/L {red["vortex"]["ell_over_l"]:.3f} '
-                      f'wall {wall:.0f} s', flush=True)
-                for f in ('cav_contacts.txt', 'slices.csv'):
-                    os.remove(os.path.join(a.work, t, f))
-            elif a.what == 'yade' and not os.path.exists(os.path.join(OUT, 'yade', t, 'reduced.json')):
-                print(f'{time.strftime("%H:%M:%S")} yade {t}: running', flush=True)
-                raw, wall = yade_shear(a.work, nu, np_, seed)
-                red = reduce_run(a.work, nu, np_, seed, wall, code='yade')
-                r = red['result']
-                print(f'{time.strftime("%H:%M:%S")} yade {t}: F/(PLd) {r["F_PLd"]:.4f} +- {r["F_PLd_err"]:.4f} '
-                      f'wall {wall:.0f} s', flush=True)
-                for f in ('cav_contacts.txt', 'slices.csv'):
-                    os.remove(os.path.join(raw, f))
-            elif a.what == 'reduce' and os.path.exists(os.path.join(a.work, t, 'log.sable')):
+            if a.what == 'yade':
+                for code in ('sable', 'yade'):
+                    one(a.work, nu, np_, seed, code, cmp=True)
+            elif a.what == 'run':
+                one(a.work, nu, np_, seed)
+            elif os.path.exists(os.path.join(raw_dir(a.work, nu, np_, seed), 'log.sable')):
                 reduce_run(a.work, nu, np_, seed)
+
+
+def one(work, nu, np_, seed, code='sable', cmp=False):
+    """Run and reduce one shear unless its reduced result exists; drop the bulky raw files."""
+    t = ('compare ' + code + ' ' if cmp else '') + tag(nu, np_, seed)
+    if os.path.exists(os.path.join(out_dir(nu, np_, seed, code, cmp), 'reduced.json')):
+        return
+    print(f'{time.strftime("%H:%M:%S")} {t}: running', flush=True)
+    raw, wall = shear(work, nu, np_, seed, code, cmp)
+    red = reduce_run(work, nu, np_, seed, wall, code, cmp)
+    r = red['result']
+    ell = red['vortex']['ell_over_l'] if 'vortex' in red else float('nan')
+    print(f'{time.strftime("%H:%M:%S")} {t}: F/(PLd) {r["F_PLd"]:.4f} +- {r["F_PLd_err"]:.4f} I_M {r["I_M"]:.3g} '
+          f'l/L {ell:.3f} wall {wall:.0f} s', flush=True)
+    for f in ('cav_contacts.txt', 'slices.csv'):
+        os.remove(os.path.join(raw, f))
 
 
 if __name__ == '__main__':
