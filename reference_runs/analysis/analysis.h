@@ -142,6 +142,29 @@ struct LsqFit {
   std::size_t n = 0, dof = 0;
   bool weighted = false;    // false: covariance scaled by chi2/dof (errors from the scatter)
 };
+// The pieces every least-squares fit shares (cavity.cpp): one place for the checks, the weights,
+// R^2, the 95 % quantile, the start scan and GSL's trust-region driver.
+namespace lsq {
+void check(const char* what, const Vec& x, const Vec& y, const Vec& yerr, std::size_t np);
+Vec weights(const Vec& yerr, std::size_t n);                  // 1/yerr^2, or 1 without errors
+double r_squared(const Vec& y, const Vec& fit, const Vec& w);  // 1 - SS_res/SS_tot about the weighted mean
+double quantile95(bool weighted, std::size_t dof);             // normal 1.96 with errors, Student t(dof) without
+LsqParam symmetric(const std::string& name, double v, double err, double q);
+// For a model c0 + c1 s(x; t): t scanned over [t0, t1] in `steps` steps, (c0, c1) by weighted linear
+// least squares at each; returns the best chi2's {c0, c1, t}.
+Vec scan_linear(const std::function<double(double, double)>& s, const Vec& x, const Vec& y, const Vec& w, double t0, double t1,
+                int steps);
+// Residuals f_i(theta) (already divided by their sd) and, when jac is given, df_i/dtheta_k at jac[i p + k].
+using Residuals = std::function<void(const Vec& theta, Vec& f, Vec* jac)>;
+struct Nls {
+  Vec theta, cov;  // cov: (J^T J)^-1, p x p row-major, unscaled
+  double chi2 = 0;
+  int status = 0;
+  bool converged = false;
+};
+Nls solve(const Residuals& r, std::size_t n, Vec t0, int max_iter = 500);  // gsl_multifit_nlinear, trust region
+}  // namespace lsq
+
 // kneib2017 Eq. 4 (r1, r2, I_M^0) and Eq. 20 (mu1, mu2, I0): y = a + (b - a)/(1 + x0/x), x > 0.
 double sigmoid(double x, double a, double b, double x0);
 // Weighted nonlinear least squares in (a, b, ln x0) (GSL trust region), started from the best

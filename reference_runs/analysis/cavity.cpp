@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <cmath>
 #include <map>
 
@@ -16,11 +17,11 @@
 
 namespace sable::analysis {
 
-// ---------- least squares ----------
+// ---------- least squares (shared with mohr.cpp's petit2017 Eq. 7 fit) ----------
 
-namespace {
+namespace lsq {
 
-void check_lsq(const char* what, const Vec& x, const Vec& y, const Vec& yerr, std::size_t np) {
+void check(const char* what, const Vec& x, const Vec& y, const Vec& yerr, std::size_t np) {
   if (x.size() != y.size() || (!yerr.empty() && yerr.size() != x.size()))
     throw Error(std::string(what) + ": x, y (and y errors) must have the same length");
   if (x.size() <= np) throw Error(std::string(what) + ": needs more than " + std::to_string(np) + " points");
@@ -59,50 +60,88 @@ double quantile95(bool weighted, std::size_t dof) {
 
 LsqParam symmetric(const std::string& name, double v, double err, double q) { return {name, v, err, v - q * err, v + q * err}; }
 
-struct SigData {
-  const Vec *x, *y;
-  Vec sd;  // 1 / sqrt(weight)
-};
-double sig_s(double x, double lx0) { return 1 / (1 + std::exp(lx0) / x); }  // the weight of b
-
-int sig_f(const gsl_vector* t, void* p, gsl_vector* f) {
-  auto* d = static_cast<SigData*>(p);
-  const double a = gsl_vector_get(t, 0), b = gsl_vector_get(t, 1), lx = gsl_vector_get(t, 2);
-  for (std::size_t i = 0; i < d->x->size(); ++i)
-    gsl_vector_set(f, i, (a + (b - a) * sig_s((*d->x)[i], lx) - (*d->y)[i]) / d->sd[i]);
-  return GSL_SUCCESS;
-}
-
-int sig_df(const gsl_vector* t, void* p, gsl_matrix* j) {
-  auto* d = static_cast<SigData*>(p);
-  const double a = gsl_vector_get(t, 0), b = gsl_vector_get(t, 1), lx = gsl_vector_get(t, 2);
-  for (std::size_t i = 0; i < d->x->size(); ++i) {
-    const double s = sig_s((*d->x)[i], lx);
-    gsl_matrix_set(j, i, 0, (1 - s) / d->sd[i]);
-    gsl_matrix_set(j, i, 1, s / d->sd[i]);
-    gsl_matrix_set(j, i, 2, -(b - a) * s * (1 - s) / d->sd[i]);  // ds/d ln x0 = -s (1 - s)
+Vec scan_linear(const std::function<double(double, double)>& s, const Vec& x, const Vec& y, const Vec& w, double t0, double t1,
+                int steps) {
+  Vec best{y.front(), 0.0, 0.5 * (t0 + t1)}, sx(x.size());
+  double best_chi2 = kInf;
+  for (int k = 0; k <= steps; ++k) {
+    const double t = t0 + (t1 - t0) * k / double(steps);
+    for (std::size_t i = 0; i < x.size(); ++i) sx[i] = s(x[i], t);
+    double c0, c1, c00, c01, c11, chi2;
+    if (gsl_fit_wlinear(sx.data(), 1, w.data(), 1, y.data(), 1, x.size(), &c0, &c1, &c00, &c01, &c11, &chi2) != GSL_SUCCESS) continue;
+    if (std::isfinite(chi2) && chi2 < best_chi2) {
+      best_chi2 = chi2;
+      best = {c0, c1, t};
+    }
   }
+  return best;
+}
+
+namespace {
+struct Problem {
+  const Residuals* r;
+  std::size_t n, p;
+};
+int trampoline_f(const gsl_vector* t, void* d, gsl_vector* f) {
+  auto* q = static_cast<Problem*>(d);
+  Vec th(t->data, t->data + q->p), fv(q->n), jac;
+  (*q->r)(th, fv, nullptr);
+  for (std::size_t i = 0; i < q->n; ++i) gsl_vector_set(f, i, fv[i]);
   return GSL_SUCCESS;
 }
+int trampoline_df(const gsl_vector* t, void* d, gsl_matrix* j) {
+  auto* q = static_cast<Problem*>(d);
+  Vec th(t->data, t->data + q->p), fv(q->n), jac(q->n * q->p);
+  (*q->r)(th, fv, &jac);
+  for (std::size_t i = 0; i < q->n; ++i)
+    for (std::size_t k = 0; k < q->p; ++k) gsl_matrix_set(j, i, k, jac[i * q->p + k]);
+  return GSL_SUCCESS;
+}
+}  // namespace
+
+Nls solve(const Residuals& r, std::size_t n, Vec t0, int max_iter) {
+  gsl_set_error_handler_off();
+  const std::size_t p = t0.size();
+  Problem prob{&r, n, p};
+  gsl_multifit_nlinear_fdf fdf{};
+  fdf.f = trampoline_f;
+  fdf.df = trampoline_df;
+  fdf.n = n;
+  fdf.p = p;
+  fdf.params = &prob;
+  gsl_multifit_nlinear_parameters prm = gsl_multifit_nlinear_default_parameters();
+  gsl_multifit_nlinear_workspace* ws = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n, p);
+  gsl_vector_view tv = gsl_vector_view_array(t0.data(), p);
+  gsl_multifit_nlinear_init(&tv.vector, &fdf, ws);
+  int info = 0;
+  Nls out;
+  out.status = gsl_multifit_nlinear_driver(max_iter, 1e-12, 1e-12, 1e-12, nullptr, nullptr, &info, ws);
+  gsl_matrix* cov = gsl_matrix_alloc(p, p);
+  gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(ws), 0.0, cov);
+  gsl_blas_ddot(gsl_multifit_nlinear_residual(ws), gsl_multifit_nlinear_residual(ws), &out.chi2);
+  const gsl_vector* th = gsl_multifit_nlinear_position(ws);
+  out.theta.assign(th->data, th->data + p);
+  out.cov.assign(cov->data, cov->data + p * p);  // (J^T J)^-1, p x p row-major (tda = p)
+  gsl_matrix_free(cov);
+  gsl_multifit_nlinear_free(ws);
+  // GSL_ENOPROG: no step lowers chi2 any further (exact data reach it at the minimum).
+  out.converged = out.status == GSL_SUCCESS || out.status == GSL_ENOPROG;
+  return out;
+}
+
+}  // namespace lsq
+
+namespace {
+
+using namespace lsq;
+
+double sig_s(double x, double lx0) { return 1 / (1 + std::exp(lx0) / x); }  // the weight of b
 
 // For fixed ln x0 the model is linear in (a, b - a): scan ln x0, keep the best chi2.
 Vec sigmoid_start(const Vec& x, const Vec& y, const Vec& w) {
   const auto [xmin, xmax] = std::minmax_element(x.begin(), x.end());
-  const double l0 = std::log(*xmin) - 3, l1 = std::log(*xmax) + 3;
-  Vec best{y.front(), y.back(), 0.5 * (l0 + l1)};
-  double best_chi2 = kInf;
-  Vec s(x.size());
-  for (int k = 0; k <= 240; ++k) {
-    const double lx = l0 + (l1 - l0) * k / 240.0;
-    for (std::size_t i = 0; i < x.size(); ++i) s[i] = sig_s(x[i], lx);
-    double c0, c1, c00, c01, c11, chi2;
-    if (gsl_fit_wlinear(s.data(), 1, w.data(), 1, y.data(), 1, x.size(), &c0, &c1, &c00, &c01, &c11, &chi2) != GSL_SUCCESS) continue;
-    if (std::isfinite(chi2) && chi2 < best_chi2) {
-      best_chi2 = chi2;
-      best = {c0, c0 + c1, lx};
-    }
-  }
-  return best;
+  const Vec s = scan_linear(sig_s, x, y, w, std::log(*xmin) - 3, std::log(*xmax) + 3, 240);
+  return {s[0], s[0] + s[1], s[2]};
 }
 
 }  // namespace
@@ -110,45 +149,34 @@ Vec sigmoid_start(const Vec& x, const Vec& y, const Vec& w) {
 double sigmoid(double x, double a, double b, double x0) { return a + (b - a) / (1 + x0 / x); }
 
 LsqFit fit_sigmoid(const Vec& x, const Vec& y, const Vec& yerr) {
-  check_lsq("fit-sigmoid", x, y, yerr, 3);
+  check("fit-sigmoid", x, y, yerr, 3);
   for (std::size_t i = 0; i < x.size(); ++i)
     if (!(x[i] > 0)) throw Error("fit-sigmoid: x of point " + std::to_string(i + 1) + " is not positive");
-  gsl_set_error_handler_off();
   const std::size_t n = x.size();
   const Vec w = weights(yerr, n);
-  SigData data{&x, &y, Vec(n)};
-  for (std::size_t i = 0; i < n; ++i) data.sd[i] = 1 / std::sqrt(w[i]);
-  Vec t0 = sigmoid_start(x, y, w);
-  gsl_multifit_nlinear_fdf fdf{};
-  fdf.f = sig_f;
-  fdf.df = sig_df;
-  fdf.n = n;
-  fdf.p = 3;
-  fdf.params = &data;
-  gsl_multifit_nlinear_parameters prm = gsl_multifit_nlinear_default_parameters();
-  gsl_multifit_nlinear_workspace* ws = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &prm, n, 3);
-  gsl_vector_view tv = gsl_vector_view_array(t0.data(), 3);
-  gsl_multifit_nlinear_init(&tv.vector, &fdf, ws);
-  int info = 0;
-  const int status = gsl_multifit_nlinear_driver(500, 1e-12, 1e-12, 1e-12, nullptr, nullptr, &info, ws);
-  gsl_matrix* cov = gsl_matrix_alloc(3, 3);
-  gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(ws), 0.0, cov);
+  const Residuals res = [&](const Vec& t, Vec& f, Vec* j) {  // in (a, b, ln x0)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double s = sig_s(x[i], t[2]), sd = 1 / std::sqrt(w[i]);
+      f[i] = (t[0] + (t[1] - t[0]) * s - y[i]) / sd;
+      if (j) {
+        (*j)[3 * i] = (1 - s) / sd;
+        (*j)[3 * i + 1] = s / sd;
+        (*j)[3 * i + 2] = -(t[1] - t[0]) * s * (1 - s) / sd;  // ds/d ln x0 = -s (1 - s)
+      }
+    }
+  };
+  const Nls r = solve(res, n, sigmoid_start(x, y, w));
+  if (!r.converged) throw Error("fit-sigmoid: nonlinear least squares did not converge");
   LsqFit f;
   f.model = "sigmoid";
   f.n = n;
   f.dof = n - 3;
   f.weighted = !yerr.empty();
-  gsl_blas_ddot(gsl_multifit_nlinear_residual(ws), gsl_multifit_nlinear_residual(ws), &f.chi2);
+  f.chi2 = r.chi2;
   const double scale = f.weighted ? 1.0 : f.chi2 / double(f.dof);  // no errors given: from the scatter
   f.q = quantile95(f.weighted, f.dof);
-  const gsl_vector* th = gsl_multifit_nlinear_position(ws);
-  const double a = gsl_vector_get(th, 0), b = gsl_vector_get(th, 1), lx = gsl_vector_get(th, 2);
-  const double ea = std::sqrt(scale * gsl_matrix_get(cov, 0, 0)), eb = std::sqrt(scale * gsl_matrix_get(cov, 1, 1));
-  const double elx = std::sqrt(scale * gsl_matrix_get(cov, 2, 2));
-  gsl_matrix_free(cov);
-  gsl_multifit_nlinear_free(ws);
-  // GSL_ENOPROG: no step lowers chi2 any further (exact data reach it at the minimum).
-  if (status != GSL_SUCCESS && status != GSL_ENOPROG) throw Error("fit-sigmoid: nonlinear least squares did not converge");
+  const double a = r.theta[0], b = r.theta[1], lx = r.theta[2];
+  const double ea = std::sqrt(scale * r.cov[0]), eb = std::sqrt(scale * r.cov[4]), elx = std::sqrt(scale * r.cov[8]);
   const double x0 = std::exp(lx);
   f.params = {symmetric("a", a, ea, f.q), symmetric("b", b, eb, f.q),
               {"x0", x0, x0 * elx, std::exp(lx - f.q * elx), std::exp(lx + f.q * elx)}};  // err: delta method
@@ -159,7 +187,7 @@ LsqFit fit_sigmoid(const Vec& x, const Vec& y, const Vec& yerr) {
 }
 
 LsqFit fit_linear_down(const Vec& x, const Vec& y, const Vec& yerr) {
-  check_lsq("fit-linear", x, y, yerr, 2);
+  check("fit-linear", x, y, yerr, 2);
   const std::size_t n = x.size();
   const Vec w = weights(yerr, n);
   LsqFit f;
