@@ -236,6 +236,41 @@ struct RheologyBin {
 };
 std::vector<RheologyBin> bin_rheology(const std::vector<RheologyPoint>& pts, int nbins);  // log bins in I; empty ones left out
 
+// ---------- petit2017: bulk modulus, Mohr friction per cycle, Eq. 9 inverted, entropy (mohr.cpp) ----------
+// Eq. 6 between successive states of each loading branch: K = (d syy + 2 d sxx) / (3 d eyy),
+// compression positive. A branch is a run of consecutive rows with the same cycle and
+// loading != 0 (cycle empty: one cycle; loading empty: every row loads).
+struct BulkPoint {
+  std::size_t row = 0;  // the increment's end state (0-based row)
+  double cycle = 0, syy = 0, syy_mid = 0, eyy = 0, k = 0;  // syy at the end state, (syy_prev + syy)/2
+};
+std::vector<BulkPoint> bulk_modulus(const Vec& syy, const Vec& sxx, const Vec& eyy, const Vec& cycle = {}, const Vec& loading = {});
+// Eq. 7 with its offset: K = K0 + a (s/s0 - 1)^alpha for s >= s0 (params K0, a, alpha; s0 fixed).
+double offset_power(double s, double k0, double a, double alpha, double s0);
+LsqFit fit_offset_power(const Vec& s, const Vec& k, const Vec& kerr, double s0);
+// The Mohr envelope (Eq. 8) of each cycle's loading circles, cycles in order of first appearance.
+struct CycleEnvelope {
+  double cycle = 0;
+  std::size_t n = 0;  // loading circles
+  Envelope e;
+};
+std::vector<CycleEnvelope> cycle_envelopes(const std::vector<Circle>& circles, const Vec& cycle, const Vec& loading = {});
+// The limit cycle: the first index k (before the last) with |mu_j - mu_k| <= tol |mu_k| for every
+// j > k; -1 when none (the sequence has not settled within tol by its second-to-last cycle).
+long limit_cycle(const Vec& mu, double tol = 0.005);
+// Eq. 9 inverted: the phi_min at which quad_eq9 gives mu_m (window: P normalised over the range),
+// by Brent's method between phi_max - 3 pi/4 (where tan reaches pi/2) and phi_max.
+double phi_min_eq9(const std::function<double(double)>& p, double mu, double mu_m, bool window = false, const Vec& breaks = {});
+// Eq. 10: S = -sum_k P_k ln P_k over nbins equal bins of [-pi/2, pi/2] (angles from the vertical;
+// a contact is a line, so angles outside are folded by pi), P_k = count_k / n.
+double fold_angle(double phi);
+struct Entropy {
+  double s = 0;
+  Histogram h;  // counts per bin; P_k = counts[k] / n
+  Vec p;
+};
+Entropy contact_entropy(const Vec& phi, int nbins);
+
 // ---------- files (io.cpp) ----------
 struct Column {
   Vec values;

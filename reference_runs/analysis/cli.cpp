@@ -263,9 +263,9 @@ int cmd_block_error(const Cli& c) {
   return 0;
 }
 
-int cmd_mohr(const Cli& c) {
+// Principal stresses from --s1/--s3 or --sxx/--syy[/--sxy], compression positive (--compression-negative flips).
+std::vector<Circle> circles_of(const Cli& c, Vec& s1, Vec& s3) {
   const double sign = c.flag("--compression-negative") ? -1 : 1;
-  Vec s1, s3;
   const auto col = [&](const char* k) {
     Cli one = c;
     one.opt["--column"] = c.str(k);
@@ -285,14 +285,20 @@ int cmd_mohr(const Cli& c) {
       s3.push_back(b);
     }
   } else {
-    throw Error("mohr-envelope needs --s1 and --s3, or --sxx, --syy (and --sxy)");
+    throw Error(c.sub + " needs --s1 and --s3, or --sxx, --syy (and --sxy)");
   }
   std::vector<Circle> circ;
-  Vec cen, rad;
-  for (std::size_t i = 0; i < s1.size(); ++i) {
-    circ.push_back(mohr_circle(s1[i], s3[i]));
-    cen.push_back(circ.back().centre);
-    rad.push_back(circ.back().radius);
+  for (std::size_t i = 0; i < s1.size(); ++i) circ.push_back(mohr_circle(s1[i], s3[i]));
+  return circ;
+}
+
+int cmd_mohr(const Cli& c) {
+  const double sign = c.flag("--compression-negative") ? -1 : 1;
+  Vec s1, s3, cen, rad;
+  const std::vector<Circle> circ = circles_of(c, s1, s3);
+  for (auto& k : circ) {
+    cen.push_back(k.centre);
+    rad.push_back(k.radius);
   }
   const Envelope e = mohr_envelope(circ);
   std::printf("%zu Mohr circles; envelope |tau| = C + mu_M sigma (petit2017 Eq. 8):\n", circ.size());
@@ -329,45 +335,55 @@ int cmd_power_law(const Cli& c) {
   return 0;
 }
 
+// P(phi) of Eq. 9: uniform 1/pi, tabulated (--phi, --p: linear between nodes, 0 outside) or the
+// histogram of angle samples (--phi only, --nbins on [-pi/2, pi/2], constant per bin); radians.
+struct Density {
+  Vec nodes, vals;
+  bool steps = false;
+  std::string what = "uniform P = 1/pi on [-pi/2, pi/2]";
+  double operator()(double phi) const {
+    if (nodes.empty()) return 1 / M_PI;
+    if (phi < nodes.front() || phi > nodes.back()) return 0.0;
+    const std::size_t i = std::min<std::size_t>(gsl_interp_bsearch(nodes.data(), phi, 0, nodes.size() - 1), nodes.size() - 2);
+    if (steps) return vals[i];
+    const double f = (phi - nodes[i]) / (nodes[i + 1] - nodes[i]);
+    return vals[i] + f * (vals[i + 1] - vals[i]);
+  }
+};
+
+Density eq9_density(const Cli& c, double deg) {
+  Density d;
+  if (c.pos.empty()) return d;
+  Cli cp = c;
+  cp.opt["--column"] = c.str("--phi");
+  d.nodes = input(cp, c.pos[0]);
+  for (double& v : d.nodes) v *= deg;
+  if (c.has("--p")) {  // tabulated P(phi)
+    cp.opt["--column"] = c.str("--p");
+    d.vals = input(cp, c.pos[0]);
+    for (double& v : d.vals) v /= deg;  // a density per degree becomes one per radian
+    for (std::size_t i = 1; i < d.nodes.size(); ++i)
+      if (!(d.nodes[i] > d.nodes[i - 1])) throw Error(c.sub + ": the --phi column must increase");
+    d.what = "tabulated P, linear between nodes, 0 outside";
+  } else {  // angle samples: their histogram
+    const Histogram h = histogram(d.nodes, static_cast<int>(c.count("--nbins", 36)), false, false, -M_PI / 2, M_PI / 2);
+    d.what = "histogram of " + std::to_string(d.nodes.size()) + " angles on [-pi/2, pi/2], constant per bin";
+    d.nodes = h.edges;
+    d.vals = h.pdf;
+    d.vals.push_back(h.pdf.back());
+    d.steps = true;
+  }
+  return d;
+}
+
 int cmd_quad_eq9(const Cli& c) {
   const double deg = c.flag("--degrees") ? M_PI / 180 : 1.0;
   if (!c.has("--mu") || !c.has("--phi-min")) throw Error("quad-eq9 needs --mu and --phi-min");
   const double mu = c.num("--mu", 0), phi_min = c.num("--phi-min", 0) * deg;
-  std::function<double(double)> p = [](double) { return 1 / M_PI; };
-  std::string what = "uniform P = 1/pi on [-pi/2, pi/2]";
-  Vec nodes, vals;
-  if (!c.pos.empty()) {
-    Cli cp = c;
-    if (c.has("--p")) {  // tabulated P(phi)
-      cp.opt["--column"] = c.str("--phi");
-      nodes = input(cp, c.pos[0]);
-      cp.opt["--column"] = c.str("--p");
-      vals = input(cp, c.pos[0]);
-      for (double& v : nodes) v *= deg;
-      for (double& v : vals) v /= deg;  // a density per degree becomes one per radian
-      for (std::size_t i = 1; i < nodes.size(); ++i)
-        if (!(nodes[i] > nodes[i - 1])) throw Error("quad-eq9: the --phi column must increase");
-      what = "tabulated P, linear between nodes, 0 outside";
-    } else {  // angle samples: their histogram
-      cp.opt["--column"] = c.str("--phi");
-      Vec a = input(cp, c.pos[0]);
-      for (double& v : a) v *= deg;
-      Histogram h = histogram(a, static_cast<int>(c.count("--nbins", 36)), false, false, -M_PI / 2, M_PI / 2);
-      nodes = h.edges;
-      vals = h.pdf;
-      vals.push_back(h.pdf.back());
-      what = "histogram of " + std::to_string(a.size()) + " angles on [-pi/2, pi/2], constant per bin";
-    }
-  }
-  const bool steps = !c.has("--p") && !nodes.empty();
-  if (!nodes.empty())
-    p = [&](double phi) {
-      if (phi < nodes.front() || phi > nodes.back()) return 0.0;
-      const std::size_t i = std::min<std::size_t>(gsl_interp_bsearch(nodes.data(), phi, 0, nodes.size() - 1), nodes.size() - 2);
-      if (steps) return vals[i];
-      const double f = (phi - nodes[i]) / (nodes[i + 1] - nodes[i]);
-      return vals[i] + f * (vals[i + 1] - vals[i]);
-    };
+  const Density d = eq9_density(c, deg);
+  const std::function<double(double)> p = [&d](double phi) { return d(phi); };
+  const Vec& nodes = d.nodes;
+  const std::string& what = d.what;
   const Eq9 q = quad_eq9(p, mu, phi_min, nodes);
   std::printf("petit2017 Eq. 9, %s; mu = %.6g, phi_m = %.6g rad, phi in [%.6g, %.6g] rad\n", what.c_str(), mu, std::atan(mu),
               phi_min, q.phi_max);
@@ -446,6 +462,141 @@ int cmd_fit_sigmoid(const Cli& c) {
 int cmd_fit_linear(const Cli& c) {
   const Vec x = xy_column(c, "--x"), y = xy_column(c, "--y"), e = c.has("--yerr") ? xy_column(c, "--yerr") : Vec{};
   return lsq_report(c, fit_linear_down(x, y, e), "y = c1 - c2 x (kneib2017 Eq. 5)");
+}
+
+// ---------- petit2017 (Eqs. 6, 7, 8 per cycle, 9 inverted, 10) ----------
+
+Vec optional_column(const Cli& c, const char* opt) { return c.has(opt) ? xy_column(c, opt) : Vec{}; }
+
+int cmd_bulk_modulus(const Cli& c) {
+  const double sign = c.flag("--compression-negative") ? -1 : 1;
+  Vec syy = xy_column(c, "--syy"), sxx = xy_column(c, "--sxx"), eyy = xy_column(c, "--eyy");
+  for (Vec* v : {&syy, &sxx, &eyy})
+    for (double& a : *v) a *= sign;
+  const Vec cyc = optional_column(c, "--cycle"), load = optional_column(c, "--loading");
+  const std::vector<BulkPoint> k = bulk_modulus(syy, sxx, eyy, cyc, load);
+  std::printf("petit2017 Eq. 6, K = (d syy + 2 d sxx) / (3 d eyy) between successive loading states: %zu increments%s\n", k.size(),
+              sign < 0 ? " (signs flipped: compression positive)" : "");
+  Table t{{"row", "cycle", "syy", "syy_mid", "eyy", "K"}, {}, {{"source", c.pos[0]}, {"K", "petit2017 Eq. 6"},
+          {"row", "the increment's end state (1-based row after --skip)"}, {"syy_mid", "mean of the increment's two states"}}};
+  t.cols.resize(t.names.size());
+  for (auto& b : k) {
+    const double row[] = {double(b.row + 1), b.cycle, b.syy, b.syy_mid, b.eyy, b.k};
+    for (std::size_t i = 0; i < t.cols.size(); ++i) t.cols[i].push_back(row[i]);
+  }
+  if (!c.has("--out")) {
+    std::printf("%6s %6s %12s %12s %12s %12s\n", "row", "cycle", "syy", "syy_mid", "eyy", "K");
+    for (auto& b : k) std::printf("%6zu %6g %12.6g %12.6g %12.6g %12.6g\n", b.row + 1, b.cycle, b.syy, b.syy_mid, b.eyy, b.k);
+  }
+  out_or_print(c, t);
+  return 0;
+}
+
+int cmd_fit_offset_power(const Cli& c) {
+  const Vec x = xy_column(c, "--x"), y = xy_column(c, "--y"), e = optional_column(c, "--yerr");
+  const double s0 = c.has("--sigma0") ? c.num("--sigma0", 0) : *std::min_element(x.begin(), x.end());
+  std::printf("sigma0 = %.6g (%s)\n", s0, c.has("--sigma0") ? "given" : "the smallest x");
+  const LsqFit f = fit_offset_power(x, y, e, s0);
+  if (c.has("--curve")) {
+    const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+    Vec cx, cy;
+    for (int i = 0; i < 200; ++i) {
+      cx.push_back(*lo + (*hi - *lo) * i / 199.0);
+      cy.push_back(offset_power(cx.back(), f.params[0].value, f.params[1].value, f.params[2].value, s0));
+    }
+    out_or_print(c, Table{{"x", "fit"}, {cx, cy}, {{"model", "K0 + a (x/sigma0 - 1)^alpha"}, {"sigma0", std::to_string(s0)}}}, "--curve");
+  }
+  return lsq_report(c, f, "K = K0 + a (sigma/sigma0 - 1)^alpha (petit2017 Eq. 7)");
+}
+
+int cmd_mohr_cycles(const Cli& c) {
+  Vec s1, s3;
+  const std::vector<Circle> circ = circles_of(c, s1, s3);
+  const Vec cyc = xy_column(c, "--cycle"), load = optional_column(c, "--loading");
+  const std::vector<CycleEnvelope> ce = cycle_envelopes(circ, cyc, load);
+  const double tol = c.num("--tol", 0.005);
+  Vec mu;
+  for (auto& k : ce) mu.push_back(k.e.mu);
+  const long lim = limit_cycle(mu, tol);
+  std::printf("envelope |tau| = C + mu_M sigma (petit2017 Eq. 8) of each cycle's %s circles:\n", load.empty() ? "" : "loading");
+  std::printf("%8s %5s %10s %9s %10s %9s %8s\n", "cycle", "n", "mu_M", "+-", "C", "+-", "rms");
+  Table t{{"cycle", "n", "mu_M", "mu_M_err", "C", "C_err", "rms"}, {}, {{"source", c.pos[0]}, {"tol", std::to_string(tol)}}};
+  t.cols.resize(t.names.size());
+  for (auto& k : ce) {
+    std::printf("%8g %5zu %10.6g %9.3g %10.6g %9.3g %8.3g\n", k.cycle, k.n, k.e.mu, k.e.mu_err, k.e.c, k.e.c_err, k.e.rms);
+    const double row[] = {k.cycle, double(k.n), k.e.mu, k.e.mu_err, k.e.c, k.e.c_err, k.e.rms};
+    for (std::size_t i = 0; i < t.cols.size(); ++i) t.cols[i].push_back(row[i]);
+  }
+  if (lim < 0) {
+    std::printf("no limit cycle: no cycle before the last has every later mu_M within +-%.3g %% of its own\n", 100 * tol);
+  } else {
+    std::printf("limit cycle %g: every later mu_M within +-%.3g %% of its mu_M = %.6g +- %.3g\n", ce[lim].cycle, 100 * tol, ce[lim].e.mu,
+                ce[lim].e.mu_err);
+  }
+  char cyc_s[32] = "none", mu_s[32] = "nan";
+  if (lim >= 0) {
+    std::snprintf(cyc_s, sizeof cyc_s, "%g", ce[lim].cycle);
+    std::snprintf(mu_s, sizeof mu_s, "%.17g", ce[lim].e.mu);
+  }
+  t.meta.push_back({"limit_cycle", cyc_s});
+  t.meta.push_back({"limit_mu_M", mu_s});
+  out_or_print(c, t);
+  return 0;
+}
+
+int cmd_phi_min_eq9(const Cli& c) {
+  const double deg = c.flag("--degrees") ? M_PI / 180 : 1.0;
+  if (!c.has("--mu") || !c.has("--mu-m")) throw Error("phi-min-eq9 needs --mu and --mu-m");
+  const double mu = c.num("--mu", 0), mu_m = c.num("--mu-m", 0);
+  const Density d = eq9_density(c, deg);
+  const bool window = c.flag("--window");
+  const double phi = phi_min_eq9([&d](double x) { return d(x); }, mu, mu_m, window, d.nodes);
+  std::printf("petit2017 Eq. 9 inverted, %s%s; mu = %.6g, mu_M = %.6g:\n  phi_min = %.8g rad = %.6g deg (phi_max = %.6g deg)\n",
+              d.what.c_str(), window ? ", P normalised over the range" : ", P as given", mu, mu_m, phi, phi * 180 / M_PI,
+              (std::atan(mu) + M_PI / 4) * 180 / M_PI);
+  Table t{{"phi_min", "phi_min_deg", "mu", "mu_m", "window"}, {{phi}, {phi * 180 / M_PI}, {mu}, {mu_m}, {window ? 1.0 : 0.0}}, {{"p", d.what}}};
+  out_or_print(c, t);
+  return 0;
+}
+
+// Angles from --phi (radians, or --degrees), or from branch vectors --dx --dy: phi = atan2(dx, dy), 0 = vertical.
+Vec contact_angles(const Cli& c) {
+  if (c.has("--phi")) {
+    Vec a = xy_column(c, "--phi");
+    if (c.flag("--degrees"))
+      for (double& v : a) v *= M_PI / 180;
+    return a;
+  }
+  if (!c.has("--dx") || !c.has("--dy")) throw Error("entropy needs --phi, or --dx and --dy");
+  const Vec dx = xy_column(c, "--dx"), dy = xy_column(c, "--dy");
+  Vec a;
+  for (std::size_t i = 0; i < dx.size(); ++i) a.push_back(std::atan2(dx[i], dy[i]));
+  return a;
+}
+
+int cmd_entropy(const Cli& c) {
+  const Vec phi = contact_angles(c), grp = optional_column(c, "--group");
+  const int nbins = static_cast<int>(c.count("--nbins", 36));
+  std::vector<double> order;
+  std::map<double, Vec> by;
+  for (std::size_t i = 0; i < phi.size(); ++i) {
+    const double g = grp.empty() ? 0 : grp.at(i);
+    if (!by.count(g)) order.push_back(g);
+    by[g].push_back(phi[i]);
+  }
+  std::printf("petit2017 Eq. 10, S = -sum P ln P over %d bins of [-pi/2, pi/2] (%.4g deg each; angles folded by pi):\n", nbins,
+              180.0 / nbins);
+  Table t{{"group", "n", "S"}, {}, {{"source", c.pos[0]}, {"nbins", std::to_string(nbins)}}};
+  t.cols.resize(3);
+  for (double g : order) {
+    const Entropy e = contact_entropy(by[g], nbins);
+    char name[64] = "";
+    if (!grp.empty()) std::snprintf(name, sizeof name, "group %g: ", g);
+    std::printf("  %s%zu angles: S = %.6g (ln nbins = %.6g, a uniform law's)\n", name, by[g].size(), e.s, std::log(double(nbins)));
+    for (auto [col, v] : {std::pair{0, g}, {1, double(by[g].size())}, {2, e.s}}) t.cols[col].push_back(v);
+  }
+  out_or_print(c, t);
+  return 0;
 }
 
 // A column of a row table; in an HDF5 table of ours every column is its own dataset.
@@ -613,6 +764,31 @@ const std::vector<Sub>& subs() {
       {"quad-eq9", "quad-eq9 --mu M --phi-min P [--degrees] [IN --phi C [--p C | --nbins 36]] [--out F]",
        "petit2017 Eq. 9 by GSL quadrature: P uniform, tabulated (--phi, --p) or the histogram of angle samples (--phi).",
        {"--mu", "--phi-min", "--phi", "--p", "--nbins", "--dataset", "--skip", "--out"}, {"--degrees"}, 0, 1, cmd_quad_eq9},
+      {"bulk-modulus", "bulk-modulus IN --syy C --sxx C --eyy C [--cycle C] [--loading C] [--compression-negative] [--out F]",
+       "petit2017 Eq. 6 between successive states of each loading branch: K = (d syy + 2 d sxx) / (3 d eyy), compression\n"
+       "positive (eyy = dH/H, Eq. 4). A branch: consecutive rows of one --cycle with --loading != 0 (without them: all rows).\n"
+       "Per increment: its end row, cycle, syy, the mean syy of its two states, eyy, K.",
+       {"--syy", "--sxx", "--eyy", "--cycle", "--loading", "--dataset", "--skip", "--out"}, {"--compression-negative"}, 1, 1,
+       cmd_bulk_modulus},
+      {"fit-offset-power", "fit-offset-power IN --x C --y C [--yerr C] [--sigma0 S] [--out F] [--curve F]",
+       "petit2017 Eq. 7 with its offset, K = K0 + a (sigma/sigma0 - 1)^alpha (sigma0 fixed: given, or the smallest x), by\n"
+       "GSL nonlinear least squares started from a scan in alpha; standard errors (scaled by chi2/dof without --yerr),\n"
+       "95 % intervals, chi2, R^2. The paper's a = 0.29 MPa is not compared (see README).",
+       {"--x", "--y", "--yerr", "--sigma0", "--dataset", "--skip", "--out", "--curve"}, {}, 1, 1, cmd_fit_offset_power},
+      {"mohr-cycles", "mohr-cycles IN (--s1 C --s3 C | --sxx C --syy C [--sxy C]) --cycle C [--loading C] [--tol 0.005]\n"
+       "                    [--compression-negative] [--out F]",
+       "The Mohr envelope (petit2017 Eq. 8, as mohr-envelope) of each cycle's loading circles, mu_M and C per cycle, and\n"
+       "the limit cycle: the first cycle whose mu_M every later cycle matches within +-tol (relative; default 0.5 %).",
+       {"--s1", "--s3", "--sxx", "--syy", "--sxy", "--cycle", "--loading", "--tol", "--dataset", "--skip", "--out"},
+       {"--compression-negative"}, 1, 1, cmd_mohr_cycles},
+      {"phi-min-eq9", "phi-min-eq9 --mu M --mu-m X [--window] [--degrees] [IN --phi C [--p C | --nbins 36]] [--out F]",
+       "petit2017 Eq. 9 inverted: the phi_min at which Eq. 9 gives mu_M (Brent's method on quad-eq9; P as quad-eq9's;\n"
+       "--window: P normalised over [phi_min, phi_max]).",
+       {"--mu", "--mu-m", "--phi", "--p", "--nbins", "--dataset", "--skip", "--out"}, {"--degrees", "--window"}, 0, 1, cmd_phi_min_eq9},
+      {"entropy", "entropy IN (--phi C [--degrees] | --dx C --dy C) [--group C] [--nbins 36] [--out F]",
+       "petit2017 Eq. 10: contact-angle entropy S = -sum P ln P over --nbins bins of [-pi/2, pi/2], angles from the\n"
+       "vertical (from branch vectors: atan2(dx, dy)), folded by pi; one S per --group value (e.g. a state column).",
+       {"--phi", "--dx", "--dy", "--group", "--nbins", "--dataset", "--skip", "--out"}, {"--degrees"}, 1, 1, cmd_entropy},
       {"fit-sigmoid", "fit-sigmoid IN --x C --y C [--yerr C] [--names a,b,x0] [--out F] [--curve F]",
        "Weighted nonlinear least squares of y = a + (b - a)/(1 + x0/x), x0 > 0 (kneib2017 Eq. 4: r1, r2, I_M^0;\n"
        "Eq. 20: mu1, mu2, I0), fitted in (a, b, ln x0): standard errors from the covariance (scaled by chi2/dof\n"

@@ -1,12 +1,15 @@
-// Mohr circles and their envelope, power-law fits, petit2017 Eq. 9 by quadrature.
+// Mohr circles and their envelope, power-law fits, petit2017 Eq. 9 by quadrature and inverted,
+// its Eq. 6 bulk modulus, the offset power law of its Eq. 7, envelopes per cycle, Eq. 10 entropy.
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_multifit_nlinear.h>
+#include <gsl/gsl_roots.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "reference_runs/analysis/analysis.h"
 
@@ -190,6 +193,174 @@ Eq9 quad_eq9(const std::function<double(double)>& p, double mu, double phi_min, 
   if (!(r.weight > 0)) throw Error("quad-eq9: P(phi) has no weight in [phi_min, phi_max]");
   r.mu_m_window = r.mu_m / r.weight;
   return r;
+}
+
+// ---------- petit2017 Eqs. 6, 7, 8 per cycle, 9 inverted, 10 ----------
+
+namespace {
+double at_or(const Vec& v, std::size_t i, double def) { return v.empty() ? def : v[i]; }
+void same_length(const char* what, std::size_t n, std::initializer_list<const Vec*> cols) {
+  for (const Vec* c : cols)
+    if (!c->empty() && c->size() != n) throw Error(std::string(what) + ": the columns have different lengths");
+}
+}  // namespace
+
+std::vector<BulkPoint> bulk_modulus(const Vec& syy, const Vec& sxx, const Vec& eyy, const Vec& cycle, const Vec& loading) {
+  const std::size_t n = syy.size();
+  if (sxx.size() != n || eyy.size() != n) throw Error("bulk-modulus: syy, sxx, eyy have different lengths");
+  same_length("bulk-modulus", n, {&cycle, &loading});
+  std::vector<BulkPoint> out;
+  for (std::size_t i = 1; i < n; ++i) {
+    const bool same = at_or(cycle, i, 0) == at_or(cycle, i - 1, 0);
+    if (!same || at_or(loading, i, 1) == 0 || at_or(loading, i - 1, 1) == 0) continue;  // not one loading branch
+    const double de = eyy[i] - eyy[i - 1];
+    if (de == 0) throw Error("bulk-modulus: rows " + std::to_string(i) + " and " + std::to_string(i + 1) + " have the same strain");
+    BulkPoint b;
+    b.row = i;
+    b.cycle = at_or(cycle, i, 0);
+    b.syy = syy[i];
+    b.syy_mid = 0.5 * (syy[i] + syy[i - 1]);
+    b.eyy = eyy[i];
+    b.k = (syy[i] - syy[i - 1] + 2 * (sxx[i] - sxx[i - 1])) / (3 * de);  // Eq. 6
+    out.push_back(b);
+  }
+  if (out.empty()) throw Error("bulk-modulus: no two successive loading states in one cycle");
+  return out;
+}
+
+double offset_power(double s, double k0, double a, double alpha, double s0) {
+  const double u = s / s0 - 1;
+  return k0 + (u > 0 ? a * std::pow(u, alpha) : 0.0);
+}
+
+LsqFit fit_offset_power(const Vec& s, const Vec& k, const Vec& kerr, double s0) {
+  lsq::check("fit-offset-power", s, k, kerr, 3);
+  if (!(s0 > 0)) throw Error("fit-offset-power: sigma0 must be positive");
+  const std::size_t n = s.size();
+  Vec u(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    u[i] = s[i] / s0 - 1;
+    if (u[i] < -1e-12) throw Error("fit-offset-power: point " + std::to_string(i + 1) + " lies below sigma0");
+    u[i] = std::max(u[i], 0.0);
+  }
+  const Vec w = lsq::weights(kerr, n);
+  // K is linear in (K0, a) at fixed alpha: scan alpha for the start.
+  const auto pw = [](double x, double al) { return x > 0 ? std::pow(x, al) : 0.0; };
+  const Vec t0 = lsq::scan_linear(pw, u, k, w, 0.02, 3.0, 300);
+  const lsq::Residuals res = [&](const Vec& t, Vec& f, Vec* j) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double p = pw(u[i], t[2]), sd = 1 / std::sqrt(w[i]);
+      f[i] = (t[0] + t[1] * p - k[i]) / sd;
+      if (j) {
+        (*j)[3 * i] = 1 / sd;
+        (*j)[3 * i + 1] = p / sd;
+        (*j)[3 * i + 2] = u[i] > 0 ? t[1] * p * std::log(u[i]) / sd : 0.0;
+      }
+    }
+  };
+  const lsq::Nls r = lsq::solve(res, n, t0);
+  if (!r.converged) throw Error("fit-offset-power: nonlinear least squares did not converge");
+  LsqFit f;
+  f.model = "offset-power";
+  f.n = n;
+  f.dof = n - 3;
+  f.weighted = !kerr.empty();
+  f.chi2 = r.chi2;
+  const double scale = f.weighted ? 1.0 : f.chi2 / double(f.dof);
+  f.q = lsq::quantile95(f.weighted, f.dof);
+  const char* names[] = {"K0", "a", "alpha"};
+  for (int i = 0; i < 3; ++i) f.params.push_back(lsq::symmetric(names[i], r.theta[i], std::sqrt(scale * r.cov[4 * i]), f.q));
+  Vec fit;
+  for (double v : s) fit.push_back(offset_power(v, r.theta[0], r.theta[1], r.theta[2], s0));
+  f.r2 = lsq::r_squared(k, fit, w);
+  return f;
+}
+
+std::vector<CycleEnvelope> cycle_envelopes(const std::vector<Circle>& circles, const Vec& cycle, const Vec& loading) {
+  same_length("mohr-cycles", circles.size(), {&cycle, &loading});
+  if (cycle.size() != circles.size()) throw Error("mohr-cycles: one cycle number per circle");
+  std::vector<double> order;
+  std::map<double, std::vector<Circle>> by;
+  for (std::size_t i = 0; i < circles.size(); ++i) {
+    if (at_or(loading, i, 1) == 0) continue;
+    if (!by.count(cycle[i])) order.push_back(cycle[i]);
+    by[cycle[i]].push_back(circles[i]);
+  }
+  std::vector<CycleEnvelope> out;
+  for (double c : order) {
+    const auto& v = by[c];
+    if (v.size() < 2) throw Error("mohr-cycles: cycle " + std::to_string(c) + " has fewer than 2 loading circles");
+    out.push_back({c, v.size(), mohr_envelope(v)});
+  }
+  return out;
+}
+
+long limit_cycle(const Vec& mu, double tol) {
+  for (std::size_t k = 0; k + 1 < mu.size(); ++k) {
+    bool settled = true;
+    for (std::size_t j = k + 1; j < mu.size() && settled; ++j) settled = std::fabs(mu[j] - mu[k]) <= tol * std::fabs(mu[k]);
+    if (settled) return static_cast<long>(k);
+  }
+  return -1;
+}
+
+namespace {
+struct Eq9Root {
+  const std::function<double(double)>* p;
+  const Vec* breaks;
+  double mu, target;
+  bool window;
+};
+double eq9_miss(double phi_min, void* d) {
+  auto* r = static_cast<Eq9Root*>(d);
+  const Eq9 q = quad_eq9(*r->p, r->mu, phi_min, *r->breaks);
+  return (r->window ? q.mu_m_window : q.mu_m) - r->target;
+}
+}  // namespace
+
+double phi_min_eq9(const std::function<double(double)>& p, double mu, double mu_m, bool window, const Vec& breaks) {
+  const double phi_max = std::atan(mu) + M_PI / 4, span = 0.75 * M_PI;
+  double lo = phi_max - span * (1 - 1e-6), hi = phi_max - 1e-9;  // inside, where quad_eq9 is finite
+  Eq9Root d{&p, &breaks, mu, mu_m, window};
+  const double flo = eq9_miss(lo, &d), fhi = eq9_miss(hi, &d);
+  if (!(flo >= 0 && fhi <= 0))
+    throw Error("phi-min-eq9: mu_M = " + std::to_string(mu_m) + " is not reached: Eq. 9 gives " + std::to_string(fhi + mu_m) +
+                " near phi_max and " + std::to_string(flo + mu_m) + " near phi_max - 3 pi/4");
+  gsl_set_error_handler_off();
+  gsl_function f{&eq9_miss, &d};
+  gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  gsl_root_fsolver_set(s, &f, lo, hi);
+  int status = GSL_CONTINUE;
+  for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
+    gsl_root_fsolver_iterate(s);
+    lo = gsl_root_fsolver_x_lower(s);
+    hi = gsl_root_fsolver_x_upper(s);
+    status = gsl_root_test_interval(lo, hi, 1e-12, 0);
+  }
+  const double root = gsl_root_fsolver_root(s);
+  gsl_root_fsolver_free(s);
+  if (status != GSL_SUCCESS) throw Error("phi-min-eq9: Brent's method did not converge");
+  return root;
+}
+
+double fold_angle(double phi) {
+  constexpr double half = M_PI / 2, slack = 1e-12;  // +-pi/2 themselves (and round-off about them) stay where they are
+  while (phi > half + slack) phi -= M_PI;
+  while (phi < -half - slack) phi += M_PI;
+  return std::clamp(phi, -half, half);
+}
+
+Entropy contact_entropy(const Vec& phi, int nbins) {
+  if (phi.empty()) throw Error("entropy: no angles");
+  Vec f;
+  for (double v : phi) f.push_back(fold_angle(v));
+  Entropy e;
+  e.h = histogram(f, nbins, false, false, -M_PI / 2, M_PI / 2);
+  for (double c : e.h.counts) {
+    e.p.push_back(c / double(f.size()));
+    if (c > 0) e.s -= e.p.back() * std::log(e.p.back());  // 0 ln 0 = 0
+  }
+  return e;
 }
 
 }  // namespace sable::analysis

@@ -15,7 +15,8 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SUBS = ["pdf", "fit-lognormal", "fit-forms", "ks", "acf", "block-error", "mohr-envelope", "power-law", "quad-eq9"]
+SUBS = ["pdf", "fit-lognormal", "fit-forms", "ks", "acf", "block-error", "mohr-envelope", "power-law", "quad-eq9",
+        "bulk-modulus", "fit-offset-power", "mohr-cycles", "phi-min-eq9", "entropy"]
 
 
 def run(exe, *args, ok=True):
@@ -78,6 +79,7 @@ def cli(exe, work):
     if "missing.txt" not in e:
         sys.exit(f"FAIL: missing file: {e}")
     cavity(exe, work)
+    petit(exe, work)
     print("cli: all subcommands answer --help; Eq. 7 fit through the CLI recovers the truth; errors name file and column")
 
 
@@ -112,6 +114,59 @@ def cavity(exe, work):
     p = params(out)
     if abs(p["x"] - 0.3137) > 1e-9 or abs(p["y"] - 0.2281) > 1e-9 or abs(p["ell_over_l"] - (0.6 - 0.3137) / 0.6) > 1e-9:
         sys.exit(f"FAIL: vortex-centre found {p['x']}, {p['y']} (l/L {p['ell_over_l']}), not 0.3137, 0.2281")
+
+
+def meta(path):
+    with open(path) as f:
+        return dict(l[1:].strip().split(": ", 1) for l in f if l.startswith("# ") and ": " in l)
+
+
+def petit(exe, work):
+    """Issue 44's petit2017 subcommands on exact data: Eq. 7 with its offset, the limit cycle of
+    mohr-cycles, Eq. 9 inverted on the uniform law, Eq. 10 of a triangular lattice from branch vectors."""
+    kf = os.path.join(work, "eq7.txt")
+    with open(kf, "w") as f:
+        f.write("# s K\n")
+        for i in range(25):
+            s = 4.1 * 25 ** (i / 24)
+            f.write(f"{s!r} {200 + 290 * (s / 4.1 - 1) ** 0.47!r}\n")
+    out = os.path.join(work, "eq7.csv")
+    run(exe, "fit-offset-power", kf, "--x", "s", "--y", "K", "--out", out)
+    p = params(out)
+    for name, truth in (("K0", 200), ("a", 290), ("alpha", 0.47)):
+        if abs(p[name] - truth) > 1e-6 * truth:
+            sys.exit(f"FAIL: fit-offset-power {name} = {p[name]}, not {truth}")
+    mus = [0.40, 0.45, 0.49, 0.51, 0.525, 0.532, 0.536, 0.538, 0.539, 0.5395, 0.540, 0.5398, 0.5402, 0.5401, 0.5400]
+    cf = os.path.join(work, "cycles.txt")
+    with open(cf, "w") as f:
+        f.write("# cycle loading s1 s3\n")
+        for k, mu in enumerate(mus):
+            for i in range(1, 9):
+                c = 5.0 * i
+                r = mu * c / math.sqrt(1 + mu * mu)
+                f.write(f"{k + 1} 1 {c + r!r} {c - r!r}\n")
+            for i in range(7, 0, -1):  # unloading circles, off the envelope
+                f.write(f"{k + 1} 0 {5.0 * i + 0.2 * i!r} {5.0 * i - 0.2 * i!r}\n")
+    out = os.path.join(work, "cycles.csv")
+    run(exe, "mohr-cycles", cf, "--s1", "s1", "--s3", "s3", "--cycle", "cycle", "--loading", "loading", "--out", out)
+    m = meta(out)
+    if m.get("limit_cycle") != "8" or abs(float(m["limit_mu_M"]) - 0.538) > 1e-12:
+        sys.exit(f"FAIL: mohr-cycles limit cycle {m.get('limit_cycle')} mu_M {m.get('limit_mu_M')}, not 8 and 0.538")
+    out = os.path.join(work, "phimin.csv")
+    run(exe, "phi-min-eq9", "--mu", "0.3", "--mu-m", "0.54", "--out", out)
+    want = math.atan(0.3) + math.pi / 4 - 1.5 * math.acos(math.exp(-2 * math.pi * 0.54 / 3))
+    if abs(params(out)["phi_min"] - want) > 1e-9:
+        sys.exit(f"FAIL: phi-min-eq9 gave {params(out)['phi_min']}, not {want}")
+    af = os.path.join(work, "branches.txt")
+    with open(af, "w") as f:  # each grain's neighbours in the closed upper half-plane
+        f.write("# dx dy\n")
+        for _ in range(10):
+            for a in (-90, -30, 30, 90):
+                f.write(f"{math.sin(math.radians(a))!r} {math.cos(math.radians(a))!r}\n")
+    out = os.path.join(work, "entropy.csv")
+    run(exe, "entropy", af, "--dx", "dx", "--dy", "dy", "--out", out)
+    if abs(params(out)["S"] - math.log(4)) > 1e-12:
+        sys.exit(f"FAIL: entropy of the triangular lattice {params(out)['S']}, not ln 4")
 
 
 def figure(exe, work):
