@@ -550,11 +550,20 @@ int cmd_phi_min_eq9(const Cli& c) {
   const double mu = c.num("--mu", 0), mu_m = c.num("--mu-m", 0);
   const Density d = eq9_density(c, deg);
   const bool window = c.flag("--window");
-  const double phi = phi_min_eq9([&d](double x) { return d(x); }, mu, mu_m, window, d.nodes);
+  const auto invert = [&](double m) { return phi_min_eq9([&d](double x) { return d(x); }, mu, m, window, d.nodes); };
+  const double phi = invert(mu_m), err = c.num("--mu-m-err", 0);
   std::printf("petit2017 Eq. 9 inverted, %s%s; mu = %.6g, mu_M = %.6g:\n  phi_min = %.8g rad = %.6g deg (phi_max = %.6g deg)\n",
               d.what.c_str(), window ? ", P normalised over the range" : ", P as given", mu, mu_m, phi, phi * 180 / M_PI,
               (std::atan(mu) + M_PI / 4) * 180 / M_PI);
-  Table t{{"phi_min", "phi_min_deg", "mu", "mu_m", "window"}, {{phi}, {phi * 180 / M_PI}, {mu}, {mu_m}, {window ? 1.0 : 0.0}}, {{"p", d.what}}};
+  double lo = phi, hi = phi;  // mu_M -+ err mapped through the inverse (falling in mu_M with P as given)
+  if (err > 0) {
+    const double a = invert(mu_m + err), b = invert(mu_m - err);
+    lo = std::min(a, b);
+    hi = std::max(a, b);
+    std::printf("  mu_M -+ %.4g gives phi_min in [%.6g, %.6g] deg\n", err, lo * 180 / M_PI, hi * 180 / M_PI);
+  }
+  Table t{{"phi_min", "phi_min_deg", "phi_min_lo", "phi_min_hi", "mu", "mu_m", "mu_m_err", "window"},
+          {{phi}, {phi * 180 / M_PI}, {lo}, {hi}, {mu}, {mu_m}, {err}, {window ? 1.0 : 0.0}}, {{"p", d.what}}};
   out_or_print(c, t);
   return 0;
 }
@@ -781,10 +790,10 @@ const std::vector<Sub>& subs() {
        "the limit cycle: the first cycle whose mu_M every later cycle matches within +-tol (relative; default 0.5 %).",
        {"--s1", "--s3", "--sxx", "--syy", "--sxy", "--cycle", "--loading", "--tol", "--dataset", "--skip", "--out"},
        {"--compression-negative"}, 1, 1, cmd_mohr_cycles},
-      {"phi-min-eq9", "phi-min-eq9 --mu M --mu-m X [--window] [--degrees] [IN --phi C [--p C | --nbins 36]] [--out F]",
+      {"phi-min-eq9", "phi-min-eq9 --mu M --mu-m X [--mu-m-err E] [--window] [--degrees] [IN --phi C [--p C | --nbins 36]] [--out F]",
        "petit2017 Eq. 9 inverted: the phi_min at which Eq. 9 gives mu_M (Brent's method on quad-eq9; P as quad-eq9's;\n"
-       "--window: P normalised over [phi_min, phi_max]).",
-       {"--mu", "--mu-m", "--phi", "--p", "--nbins", "--dataset", "--skip", "--out"}, {"--degrees", "--window"}, 0, 1, cmd_phi_min_eq9},
+       "--window: P normalised over [phi_min, phi_max]); --mu-m-err: the phi_min range of mu_M -+ E.",
+       {"--mu", "--mu-m", "--mu-m-err", "--phi", "--p", "--nbins", "--dataset", "--skip", "--out"}, {"--degrees", "--window"}, 0, 1, cmd_phi_min_eq9},
       {"entropy", "entropy IN (--phi C [--degrees] | --dx C --dy C) [--group C] [--nbins 36] [--out F]",
        "petit2017 Eq. 10: contact-angle entropy S = -sum P ln P over --nbins bins of [-pi/2, pi/2], angles from the\n"
        "vertical (from branch vectors: atan2(dx, dy)), folded by pi; one S per --group value (e.g. a state column).",
