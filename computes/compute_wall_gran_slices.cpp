@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "computes/bound_arg.h"
 #include "core/atoms.h"
 #include "core/compute.h"
 #include "core/simulation.h"
@@ -36,22 +37,6 @@
 namespace sable {
 
 namespace {
-
-// A bound: a number, or v_name (equal-style) read at each invocation.
-struct Bound {
-  double value = 0;
-  std::string var;  // empty: a number
-  std::size_t at = 0;
-};
-
-Bound parse_bound(const Args& a, std::size_t i, const std::string& what) {
-  Bound b;
-  b.at = i;
-  const std::string& w = a.word(i, what);
-  if (w.rfind("v_", 0) == 0 && w.size() > 2) b.var = w.substr(2);
-  else b.value = a.num(i, what);
-  return b;
-}
 
 // The plane's normal axis from its fix's words (xplane -> 0); -1 for no plane.
 int plane_axis(const Args& fix_args) {
@@ -80,18 +65,15 @@ class ComputeWallGranSlices : public Compute {
     dim_ = axis_of(a.word(7, "x, y or z"));
     if (dim_ < 0) a.fail(7, "x, y or z");
     expect(a, 8, "lo");
-    lo_ = parse_bound(a, 9, "a lower bound (a number or v_name)");
+    lo_ = BoundArg::parse(s, a, 9, "a lower bound (a number or v_name)");
     expect(a, 10, "hi");
-    hi_ = parse_bound(a, 11, "an upper bound (a number or v_name)");
+    hi_ = BoundArg::parse(s, a, 11, "an upper bound (a number or v_name)");
     for (std::size_t i = 12; i < a.size(); i += 2) {
       if (a[i] != "outside") a.fail(i, "the keyword 'outside' (or the end of the line)");
       const std::string& m = a.word(i + 1, "clamp or drop");
       if (m != "clamp" && m != "drop") a.fail(i + 1, "clamp or drop");
       clamp_ = m == "clamp";
     }
-    for (const Bound* b : {&lo_, &hi_})
-      if (!b->var.empty() && !s.variables->is_equal_style(b->var))
-        a.fail(b->at, "an equal-style variable (v_" + b->var + " is not one)");
     local_flag = true;
     local_names = {"id", "x", "y", "z", "fx", "fy", "fz"};
     local_cols = static_cast<int>(local_names.size());
@@ -117,13 +99,6 @@ class ComputeWallGranSlices : public Compute {
  private:
   static void expect(const Args& a, std::size_t i, const std::string& key) {
     if (a.word(i, "'" + key + "'") != key) a.fail(i, "'" + key + "'");
-  }
-
-  double bound(const Bound& b) {
-    if (b.var.empty()) return b.value;
-    double v = 0;
-    if (!sim.variables->numeric(b.var, v)) args.fail(b.at, "an equal-style variable (v_" + b.var + ")");
-    return v;
   }
 
   // The slice (0-based) of coordinate y, or -1 when it is dropped.
@@ -152,7 +127,7 @@ class ComputeWallGranSlices : public Compute {
   }
 
   void fill() {
-    const double lo = bound(lo_), hi = bound(hi_);
+    const double lo = lo_.eval(sim, args), hi = hi_.eval(sim, args);
     if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi))
       args.fail_line("compute " + id + ": at step " + std::to_string(sim.step) + " hi = " + std::to_string(hi) +
                      " is not above lo = " + std::to_string(lo));
@@ -176,7 +151,7 @@ class ComputeWallGranSlices : public Compute {
   std::string wall_id_;
   FixWallGran* wall_ = nullptr;
   int axis_ = 0, dim_ = 1;
-  Bound lo_, hi_;
+  BoundArg lo_, hi_;
   bool clamp_ = true;
   ContactRecords rec_;
   std::vector<double> slices_;
