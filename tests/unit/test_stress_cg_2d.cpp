@@ -18,10 +18,12 @@
 #include "computes/cg_field.h"
 #include "computes/compute_stress_cg.h"
 #include "tests/unit/deck_runner.h"
+#include "tests/unit/lattice_deck_2d.h"
 
 using sable::CgField;
 using sable::CgKernel;
 using sable::test::Deck;
+using sable::test::lattice_deck;
 
 namespace {
 
@@ -234,31 +236,6 @@ TEST(StressCG2D, LatticeContactStress) {
                 what.c_str(), xx.maxdev, yy.maxdev, maxabs(out, kS + XY) / sxx, xx.mean / sxx - 1, yy.mean / syy - 1);
   }
 }
-
-namespace {
-
-// A periodic 2D lattice of grains (diameter 2 mm, constant a < d: each
-// contact overlaps by d - a) with linear springs, kn = 2000 N/m: at rest each
-// contact carries F = kn (d - a).
-std::string lattice_deck(const std::string& dimension, bool hex, double a, int nx, int ny) {
-  const double lx = nx * a, ly = ny * a * (hex ? kSqrt3 : 1.0);
-  char box[160], lat[80];
-  std::snprintf(box, sizeof box, "region box block 0 %.17g 0 %.17g -0.001 0.001 units box\n", lx, ly);
-  std::snprintf(lat, sizeof lat, "lattice %s %.17g\n", hex ? "hex" : "sq", a);
-  return dimension + "\nunits si\natom_style granular\nboundary p p p\n" + box + R"(create_box 1 box
-neighbor 0.0004 bin
-fix k1 all property/global kn peratomtypepair 1 2000
-fix k2 all property/global kt peratomtypepair 1 1000
-fix k3 all property/global gamman_abs peratomtypepair 1 0.02
-fix k4 all property/global gammat_abs peratomtypepair 1 0.01
-fix k5 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hooke/stiffness tangential history absolute_damping on
-pair_coeff * *
-timestep 1e-6
-)" + lat + "create_atoms 1 box\nset group all diameter 0.002 density 2500\n";
-}
-
-}  // namespace
 
 // compute stress/cg in decks with dimension 2: periodic square and hexagonal
 // lattices of grains of diameter d = 2 mm at spacing a = 1.98 mm, every
