@@ -6,6 +6,7 @@
 // repeated removal of rattlers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -266,4 +267,45 @@ TEST(ForceMidline, PeriodicLatticeMatchesLoveWeber) {
   EXPECT_EQ(vec(d, "m", 4), 20.0);
   EXPECT_NEAR(vec(d, "m", 3), ly, 1e-15);
   EXPECT_NEAR(vec(d, "m", 1), sig, 1e-9 * sig);
+}
+
+// Love-Weber's sigma_xx is the mean over x of the force across vertical lines: in a
+// box periodic in x, each contact adds its f_x (on the grain right of the line) over
+// the |l_x| its branch spans, so the integral over one period of force/midline's
+// sum F(X0) is sum_c f_x l_x, equilibrium or not. F(X0) is constant between grain
+// centres: lines at the midpoints of the gaps between sorted centres, weighted by
+// the gaps, give the integral exactly. 40 random overlapping grains (rest, normal
+// forces only), area 1 so that c_fab[1 + 3 + 36] is the sum itself.
+TEST(ForceMidline, MeanOverXIsLoveWeber) {
+  Deck d;
+  const double lx = 0.012, ly = 0.012;
+  d(spring_scene_2d("dimension 2", "p f p", lx, ly));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> xs;
+  for (int k = 0; k < 40; ++k) {
+    xs.push_back(lx * u(rng));
+    d(fmt("create_atoms 1 single %.17g %.17g 0 units box", xs.back(), 0.0015 + 0.009 * u(rng)));
+    d(fmt("set atom %.0f diameter %.17g density 2500", k + 1, 0.0016 + 0.0008 * u(rng)));
+  }
+  std::sort(xs.begin(), xs.end());
+  std::vector<double> mid, w;
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const double a = xs[k], b = k + 1 < xs.size() ? xs[k + 1] : xs[0] + lx;
+    mid.push_back(std::fmod(0.5 * (a + b), lx));
+    w.push_back(b - a);
+    d(fmt("compute m%.0f all force/midline x %.17g ylo 0 yhi %.17g", double(k), mid.back(), ly));
+  }
+  d("compute f all contact/fabric area 1\nrun 0");
+  double integral = 0, fmin = 1e300, fmax = -1e300;
+  for (std::size_t k = 0; k < mid.size(); ++k) {
+    const double f = vec(d, fmt("m%.0f", double(k)).c_str(), 2);
+    integral += f * w[k];
+    fmin = std::min(fmin, f), fmax = std::max(fmax, f);
+  }
+  const double lw = vec(d, "f", after(36, 1));
+  ASSERT_GT(std::fabs(lw), 0.0);
+  EXPECT_NEAR(integral, lw, 1e-12 * std::fabs(lw));
+  std::printf("[ measured ] sum f_x l_x %.6g N m, integral of F(X0) %.6g; F(X0) from %.4g to %.4g N\n", lw, integral,
+              fmin, fmax);
 }
