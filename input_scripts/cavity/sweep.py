@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The cavity sweep of reference_runs/cavity/sweep/PLAN.md: run, then reduce each run.
 
-    /usr/bin/python3 input_scripts/cavity/sweep.py run [--work DIR] [--only NU,NP] [--seeds 1 2 3]
+    /usr/bin/python3 input_scripts/cavity/sweep.py run [--work DIR] [--only NU,NP] [--seeds 1 2 3] [--reverse]
     /usr/bin/python3 input_scripts/cavity/sweep.py reduce [--work DIR]
     /usr/bin/python3 input_scripts/cavity/sweep.py yade [--work DIR] [--only NU,NP] [--seeds 1 2 3]
 
@@ -249,12 +249,15 @@ def main():
     p.add_argument('--work', default='/tmp/cavity_sweep')
     p.add_argument('--only', help='NU,NP of one point')
     p.add_argument('--seeds', type=int, nargs='+', default=SEEDS)
+    p.add_argument('--reverse', action='store_true', help='the points in reverse order (a second sweep beside one)')
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
     pts = YADE_POINTS if a.what == 'yade' else POINTS
     if a.only:
         nu, np_ = (float(x) for x in a.only.split(','))
         pts = [q for q in pts if q == (nu, np_)]
+    if a.reverse:
+        pts = pts[::-1]
     for seed in a.seeds:
         for nu, np_ in pts:
             if a.what == 'yade':
@@ -270,6 +273,11 @@ def one(work, nu, np_, seed, code='sable', cmp=False):
     """Run and reduce one shear unless its reduced result exists; drop the bulky raw files."""
     t = ('compare ' + code + ' ' if cmp else '') + tag(nu, np_, seed)
     if os.path.exists(os.path.join(out_dir(nu, np_, seed, code, cmp), 'reduced.json')):
+        return
+    os.makedirs(raw_dir(work, nu, np_, seed, code, cmp), exist_ok=True)
+    try:  # a claim, so that sweeps running side by side (--reverse) take each run once
+        os.close(os.open(os.path.join(raw_dir(work, nu, np_, seed, code, cmp), 'claim'), os.O_CREAT | os.O_EXCL))
+    except FileExistsError:
         return
     print(f'{time.strftime("%H:%M:%S")} {t}: running', flush=True)
     raw, wall = shear(work, nu, np_, seed, code, cmp)
