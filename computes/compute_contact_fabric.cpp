@@ -1,10 +1,12 @@
-// compute ID group contact/fabric [bins N] [area A] [rattler M]
+// compute ID group contact/fabric [bins N] [area A] [rattler M] [contacts both|any]
 // (sable addition; LIGGGHTS has no such style.) 2D (dimension 2) contact
 // fabric of the grain-grain contacts with both grains in the group, for
 // petit2017 (Petit et al. 2017: Z, Eq. 10's contact-angle entropy, App. A's
 // overlaps). Which grains count (e.g. frozen piston grains or not) is the
-// group's choice. The contacts are re-evaluated by the pair's kernel when the
-// compute is invoked, as compute pair/gran/local does.
+// group's choice; `contacts any` also counts the contacts of the group's grains
+// with grains outside it (e.g. with the pistons: they then count as walls, never
+// as grains or rattlers). The contacts are re-evaluated by the pair's kernel
+// when the compute is invoked, as compute pair/gran/local does.
 //   phi     the angle of the branch vector from the vertical, atan2(lx, ly),
 //           of the contact line, so folded by pi into [-pi/2, pi/2): 0 = one
 //           grain on top of the other, -pi/2 = side by side (+pi/2 folds there).
@@ -21,7 +23,8 @@
 //           with horizontal rows (-90, -30, 30, 90 deg: a horizontal contact
 //           twice, once from each grain). That counting equals this one
 //           wherever no contact is exactly horizontal (any random packing).
-//   Z       2 N_c / N_g over the non-rattler grains: a rattler is a grain with
+//   Z       the mean number of contacts of the non-rattler grains of the group
+//           (2 N_c / N_g with `contacts both`): a rattler is a grain with
 //           fewer than M contacts (default 2, the fewest that can balance a
 //           force in 2D without gravity; petit2017 does not say), removed
 //           repeatedly until every grain left has M (its contacts go with it).
@@ -109,7 +112,7 @@ class ComputeContactFabric : public Compute {
     double phi, rel, fn, f[2], l[2];
   };
   int bins_ = 36, min_contacts_ = 2;
-  bool has_area_ = false;
+  bool has_area_ = false, any_ = false;
   BoundArg area_;
   PairGran* pair_ = nullptr;
   ContactRecords rec_;
@@ -129,8 +132,12 @@ class ComputeContactFabric : public Compute {
         const long m = a.integer(i + 1, "the fewest contacts of a non-rattler");
         if (m < 0 || m > 100) a.fail(i + 1, "a number of contacts in 0..100");
         min_contacts_ = static_cast<int>(m);
+      } else if (a[i] == "contacts") {
+        const std::string& w = a.word(i + 1, "both or any");
+        if (w != "both" && w != "any") a.fail(i + 1, "both or any");
+        any_ = w == "any";
       } else {
-        a.fail(i, "bins, area or rattler (or the end of the line)");
+        a.fail(i, "bins, area, rattler or contacts (or the end of the line)");
       }
     }
   }
@@ -138,10 +145,11 @@ class ComputeContactFabric : public Compute {
   // The group's contacts now, with their branch vectors and angles.
   void contacts() {
     init();
-    pair_->records(groupbit, rec_);
+    pair_->records(any_ ? 1u : groupbit, rec_);  // 1u: group all
     con_.clear();
     const Atoms& at = sim.atoms;
     for (const ContactRecord& r : rec_.rows) {
+      if (!(at.mask[r.i] & groupbit) && !(at.mask[r.j] & groupbit)) continue;
       const double sum = at.radius[r.i] + at.radius[r.j], len = sum - r.delta;
       Contact c{r.i, r.j, 0, r.delta / sum, r.f[0] * r.en[0] + r.f[1] * r.en[1], {r.f[0], r.f[1]},
                 {r.en[0] * len, r.en[1] * len}};
@@ -159,25 +167,28 @@ class ComputeContactFabric : public Compute {
     overlaps();
   }
 
-  // Z and the rattler fraction: grains with fewer than M contacts removed until none is left.
+  // Z and the rattler fraction: grains of the group with fewer than M contacts removed until
+  // none is left; grains outside the group (contacts any) stay.
   void coordination() {
     const Atoms& at = sim.atoms;
-    std::vector<char> in(at.n, 0);
+    std::vector<char> alive(at.n, 1);
     long ng = 0;
-    for (std::size_t i = 0; i < at.n; ++i)
-      if (at.mask[i] & groupbit) in[i] = 1, ++ng;
+    for (std::size_t i = 0; i < at.n; ++i) ng += (at.mask[i] & groupbit) ? 1 : 0;
     std::vector<int> deg(at.n);
-    long nc = 0, left = ng;
+    long ends = 0, left = ng;
     for (bool changed = true; changed;) {
       std::fill(deg.begin(), deg.end(), 0);
-      nc = 0;
       for (const Contact& c : con_)
-        if (in[c.i] && in[c.j]) ++deg[c.i], ++deg[c.j], ++nc;
+        if (alive[c.i] && alive[c.j]) ++deg[c.i], ++deg[c.j];
       changed = false;
-      for (std::size_t i = 0; i < at.n; ++i)
-        if (in[i] && deg[i] < min_contacts_) in[i] = 0, --left, changed = true;
+      ends = 0;
+      for (std::size_t i = 0; i < at.n; ++i) {
+        if (!(at.mask[i] & groupbit) || !alive[i]) continue;
+        if (deg[i] < min_contacts_) alive[i] = 0, --left, changed = true;
+        else ends += deg[i];
+      }
     }
-    out_[0] = left ? 2.0 * static_cast<double>(nc) / static_cast<double>(left) : 0.0;
+    out_[0] = left ? static_cast<double>(ends) / static_cast<double>(left) : 0.0;
     out_[1] = ng ? static_cast<double>(ng - left) / static_cast<double>(ng) : 0.0;
     out_[static_cast<std::size_t>(3 + bins_ + 6)] = static_cast<double>(con_.size());
     out_[static_cast<std::size_t>(3 + bins_ + 7)] = static_cast<double>(left);

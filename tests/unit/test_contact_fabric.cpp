@@ -185,6 +185,17 @@ TEST(ContactFabric, RattlersRemovedRepeatedly) {
   EXPECT_NEAR(vec(d, "f1", kZ), 2.0, 1e-15);
   EXPECT_NEAR(vec(d, "f0", kRattlers), 0.0, 1e-15);
   EXPECT_NEAR(vec(d, "f0", kZ), 10.0 / 6, 1e-15);
+  // The group without T3 (atom 3). `contacts both`: T1 - T2 is left as a pair of one
+  // contact each, so every grain goes. `contacts any`: T3 counts as a wall, T1 and
+  // T2 keep two contacts each: Z = 2, rattlers B, C, D (3 of 5), 5 contacts counted.
+  d("group g id 1 2 4 5 6\ncompute gb g contact/fabric\ncompute ga g contact/fabric contacts any\nrun 0");
+  EXPECT_EQ(vec(d, "gb", after(36, 7)), 3.0);
+  EXPECT_EQ(vec(d, "gb", kRattlers), 1.0);
+  EXPECT_EQ(vec(d, "gb", kZ), 0.0);
+  EXPECT_EQ(vec(d, "ga", after(36, 7)), 5.0);
+  EXPECT_NEAR(vec(d, "ga", kRattlers), 0.6, 1e-15);
+  EXPECT_NEAR(vec(d, "ga", kZ), 2.0, 1e-15);
+  EXPECT_EQ(vec(d, "ga", after(36, 8)), 2.0);
 }
 
 // force/midline: two grains (r = 1 mm) at (4.1, 5) and (5.9, 5.3) mm, line x = 5 mm.
@@ -243,7 +254,7 @@ TEST(ContactFabric, Errors) {
   Deck d;
   d(lattice_deck("dimension 2", false, kA, 2, 2));
   EXPECT_NE(sable::test::error_of(d, "compute e all contact/fabric bins 0").find("1..100000"), std::string::npos);
-  EXPECT_NE(sable::test::error_of(d, "compute e all contact/fabric colour 3").find("bins, area or rattler"),
+  EXPECT_NE(sable::test::error_of(d, "compute e all contact/fabric colour 3").find("bins, area, rattler or contacts"),
             std::string::npos);
   EXPECT_NE(sable::test::error_of(d, "compute e all contact/fabric area v_nope").find("equal-style"),
             std::string::npos);
