@@ -68,6 +68,7 @@ double fold_phi(double lx, double ly) {
 
 // The bin of phi among n centred on -pi/2 + k pi/n (periodic).
 int phi_bin(double phi, int n) {
+  if (!std::isfinite(phi)) return 0;  // coincident centres: no direction (the force is not finite either)
   const long k = std::lround(std::floor((phi + kPi / 2) / (kPi / n) + 0.5));
   return static_cast<int>(((k % n) + n) % n);
 }
