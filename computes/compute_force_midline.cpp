@@ -13,16 +13,18 @@
 // numbers or v_name (equal-style variables, read at each invocation).
 //   height  given ylo, yhi (e.g. the piston faces): yhi - ylo, and only
 //           contacts whose branch vector meets the line within [ylo, yhi]
-//           count. Without them: from the lowest grain bottom (y - r) to the
-//           highest grain top (y + r) of the grains of the crossing contacts,
-//           i.e. about the inner faces of whatever bounds the group (the piston
-//           faces when the piston grains are left out of it). A deck that wants
-//           the height between piston centres gives ylo, yhi so. On a periodic
-//           y axis the crossing point is wrapped into the box first (ylo, yhi
-//           = the box's y bounds: every contact once); give ylo, yhi there.
+//           count. Without them: the group's height, from its lowest grain
+//           bottom (y - r) to its highest grain top (y + r): about the piston
+//           faces when the group is the grains between the pistons (within a
+//           grain diameter at each piston of grains, whose surface is rough;
+//           the contacts with the piston grains then do not count: put them in
+//           the group and give ylo, yhi to count those). A deck that wants the
+//           height between piston centres gives ylo, yhi so. On a periodic y
+//           axis the crossing point is wrapped into the box first (ylo, yhi =
+//           the box's y bounds: every contact once); give ylo, yhi there.
 // Global scalar c_ID = sigma = sum F / height (N/m). Vector c_ID[k]: 1 sigma,
-// 2 sum F (N), 3 height, 4 crossing contacts counted, 5 lo, 6 hi used. No
-// crossing contact and no bounds given: all 0.
+// 2 sum F (N), 3 height, 4 crossing contacts counted, 5 lo, 6 hi used. An empty
+// group without bounds: all 0.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -94,12 +96,25 @@ class ComputeForceMidline : public Compute {
     return y - l * std::floor((y - sim.domain.lo[k]) / l);
   }
 
+  // The lowest grain bottom and highest grain top of the group along axis k (0, 0: no grain).
+  void group_span(int k, double& lo, double& hi) const {
+    const Atoms& at = sim.atoms;
+    lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < at.n; ++i)
+      if (at.mask[i] & groupbit) {
+        lo = std::min(lo, at.x[3 * i + k] - at.radius[i]);
+        hi = std::max(hi, at.x[3 * i + k] + at.radius[i]);
+      }
+    if (lo > hi) lo = hi = 0;
+  }
+
   void evaluate() {
     init();
     const int ay = 1 - ax_;
     const double x0 = line_.eval(sim, args);
-    double lo = bounded_ ? lo_.eval(sim, args) : std::numeric_limits<double>::infinity();
-    double hi = bounded_ ? hi_.eval(sim, args) : -std::numeric_limits<double>::infinity();
+    double lo = 0, hi = 0;
+    if (bounded_) lo = lo_.eval(sim, args), hi = hi_.eval(sim, args);
+    else group_span(ay, lo, hi);
     if (bounded_ && !(hi > lo))
       args.fail_line("compute " + id + ": at step " + std::to_string(sim.step) + " the upper bound " +
                      std::to_string(hi) + " is not above the lower " + std::to_string(lo));
@@ -118,12 +133,7 @@ class ComputeForceMidline : public Compute {
       if (bounded_ && (y < lo || y > hi)) continue;
       sum += iup ? c.f[ax_] : -c.f[ax_];
       ++n;
-      if (!bounded_) {
-        lo = std::min({lo, xi[ay] - at.radius[c.i], xj[ay] - at.radius[c.j]});
-        hi = std::max({hi, xi[ay] + at.radius[c.i], xj[ay] + at.radius[c.j]});
-      }
     }
-    if (!n && !bounded_) lo = hi = 0;
     const double h = hi - lo;
     out_[0] = h > 0 ? sum / h : 0.0;
     out_[1] = sum, out_[2] = h, out_[3] = static_cast<double>(n), out_[4] = lo, out_[5] = hi;

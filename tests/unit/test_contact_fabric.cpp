@@ -320,3 +320,21 @@ TEST(ForceMidline, MeanOverXIsLoveWeber) {
   std::printf("[ measured ] sum f_x l_x %.6g N m, integral of F(X0) %.6g; F(X0) from %.4g to %.4g N\n", lw, integral,
               fmin, fmax);
 }
+
+// Without ylo, yhi the height is the group's: from its lowest grain bottom to its
+// highest grain top, whichever grains the line crosses. The pair of TwoGrainContact
+// (4.0 to 6.3 mm) and a lone grain at y = 9 mm (top 10 mm): 6 mm; for a group of the
+// pair alone, 2.3 mm.
+TEST(ForceMidline, DefaultHeightIsTheGroupsSpan) {
+  Deck d;
+  d(spring_scene_2d("dimension 2", "f f p", 0.01, 0.012));
+  d("create_atoms 1 single 0.0041 0.005 0 units box\ncreate_atoms 1 single 0.0059 0.0053 0 units box\n"
+    "create_atoms 1 single 0.002 0.009 0 units box\nset group all diameter 0.002 density 2500\ngroup pair id 1 2");
+  d("compute a all force/midline x 0.005\ncompute p pair force/midline x 0.005\nrun 0");
+  EXPECT_NEAR(vec(d, "a", 3), 0.006, 1e-15);
+  EXPECT_NEAR(vec(d, "a", 5), 0.004, 1e-15);
+  EXPECT_NEAR(vec(d, "a", 6), 0.010, 1e-15);
+  EXPECT_NEAR(vec(d, "p", 3), 0.0023, 1e-15);
+  EXPECT_EQ(vec(d, "a", 2), vec(d, "p", 2));
+  EXPECT_NEAR(vec(d, "a", 1), vec(d, "a", 2) / 0.006, 1e-12 * vec(d, "a", 1));
+}
