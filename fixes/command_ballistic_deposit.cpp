@@ -289,6 +289,13 @@ void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
     a.fail(0, "a box wider than 4 largest radii (" + std::to_string(4 * rmax) + ") in x: it is " + std::to_string(W));
   if (floor + 2 * tmpl->radius.max() > dom.hi[1])
     a.fail(0, "a box taller than one grain diameter above the floor");
+  // Disks cover at most ~0.91 of the area: a bound that stops a runaway 'fill' before it starts.
+  constexpr double kMaxGrains = 1e7;
+  const double rmin = tmpl->radius.min();
+  const double fits = W * (dom.hi[1] - floor) / (std::numbers::pi * rmin * rmin);
+  if ((n < 0 && fits > kMaxGrains) || n > kMaxGrains)
+    a.fail(1, "at most 1e7 grains (" + (n < 0 ? "the box holds up to " + std::to_string(fits) + " of the smallest"
+                                               : std::to_string(n) + " asked") + "): a smaller box or a smaller N");
 
   const auto t0 = std::chrono::steady_clock::now();
   Deposit dep(dom.lo[0], W, floor, rmax);
