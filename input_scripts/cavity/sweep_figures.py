@@ -258,6 +258,7 @@ def pair_tests(tmp, work, runs, S):
         if len(Fa) and len(Fb):
             t['ks'] = ks(tmp, Fa, Fb, 'pair' + name, decorrelated_n(runs[pa], 'F', work, 'sable'),
                          decorrelated_n(runs[pb], 'F', work, 'sable'))
+        t['dtc'] = [(S[q]['dtc'][0], S[q]['U'] / S[q]['d'] * S[q]['dtc'][0]) for q in (pa, pb)]
         out[name] = t
     return out
 
@@ -395,7 +396,11 @@ def eq4_section(e4, S):
     for pt, z in sorted(e4['z'].items(), key=lambda kv: S[kv[0]]['I_M']):
         L.append(f'| {pt[0]:g} | {pt[1]:g} | {S[pt]["I_M"]:.3g} | {fmt(*S[pt]["F"])} | '
                  f'{sigmoid(S[pt]["I_M"], *PAPER_EQ4.values()):.3f} | {z:+.2f} |')
-    return L + ['', f'χ²/n of the paper\'s curve over these {len(e4["z"])} points: {e4["chi2n"]:.3g}.', '']
+    n = min(S[p]['n'] for p in e4['z']) if e4['z'] else 0
+    return L + ['', f'χ²/n of the paper\'s curve over these {len(e4["z"])} points: {e4["chi2n"]:.3g}. With {n}-3 seeds '
+                'per point a seed SE is itself uncertain by about 1/sqrt(2(n-1)) (50-70 %), and a point whose seeds '
+                'happen to agree gets a small SE and a large weight and z: read z and χ² with the block errors beside '
+                'them (table above).', '']
 
 
 def pair_section(P, S):
@@ -413,11 +418,15 @@ def pair_section(P, S):
         k = t.get('ks', {})
         L.append(f'| {name} | {ptag(pa)} − {ptag(pb)} | {t["d"]:+.4f} ± {t["se"]:.4f} | {t["t"]:+.2f} '
                  f'({t["df"]:.1f}) | {t["p_diff"]:.3g} | '
-                 f'{"different" if t["p_diff"] < ALPHA else "no difference detected"} | {t["p_tost"]:.3g} | '
+                 f'{"difference detected" if t["p_diff"] < ALPHA else "no difference detected"} | {t["p_tost"]:.3g} | '
                  f'[{t["ci90"][0]:+.4f}, {t["ci90"][1]:+.4f}] | '
                  f'{"equivalent within ±0.05" if t["p_tost"] < ALPHA else "equivalence not shown"} | '
                  f'{fmt(k.get("d", np.nan), None, 3)} | {fmt(k.get("critical_dec", np.nan), None, 3)} | '
                  f'{fmt(k.get("critical", np.nan), None, 3)} |')
+    for name, t in P.items():
+        if t:
+            (a, ua), (b, ub) = t['dtc']
+            L.append(f'- {name}: Δt_c(F) {a * 1e3:.3g} and {b * 1e3:.3g} ms, (U/d)Δt_c {ua:.3g} and {ub:.3g}.')
     return L + ['']
 
 
@@ -529,26 +538,41 @@ def dtc_phi_section(S):
     return L + ['']
 
 
+def against(row, paper):
+    return ', '.join(f'{k} {row[k]:.3g} [{row[k + "_lo"]:.3g}, {row[k + "_hi"]:.3g}] '
+                     f'({"consistent with" if verdict(row, k, v) == "consistent" else "different from"} {v})'
+                     for k, v in paper.items())
+
+
+def pair_words(t):
+    eqv, dif = t['p_tost'] < ALPHA, t['p_diff'] < ALPHA
+    if eqv and dif:
+        return ('a difference is detected, but it lies within the ±0.05 margin (equivalent): the I_M scaling of '
+                'the paper holds to within the margin, not exactly')
+    if eqv:
+        return 'agrees with the paper (F̄/(PLd) a function of I_M alone): equivalent within ±0.05'
+    if dif:
+        return 'disagrees with the paper: the two (N_U, N_P) at one I_M differ'
+    return 'inconclusive: no difference detected, equivalence within ±0.05 not shown'
+
+
 def summary_section(e4, e5, e20, P, C):
     L = ['## Against the paper, in short', '']
     if e4:
-        L.append('- Eq. 4' + (' (preliminary, unweighted)' if not e4['weighted'] else '') + ': ' + ', '.join(
-            f'{k} {e4["row"][k]:.3g} ({verdict(e4["row"], k, v)} with {v})' for k, v in PAPER_EQ4.items()) +
+        L.append('- Eq. 4' + (' (preliminary, unweighted)' if not e4['weighted'] else '') + ': ' +
+                 against(e4['row'], PAPER_EQ4) +
             (f'; the paper\'s curve gives χ²/n {e4["chi2n"]:.3g} on our seed SEs.' if e4['z'] else '.'))
     if e5:
-        L.append('- Eq. 5: ' + ', '.join(f'{k} {e5["row"][k]:.3g} ({verdict(e5["row"], k, v)} with {v})'
-                                         for k, v in PAPER_EQ5.items()) + '.')
+        L.append('- Eq. 5: ' + against(e5['row'], PAPER_EQ5) + '.')
     if e20:
         L.append('- Eq. 20 (no test): ' + ', '.join(f'{k} {e20["row"][k]:.3g} (paper {v})'
                                                    for k, v in PAPER_EQ20.items()) + '.')
     for name, t in P.items():
         if t:
-            eqv, dif = t['p_tost'] < ALPHA, t['p_diff'] < ALPHA
-            word = ('agrees with the paper (F̄/(PLd) a function of I_M alone): equivalent within ±0.05' if eqv else
-                    'disagrees with the paper: the two N_U, N_P at one I_M differ' if dif else
-                    'inconclusive: no difference detected, equivalence within ±0.05 not shown')
-            L.append(f'- Pair {name}: {word} (difference {t["d"]:+.3f}, Welch p {t["p_diff"]:.3g}, TOST p '
-                     f'{t["p_tost"]:.3g}).')
+            (a, ua), (b, ub) = t['dtc']
+            L.append(f'- Pair {name}: {pair_words(t)} (difference {t["d"]:+.3f}, Welch p {t["p_diff"]:.3g}, TOST p '
+                     f'{t["p_tost"]:.3g}). Its Δt_c(F) differ {max(a, b) / min(a, b):.2f}-fold, (U/d)Δt_c by '
+                     f'{100 * abs(ua - ub) / min(ua, ub):.0f} %.')
     for pt, c in C.items():
         v = 'pass' if c['pass'] else 'fail' if c['pass'] is not None else 'not tested (1 seed)'
         L.append(f'- YADE {ptag(pt)}: sable − YADE {c["diff"]:+.3f}, {abs(c["diff"]) / c["comb"]:.2f} combined SE: {v}.')
@@ -809,6 +833,8 @@ def main():
         sys.exit(f'sweep_figures: no sable runs under {a.runs}')
     print('missing from the plan: ' + listing(missing(runs)[0]))
     figstyle.use()
+    import matplotlib.pyplot as plt
+    plt.rcParams['savefig.dpi'] = 150  # committed after every batch of runs: small PNGs (figstyle's 300 is for papers)
     with tempfile.TemporaryDirectory() as tmp:
         R = analyse(tmp, a.work, runs)
         os.makedirs(a.out, exist_ok=True)
