@@ -2,14 +2,17 @@
 """Speed against error for the cavity (issue 43, item 6): run, then report.
 
     /usr/bin/python3 input_scripts/cavity/speed_error.py run [--work DIR] [--seeds 11 12 13 14] [--no-yade]
-    /usr/bin/python3 input_scripts/cavity/speed_error.py report [--work DIR]
+    /usr/bin/python3 input_scripts/cavity/speed_error.py report [--work DIR] [--ps sable=X yade=Y]
 
 One scene, H/d 8, N_U 1, N_P 1 (I_M 0.044), 1.5 s recorded after 0.5 s, four seeds. Each
 setting changes one knob from the deck's defaults (dtfrac 0.1, N0 1.5e4, 10 kHz, H/d 8):
 dtfrac 0.025-0.2, N0 5e3-5e4, recording 5-20 kHz, and H/d 12 at the same I_M (N_U 1.837).
 The error of a setting is measured against the finest setting of its knob (dtfrac 0.025,
 N0 5e4, 20 kHz, H/d 12): |mean F/(PLd) - finest| / finest over the seeds' means, with the
-seed standard errors combined, and the KS distance between the seeds' pooled F/F̄ samples.
+differences taken seed by seed (each seed's runs share its deposit), and the KS distance
+between the seeds' pooled F/F̄ samples. Cost is counted in particle-steps (atoms x steps)
+and turned into one-core time by each code's particle-steps per second from the benchmark
+input_scripts/bench/cavity_yade.sh (`--ps`): wall times on the shared host vary with its load.
 YADE runs the default setting and dtfrac 0.2 from the same sable deposits (the shear
 exported by `sable --export-yade`); its error is against sable's finest dtfrac. Raw outputs
 in DIR (default /tmp/cavity_speed); per-run RESULT values, the report and the figure in
@@ -52,10 +55,14 @@ def args_of(v):
 
 
 def run_sable(work, knob, value, extra, seed):
+    """The default setting deposits and shears; dtfrac and rate shear from its deposit (the
+    deposit does not settle at dtfrac 0.2: README), N0 and H/d deposit their own beds."""
     d = os.path.join(work, name(knob, value, seed))
     os.makedirs(d, exist_ok=True)
     v = dict(variables(knob, value, extra), seed=seed, fields=0, contacts=0, out='cav',
              restart=os.path.join(d, 'dep.restart'))
+    if knob in ('dtfrac', 'rate') and (knob, value) != ('dtfrac', 0.1):
+        v.update(phase='shear', restart=os.path.join(work, name('dtfrac', 0.1, seed), 'dep.restart'))
     sweep.sable(args_of(v), os.path.join(d, 'log.sable'), d)
     return d
 
@@ -92,8 +99,8 @@ def run_all(a):
     os.makedirs(OUT, exist_ok=True)
     path = os.path.join(OUT, 'runs.json')
     runs = json.load(open(path)) if os.path.exists(path) else {}
-    jobs = [(k, v, e, 'sable') for k, v, e in SETTINGS if (k, v) != ('N0', 1.5e4) and (k, v) != ('rate', 10)
-            and (k, v) != ('Hd', 8)]  # the default setting runs once, as dtfrac 0.1
+    jobs = [('dtfrac', 0.1, {}, 'sable')] + [  # the default setting runs once, first, as dtfrac 0.1
+        (k, v, e, 'sable') for k, v, e in SETTINGS if (k, v) not in (('dtfrac', 0.1), ('N0', 1.5e4), ('rate', 10), ('Hd', 8))]
     if not a.no_yade:
         jobs += [(k, v, {}, 'yade') for k, v in YADE]
     for seed in a.seeds:
@@ -102,7 +109,13 @@ def run_all(a):
             if key in runs:
                 continue
             t0 = time.time()
-            d = run_sable(a.work, knob, value, extra, seed) if code == 'sable' else run_yade(a.work, knob, value, seed)
+            try:
+                d = run_sable(a.work, knob, value, extra, seed) if code == 'sable' else run_yade(a.work, knob, value, seed)
+            except SystemExit as e:  # a run that stops (e.g. blows up at dtfrac 0.2) is a result: keep its error
+                runs[key] = dict(code=code, knob=knob, value=value, seed=seed, failed=last_error(str(e)))
+                json.dump(runs, open(path, 'w'), indent=1)
+                print(f'{time.strftime("%H:%M:%S")} {key}: FAILED {runs[key]["failed"]}', flush=True)
+                continue
             runs[key] = dict(record(d, code), code=code, knob=knob, value=value, seed=seed, wall_total=time.time() - t0)
             json.dump(runs, open(path, 'w'), indent=1)
             r = runs[key]
@@ -110,11 +123,26 @@ def run_all(a):
                   f'PS/s {r["PS_per_s"]:.3g}', flush=True)
 
 
+def last_error(msg):
+    """The ERROR line of the screen file a failed run's message names, else the message."""
+    screen = msg.rsplit('see ', 1)[-1].strip()
+    if os.path.exists(screen):
+        errs = [l.strip() for l in open(screen, errors='replace') if l.startswith('ERROR')]
+        if errs:
+            return errs[-1][:400]
+    return msg[:400]
+
+
 def group(runs, code, knob, value):
     """The runs of one setting (the default is stored under dtfrac 0.1)."""
     if code == 'sable' and (knob, value) in (('N0', 1.5e4), ('rate', 10), ('Hd', 8)):
         knob, value = 'dtfrac', 0.1
-    return [r for k, r in runs.items() if r['code'] == code and r['knob'] == knob and r['value'] == value]
+    return [r for k, r in runs.items() if r['code'] == code and r['knob'] == knob and r['value'] == value
+            and 'failed' not in r]
+
+
+def failures(runs):
+    return [(k, r['failed']) for k, r in runs.items() if 'failed' in r]
 
 
 def ks(work, a, b, tag):
@@ -137,8 +165,22 @@ def mean_se(rs, key):
     return x.mean(), (x.std(ddof=1) / np.sqrt(len(x)) if len(x) > 1 else float('nan'))
 
 
+def paired(rs, ref):
+    """Seed by seed differences of F/(PLd) (setting - finest) over the seeds both ran: the
+    error's mean and its standard error (both share each seed's deposit where they can)."""
+    by = {r['seed']: r['F_PLd'] for r in ref}
+    d = np.array([r['F_PLd'] - by[r['seed']] for r in rs if r['seed'] in by])
+    if len(d) == 0:
+        return float('nan'), float('nan'), 0
+    return d.mean(), (d.std(ddof=1) / np.sqrt(len(d)) if len(d) > 1 else float('nan')), len(d)
+
+
 def report(a):
+    """Per setting: F/(PLd) over seeds, its paired error against the knob's finest setting, the
+    KS distance of the pooled F/F̄, the cost in particle-steps (deterministic) and the one-core
+    time it takes at each code's measured particle-steps per second (--ps, the benchmark's)."""
     runs = json.load(open(os.path.join(OUT, 'runs.json')))
+    ps = dict(x.split('=') for x in a.ps) if a.ps else {}
     rows = []
     finest = {}
     for knob, value, _ in SETTINGS:
@@ -149,19 +191,26 @@ def report(a):
         if not rs or not ref:
             continue
         m, se = mean_se(rs, 'F_PLd')
-        mr, ser = mean_se(ref, 'F_PLd')
+        mr = np.mean([r['F_PLd'] for r in ref])
         same = code == 'sable' and value == finest[knob]
+        dm, dse, npair = (0.0, 0.0, len(rs)) if same else paired(rs, ref)
         D, Dc = (0.0, float('nan')) if same else ks(a.work, rs, ref, f'{code}_{knob}{value:g}')
-        rows.append(dict(code=code, knob=knob, value=value, n=len(rs), F=m, F_se=se,
-                         err=abs(m - mr) / mr, err_se=np.hypot(se, ser) / mr if not same else 0.0, ks=D, ks_crit=Dc,
+        cost = np.mean([r['atoms'] * r['steps'] for r in rs])
+        rows.append(dict(code=code, knob=knob, value=value, n=len(rs), F=m, F_se=se, pairs=npair,
+                         err=dm / mr, err_se=dse / mr, ks=D, ks_crit=Dc, cost=cost,
+                         t_est=cost / float(ps[code]) if code in ps else float('nan'),
                          wall=np.mean([r['wall_s'] for r in rs]), ps=np.mean([r['PS_per_s'] for r in rs])))
     json.dump(rows, open(os.path.join(OUT, 'summary.json'), 'w'), indent=1)
-    lines = ['| code | knob | value | seeds | F/(PLd) ± SE | error vs finest ± SE | KS D (crit 5 %) | shear wall s | PS/s |',
-             '|---|---|---|---|---|---|---|---|---|']
+    lines = ['| code | knob | value | seeds | F/(PLd) ± SE | error vs finest (paired seeds) | KS D of F/F̄ (crit 5 %, '
+             'uncorrelated) | particle-steps | one-core s at --ps | measured wall s (loaded host) |',
+             '|---|---|---|---|---|---|---|---|---|---|']
     for r in rows:
         lines.append(f'| {r["code"]} | {r["knob"]} | {r["value"]:g} | {r["n"]} | {r["F"]:.4f} ± {r["F_se"]:.4f} | '
-                     f'{100 * r["err"]:.1f} % ± {100 * r["err_se"]:.1f} % | {r["ks"]:.3f} ({r["ks_crit"]:.3f}) | '
-                     f'{r["wall"]:.1f} | {r["ps"]:.3g} |')
+                     f'{100 * r["err"]:+.1f} % ± {100 * r["err_se"]:.1f} % ({r["pairs"]}) | {r["ks"]:.3f} '
+                     f'({r["ks_crit"]:.3f}) | {r["cost"]:.3g} | {r["t_est"]:.3g} | {r["wall"]:.1f} |')
+    lines.append(f'\n--ps (particle-steps per second, one core): {", ".join(a.ps) if a.ps else "not given"}')
+    for k, msg in failures(runs):
+        lines.append(f'\nFailed: {k}: {msg}')
     open(os.path.join(OUT, 'table.md'), 'w').write('\n'.join(lines) + '\n')
     print('\n'.join(lines))
     figure(rows)
@@ -174,18 +223,20 @@ def figure(rows):
     import matplotlib.pyplot as plt
     fig, axs = plt.subplots(1, 2, figsize=(7.0, 3.0))
     marks = {'dtfrac': 'o', 'N0': 's', 'rate': '^', 'Hd': 'D'}
+    xkey = 't_est' if all(np.isfinite(r['t_est']) for r in rows) else 'cost'
     for r in rows:
         c = 'C0' if r['code'] == 'sable' else 'C1'
         lab = f'{r["code"]} {r["knob"]} {r["value"]:g}'
-        axs[0].errorbar(r['wall'], 100 * r['err'], yerr=100 * r['err_se'], fmt=marks[r['knob']], color=c, ms=4)
-        axs[0].annotate(lab, (r['wall'], 100 * r['err']), fontsize=5)
-        axs[1].plot(r['wall'], r['ks'], marks[r['knob']], color=c, ms=4)
+        axs[0].errorbar(r[xkey], 100 * abs(r['err']), yerr=100 * np.nan_to_num(r['err_se']), fmt=marks[r['knob']],
+                        color=c, ms=4)
+        axs[0].annotate(lab, (r[xkey], 100 * abs(r['err'])), fontsize=5)
+        axs[1].plot(r[xkey], r['ks'], marks[r['knob']], color=c, ms=4)
     axs[0].axhline(5, ls='--', color='grey', lw=0.8)
-    axs[0].set_xscale('log')
-    axs[1].set_xscale('log')
-    axs[0].set_xlabel('shear wall time (s, one core)')
-    axs[1].set_xlabel('shear wall time (s, one core)')
-    axs[0].set_ylabel('|F/(PLd) - finest| / finest (%)')
+    xl = 'one-core time of the shear (s)' if xkey == 't_est' else 'particle-steps of the shear'
+    for ax in axs:
+        ax.set_xscale('log')
+        ax.set_xlabel(xl)
+    axs[0].set_ylabel('|F/(PLd) error| vs finest (%)')
     axs[1].set_ylabel('KS distance of F/F̄ to the finest')
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, 'speed_error.png'), dpi=150)
@@ -197,6 +248,7 @@ def main():
     p.add_argument('--work', default='/tmp/cavity_speed')
     p.add_argument('--seeds', type=int, nargs='+', default=SEEDS)
     p.add_argument('--no-yade', action='store_true')
+    p.add_argument('--ps', nargs='+', help='CODE=particle-steps/s of one core (report), e.g. sable=1.6e7 yade=1e6')
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
     run_all(a) if a.what == 'run' else report(a)
