@@ -488,7 +488,10 @@ def eq7_section(E, S):
     for scale, *_ in SCALES:
         flagged = [f'{S[pt]["I_M"]:.3g}' for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
                    if sc == scale and e['row']['gaussian_limit']]
-        L.append(f'- {scale}: Gaussian limit at I_M ' + (', '.join(flagged) if flagged else 'none') + '.')
+        sig = [(S[pt]['I_M'], e['row']['sigma']) for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
+               if sc == scale and not e['row']['gaussian_limit']]
+        L.append(f'- {scale}: Gaussian limit at I_M ' + (', '.join(flagged) if flagged else 'none') + '; σ by I_M: ' +
+                 ', '.join(f'{i:.3g}: {v:.2f}' for i, v in sig) + '.')
     return L + ['', 'Parameters against I_M: figure eq7_vs_IM.png; PDFs with the fits: pdf_NU*_NP*.png.', '']
 
 
@@ -747,18 +750,20 @@ def fig_dtc(figs, S):
 
 
 def fig_eq7(figs, E, S):
-    """mu, sigma, x0 of Eq. 7 against I_M per scale (open symbols: the Gaussian limit)."""
+    """mu, sigma, x0 of Eq. 7 against I_M per scale; fits in the Gaussian limit (parameters not meaningful)
+    are left out."""
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 3, figsize=(2 * figstyle.WIDTH_IN, figstyle.WIDTH_IN * 0.6), layout='constrained')
     for k, (scale, lab, *_) in enumerate(SCALES):
-        es = sorted(((S[pt]['I_M'], e['row']) for (pt, sc), e in E.items() if sc == scale), key=lambda t: t[0])
+        es = sorted(((S[pt]['I_M'], e['row']) for (pt, sc), e in E.items()
+                     if sc == scale and not e['row']['gaussian_limit']), key=lambda t: t[0])
         for ax, par in zip(axes, ('mu', 'sigma', 'x0')):
             for i, r in es:
-                ax.errorbar(i * 1.04 ** k, r[par], yerr=[[r[par] - r[par + '_lo']], [max(r[par + '_hi'] - r[par], 0)]],
-                            fmt='os^'[k], color=figstyle.COLOURS[k], mfc='none' if r['gaussian_limit'] else None,
-                            capsize=1.5, label=lab if i == es[0][0] else None)
+                hi = r[par + '_hi'] if np.isfinite(r[par + '_hi']) else r[par]
+                ax.errorbar(i * 1.04 ** k, r[par], yerr=[[r[par] - r[par + '_lo']], [max(hi - r[par], 0)]],
+                            fmt='os^'[k], color=figstyle.COLOURS[k], capsize=1.5, label=lab if i == es[0][0] else None)
             ax.set(xscale='log', xlabel='$I_M$', title=par if par != 'sigma' else 'σ', yscale='log' if par == 'x0' else 'linear')
-    axes[0].legend(fontsize=6)
+    axes[0].legend(fontsize=6, title='Gaussian limits left out', title_fontsize=6)
     figstyle.save(fig, os.path.join(figs, 'eq7_vs_IM.png'))
 
 
