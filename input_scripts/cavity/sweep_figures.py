@@ -486,12 +486,18 @@ def eq7_section(E, S):
          'the 95 % region, μ, σ, x0 then not meaningful. Reported against I_M, no test (PLAN).', '']
     L += eq7_rows(E, 'sable', S) + ['']
     for scale, *_ in SCALES:
-        flagged = [f'{S[pt]["I_M"]:.3g}' for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
+        flagged = [f'{S[pt]["I_M"]:.3g} (truncated normal m {e["row"]["normal_m"]:.3g}, s {e["row"]["normal_s"]:.3g}'
+                   + (': its peak at x ≤ 0, a PDF decreasing from x = 0, not a Gaussian about the mean)'
+                      if e['row']['normal_m'] <= 0 else ')')
+                   for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
                    if sc == scale and e['row']['gaussian_limit']]
         sig = [(S[pt]['I_M'], e['row']['sigma']) for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
                if sc == scale and not e['row']['gaussian_limit']]
+        ks_ = [(S[pt]['I_M'], e['row']['ks_d']) for (pt, sc), e in E.items() if sc == scale]
+        worst = max(ks_, key=lambda t: t[1])
         L.append(f'- {scale}: Gaussian limit at I_M ' + (', '.join(flagged) if flagged else 'none') + '; σ by I_M: ' +
-                 ', '.join(f'{i:.3g}: {v:.2f}' for i, v in sig) + '.')
+                 ', '.join(f'{i:.3g}: {v:.2f}' for i, v in sig) + f'; largest KS D of a fit {worst[1]:.3f} '
+                 f'(I_M {worst[0]:.3g}).')
     return L + ['', 'Parameters against I_M: figure eq7_vs_IM.png; PDFs with the fits: pdf_NU*_NP*.png.', '']
 
 
@@ -525,30 +531,46 @@ def yade_section(C, S, Y, EY, ES, gs):
     return L + ['']
 
 
+def dtc_words(S):
+    """The spread of Δt_c and (U/d)Δt_c over I_M, in one sentence (None with fewer than 2 points)."""
+    pts = sorted(S, key=lambda p: S[p]['I_M'])
+    dt = np.array([S[p]['dtc'][0] for p in pts]) * 1e3
+    ud = np.array([S[p]['U'] / S[p]['d'] * S[p]['dtc'][0] for p in pts])
+    if len(pts) < 2 or not np.isfinite(dt).any():
+        return None
+    k = int(np.nanargmin(ud))
+    return (f'Δt_c of F spans {np.nanmin(dt):.3g}-{np.nanmax(dt):.3g} ms ({np.nanmax(dt) / np.nanmin(dt):.1f}-fold) and '
+            f'(U/d)Δt_c {np.nanmin(ud):.3g}-{np.nanmax(ud):.3g} ({np.nanmax(ud) / np.nanmin(ud):.1f}-fold, smallest at '
+            f'I_M {S[pts[k]]["I_M"]:.3g}) over I_M {S[pts[0]]["I_M"]:.3g}-{S[pts[-1]]["I_M"]:.3g}: a dependence on '
+            'I_M, where the plan records the paper as finding no clear one')
+
+
+def phi_words(S):
+    """Φ*'s drop up to I_M 0.03 against its drop beyond, against Fig. 15a's plateau then decrease."""
+    ph = [(S[p]['I_M'], S[p]['phi'][0]) for p in sorted(S, key=lambda p: S[p]['I_M'])]
+    lo = [m for i, m in ph if i <= 0.03]
+    if len(lo) < 2 or ph[-1][0] <= 0.1:
+        return None
+    a, b = lo[0] - lo[-1], lo[-1] - ph[-1][1]
+    return (f'Φ* falls by {a:.4f} up to I_M 0.03 and by {b:.4f} from there to I_M {ph[-1][0]:.3g}: ' +
+            ('a near-plateau then a decrease, the shape of the paper\'s Fig. 15a' if a < 0.5 * b else
+             'no clear plateau at small I_M, unlike the paper\'s Fig. 15a'))
+
+
 def dtc_phi_section(S):
     pts = sorted(S, key=lambda p: S[p]['I_M'])
     L = ['## Δt_c and Φ* against I_M', '']
-    dt = np.array([S[p]['dtc'][0] for p in pts]) * 1e3
-    ud = np.array([S[p]['U'] / S[p]['d'] * S[p]['dtc'][0] for p in pts])
-    if len(pts) > 1 and np.isfinite(dt).any():
-        k = int(np.nanargmin(ud))
-        L.append(f'- Δt_c of F (first lag with C < 0.15, seed means, table above) spans {np.nanmin(dt):.3g}-'
-                 f'{np.nanmax(dt):.3g} ms ({np.nanmax(dt) / np.nanmin(dt):.1f}-fold) and (U/d)Δt_c '
-                 f'{np.nanmin(ud):.3g}-{np.nanmax(ud):.3g} ({np.nanmax(ud) / np.nanmin(ud):.1f}-fold, smallest at '
-                 f'I_M {S[pts[k]]["I_M"]:.3g}) over I_M {S[pts[0]]["I_M"]:.3g}-{S[pts[-1]]["I_M"]:.3g}. The plan '
-                 'records the paper as finding no clear dependence on I_M; a several-fold change here is a dependence '
-                 '(figures dtc_vs_IM.png, acf_F.png). The same-I_M pairs (section above) tell Δt_c apart from (U/d)Δt_c.')
+    w = dtc_words(S)
+    if w:
+        L.append(f'- {w} (first lag with C < 0.15, seed means, table above; figures dtc_vs_IM.png, acf_F.png). The '
+                 'same-I_M pairs (section above) tell Δt_c apart from (U/d)Δt_c.')
         L.append('- C_F(Δt) has peaks at multiples of d/U (acf_F.png: (U/d)Δt = 1, 2, 3): the lid\'s grains, one '
                  'diameter apart, pass the wall at U; Δt_c is the first crossing, before the first peak.')
-    ph = [(S[p]['I_M'], *S[p]['phi']) for p in pts]
-    L.append('- Φ* (phi3D, seed means) by I_M: ' + ', '.join(f'{i:.3g}: {fmt(m, e, 4)}' for i, m, e in ph) +
+    L.append('- Φ* (phi3D, seed means) by I_M: ' + ', '.join(f'{S[p]["I_M"]:.3g}: {fmt(*S[p]["phi"], 4)}' for p in pts) +
              ' (figure phi_vs_IM.png).')
-    lo = [m for i, m, _ in ph if i <= 0.03]
-    if len(lo) > 1 and ph[-1][0] > 0.1:
-        L.append(f'- Φ* falls by {lo[0] - lo[-1]:.4f} up to I_M 0.03 and by {lo[-1] - ph[-1][1]:.4f} from there to '
-                 f'I_M {ph[-1][0]:.3g}: ' + ('a near-plateau then a decrease, the shape of the paper\'s Fig. 15a.'
-                                           if lo[0] - lo[-1] < 0.5 * (lo[-1] - ph[-1][1]) else
-                                           'no clear plateau at small I_M, unlike the paper\'s Fig. 15a.'))
+    w = phi_words(S)
+    if w:
+        L.append(f'- {w}.')
     return L + ['']
 
 
@@ -570,7 +592,7 @@ def pair_words(t):
     return 'inconclusive: no difference detected, equivalence within ±0.05 not shown'
 
 
-def summary_section(e4, e5, e20, P, C):
+def summary_section(e4, e5, e20, P, C, S):
     L = ['## Against the paper, in short', '']
     if e4:
         L.append('- Eq. 4' + (' (preliminary, unweighted)' if not e4['weighted'] else '') + ': ' +
@@ -587,6 +609,9 @@ def summary_section(e4, e5, e20, P, C):
             L.append(f'- Pair {name}: {pair_words(t)} (difference {t["d"]:+.3f}, Welch p {t["p_diff"]:.3g}, TOST p '
                      f'{t["p_tost"]:.3g}). Its Δt_c(F) differ {max(a, b) / min(a, b):.2f}-fold, (U/d)Δt_c by '
                      f'{100 * abs(ua - ub) / min(ua, ub):.0f} %.')
+    for w in (dtc_words(S), phi_words(S)):
+        if w:
+            L.append(f'- {w}.')
     for pt, c in C.items():
         v = 'pass' if c['pass'] else 'fail' if c['pass'] is not None else 'not tested (1 seed)'
         L.append(f'- YADE {ptag(pt)}: sable − YADE {c["diff"]:+.3f}, {abs(c["diff"]) / c["comb"]:.2f} combined SE: {v}.')
@@ -800,7 +825,7 @@ def report(R):
          f'Written by `input_scripts/cavity/sweep_figures.py` ({time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}) '
          'from the runs under `runs/` (' + ', '.join(f'{g}: {k}' for g, k in n.items() if k) + '), following '
          '`PLAN.md` (points, seeds, tests and margins fixed before the runs). Figures: `figures/`.', '']
-    L += summary_section(R.e4, R.e5, R.e20, R.P, R.C) + runs_section(R.runs, miss, extra) + point_table(R.S)
+    L += summary_section(R.e4, R.e5, R.e20, R.P, R.C, R.S) + runs_section(R.runs, miss, extra) + point_table(R.S)
     L += eq4_section(R.e4, R.S) + pair_section(R.P, R.S) + eq5_section(R.e5, R.S) + eq20_section(R.e20)
     L += eq7_section(R.ES, R.S) + dtc_phi_section(R.S)
     if R.C:
