@@ -396,9 +396,10 @@ def eq4_section(e4, S):
     for pt, z in sorted(e4['z'].items(), key=lambda kv: S[kv[0]]['I_M']):
         L.append(f'| {pt[0]:g} | {pt[1]:g} | {S[pt]["I_M"]:.3g} | {fmt(*S[pt]["F"])} | '
                  f'{sigmoid(S[pt]["I_M"], *PAPER_EQ4.values()):.3f} | {z:+.2f} |')
-    n = min(S[p]['n'] for p in e4['z']) if e4['z'] else 0
-    return L + ['', f'χ²/n of the paper\'s curve over these {len(e4["z"])} points: {e4["chi2n"]:.3g}. With {n}-3 seeds '
-                'per point a seed SE is itself uncertain by about 1/sqrt(2(n-1)) (50-70 %), and a point whose seeds '
+    ns = sorted({S[p]['n'] for p in e4['z']})
+    return L + ['', f'χ²/n of the paper\'s curve over these {len(e4["z"])} points: {e4["chi2n"]:.3g}. With '
+                f'{"-".join(map(str, ns))} seeds per point a seed SE is itself uncertain by about 1/sqrt(2(n-1)) '
+                '(50-70 %), and a point whose seeds '
                 'happen to agree gets a small SE and a large weight and z: read z and χ² with the block errors beside '
                 'them (table above).', '']
 
@@ -423,6 +424,7 @@ def pair_section(P, S):
                  f'{"equivalent within ±0.05" if t["p_tost"] < ALPHA else "equivalence not shown"} | '
                  f'{fmt(k.get("d", np.nan), None, 3)} | {fmt(k.get("critical_dec", np.nan), None, 3)} | '
                  f'{fmt(k.get("critical", np.nan), None, 3)} |')
+    L.append('')
     for name, t in P.items():
         if t:
             (a, ua), (b, ub) = t['dtc']
