@@ -3,7 +3,8 @@
 
     /usr/bin/python3 input_scripts/cavity/sweep_figures.py [--runs DIR] [--work DIR] [--out DIR]
 
-Reads every reduced.json under --runs (sable: NU*_NP*_s*/, YADE: yade/NU*_NP*_s*/) and the
+Reads every reduced.json under --runs (the sweep: NU*_NP*_s*/; the code comparison: compare/sable/
+and compare/yade/, or an older yade/ against the sweep's runs) and the
 normalised force samples sweep.py keeps under --work (F_norm.npy, Fi_norm.npy, f_norm.npy),
 works on whatever runs exist (the plan's points and seeds that are missing are listed), and
 writes --out/REPORT.md and --out/figures/*.png. Every statistic sable-analyze offers comes from
@@ -37,9 +38,10 @@ SCALES = [('f', r'$f/\bar f$', 'f_norm.npy', (0, 8)),
           ('F', r'$F/\bar F$', 'F_norm.npy', (0, 5)),
           ('Fi', r'$F_i/\bar F_i$', 'Fi_norm.npy', (0, 10))]
 NBINS = 40
-# run groups under --runs (and --work): the sweep's sable runs at the top, the code comparison in
-# compare/sable and compare/yade (sweep.py yade), an older YADE layout in yade/ (against the sweep's)
-GROUPS = ['sable', 'yade', 'compare/sable', 'compare/yade']
+# run groups under --runs (and --work, sweep.raw_dir's layout): the sweep's sable runs at the top, the
+# code comparison (sweep.py yade: H/d sweep.YADE_HD, both codes from the same deposits) in compare/CODE
+GROUPS = ['sable', 'compare/sable', 'compare/yade']
+GS, GY = 'compare/sable', 'compare/yade'
 
 
 # ---------------------------------------------------------------- small tools
@@ -114,19 +116,10 @@ def sub(group):
     return '' if group == 'sable' else group
 
 
-def cmp_groups(runs):
-    """The code comparison's (sable, YADE) groups: compare/sable and compare/yade (sweep.py's
-    YADE_HD layout) when any exists, else the sweep's sable runs and yade/."""
-    if runs['compare/sable'] or runs['compare/yade'] or hasattr(sweep, 'YADE_HD'):
-        return 'compare/sable', 'compare/yade'
-    return 'sable', 'yade'
-
-
 def missing(runs):
     """The plan's (group, point, seed) that have no reduced.json yet; extra runs outside the plan."""
     want = {('sable', p, s) for p in sweep.POINTS for s in sweep.SEEDS}
-    for g in set(cmp_groups(runs)) - {'sable'}:
-        want |= {(g, p, s) for p in sweep.YADE_POINTS for s in sweep.SEEDS}
+    want |= {(g, p, s) for g in (GS, GY) for p in sweep.YADE_POINTS for s in sweep.SEEDS}
     have = {(c, p, r['seed']) for c in runs for p in runs[c] for r in runs[c][p]}
     order = sweep.POINTS + sweep.YADE_POINTS + [p for c in runs for p in runs[c]]
     key = lambda t: (t[0], order.index(t[1]), t[2])
@@ -156,7 +149,7 @@ def summary(runs):
 
 
 def raw_dir(work, group, run):
-    return os.path.join(work, sub(group), sweep.tag(run['NU'], run['NP'], run['seed']))
+    return sweep.raw_dir(work, run['NU'], run['NP'], run['seed'], group.split('/')[-1], group.startswith('compare/'))
 
 
 def pooled(work, code, runs, fname):
@@ -297,7 +290,8 @@ def eq7(work, code, pt, runs, scale, fname):
         return None
     cache = os.path.join(work, 'sweep_figures_cache')
     os.makedirs(cache, exist_ok=True)
-    key = f'{code.replace("/", "-")}_{ptag(pt)}_{scale}_s' + '-'.join(str(r['seed']) for r in runs if r['seed'] not in absent)
+    seeds = '-'.join(str(r['seed']) for r in runs if r['seed'] not in absent)
+    key = f'{code.replace("/", "-")}_{ptag(pt)}_{scale}_s{seeds}'
     out, cur = os.path.join(cache, key + '_fit.csv'), os.path.join(cache, key + '_curve.csv')
     srcs = [os.path.join(raw_dir(work, code, r), fname) for r in runs if r['seed'] not in absent]
     pos = x[x > 0]
@@ -400,7 +394,8 @@ def eq4_section(e4, S):
     return L + ['', f'χ²/n of the paper\'s curve over these {len(e4["z"])} points: {e4["chi2n"]:.3g}. With '
                 f'{"-".join(map(str, ns))} seeds per point a seed SE is itself uncertain by about 1/sqrt(2(n-1)) '
                 '(50-70 %), and a point whose seeds '
-                'happen to agree gets a small SE and a large weight and z: read z and χ² with the block errors beside '
+                'happen to agree gets a small SE and a large weight and z: read z and χ² with the block errors '
+                'beside '
                 'them (table above).', '']
 
 
@@ -462,7 +457,7 @@ def eq20_section(e20):
     return L + ['']
 
 
-def eq7_rows(E, code, S):
+def eq7_rows(E, S):
     L = ['| N_U | N_P | I_M | scale | n (zeros/negative) | n fitted | μ [95 %] | σ [95 %] | x0 [95 %] | '
          'Gaussian limit | KS D |', '|' + '---|' * 11]
     order = [s for s, *_ in SCALES]
@@ -486,7 +481,7 @@ def eq7_section(E, S):
          'needs ~8 min on 5e5 values; the profile intervals take the values as independent, which the 10 kHz '
          'series are not (g in the ACF), so they are optimistic for F and F_i. "Gaussian limit": x0 = ∞ inside '
          'the 95 % region, μ, σ, x0 then not meaningful. Reported against I_M, no test (PLAN).', '']
-    L += eq7_rows(E, 'sable', S) + ['']
+    L += eq7_rows(E, S) + ['']
     for scale, *_ in SCALES:
         flagged = [f'{S[pt]["I_M"]:.3g} (truncated normal m {e["row"]["normal_m"]:.3g}, s {e["row"]["normal_s"]:.3g}'
                    + (': its peak at x ≤ 0, a PDF decreasing from x = 0, not a Gaussian about the mean)'
@@ -529,7 +524,7 @@ def yade_section(C, S, Y, EY, ES, gs):
                      f'{k["critical"]:.4f} | {k["n_a"]:.0f} | {k["n_b"]:.0f} |')
     L += ['', 'Eq. 7 per code (as in the Eq. 7 section):', '']
     both = {k: v for k, v in ES.items() if k[0] in C}
-    L += ['sable:', ''] + eq7_rows(both, 'sable', S) + ['', 'YADE:', ''] + eq7_rows(EY, 'yade', Y)
+    L += ['sable:', ''] + eq7_rows(both, S) + ['', 'YADE:', ''] + eq7_rows(EY, Y)
     return L + ['']
 
 
@@ -541,8 +536,9 @@ def dtc_words(S):
     if len(pts) < 2 or not np.isfinite(dt).any():
         return None
     k = int(np.nanargmin(ud))
-    return (f'Δt_c of F spans {np.nanmin(dt):.3g}-{np.nanmax(dt):.3g} ms ({np.nanmax(dt) / np.nanmin(dt):.1f}-fold) and '
-            f'(U/d)Δt_c {np.nanmin(ud):.3g}-{np.nanmax(ud):.3g} ({np.nanmax(ud) / np.nanmin(ud):.1f}-fold, smallest at '
+    return (f'Δt_c of F spans {np.nanmin(dt):.3g}-{np.nanmax(dt):.3g} ms ({np.nanmax(dt) / np.nanmin(dt):.1f}-fold) '
+            f'and (U/d)Δt_c {np.nanmin(ud):.3g}-{np.nanmax(ud):.3g} ({np.nanmax(ud) / np.nanmin(ud):.1f}-fold, '
+            'smallest at '
             f'I_M {S[pts[k]]["I_M"]:.3g}) over I_M {S[pts[0]]["I_M"]:.3g}-{S[pts[-1]]["I_M"]:.3g}: a dependence on '
             'I_M, where the plan records the paper as finding no clear one')
 
@@ -568,7 +564,8 @@ def dtc_phi_section(S):
                  'same-I_M pairs (section above) tell Δt_c apart from (U/d)Δt_c.')
         L.append('- C_F(Δt) has peaks at multiples of d/U (acf_F.png: (U/d)Δt = 1, 2, 3): the lid\'s grains, one '
                  'diameter apart, pass the wall at U; Δt_c is the first crossing, before the first peak.')
-    L.append('- Φ* (phi3D, seed means) by I_M: ' + ', '.join(f'{S[p]["I_M"]:.3g}: {fmt(*S[p]["phi"], 4)}' for p in pts) +
+    L.append('- Φ* (phi3D, seed means) by I_M: ' +
+             ', '.join(f'{S[p]["I_M"]:.3g}: {fmt(*S[p]["phi"], 4)}' for p in pts) +
              ' (figure phi_vs_IM.png).')
     w = phi_words(S)
     if w:
@@ -616,7 +613,8 @@ def summary_section(e4, e5, e20, P, C, S):
             L.append(f'- {w}.')
     for pt, c in C.items():
         v = 'pass' if c['pass'] else 'fail' if c['pass'] is not None else 'not tested (1 seed)'
-        L.append(f'- YADE {ptag(pt)}: sable − YADE {c["diff"]:+.3f}, {abs(c["diff"]) / c["comb"]:.2f} combined SE: {v}.')
+        L.append(f'- YADE {ptag(pt)}: sable − YADE {c["diff"]:+.3f}, {abs(c["diff"]) / c["comb"]:.2f} combined SE: '
+                 f'{v}.')
     return L + ['']
 
 
@@ -652,10 +650,11 @@ def errorbar(ax, x, y, e, fmt='o', **kw):
 def fig_eq4(figs, S, SC, Y, e4):
     fig, ax = figstyle.figure()
     x, y, e = xy(S, 'F')
-    errorbar(ax, x, y, e, color=figstyle.COLOURS[0], label=f'sable, $H/d$ {next(iter(S.values()))["Hd"]} (seed mean ± SE)', zorder=3)
+    errorbar(ax, x, y, e, color=figstyle.COLOURS[0], zorder=3,
+             label=f'sable, $H/d$ {next(iter(S.values()))["Hd"]} (seed mean ± SE)')
     for p in S:
         ax.plot([S[p]['I_M']] * S[p]['n'], S[p]['F_seeds'], '.', color='0.6', ms=2)
-    if SC is not S and SC:
+    if SC:
         xs, ys, es = xy(SC, 'F')
         errorbar(ax, xs, ys, es, color=figstyle.COLOURS[3], fmt='s', mfc='none',
                  label=f'sable, $H/d$ {next(iter(SC.values()))["Hd"]}')
@@ -800,7 +799,8 @@ def fig_eq7(figs, E, S):
                 hi = r[par + '_hi'] if np.isfinite(r[par + '_hi']) else r[par]
                 ax.errorbar(i * 1.04 ** k, r[par], yerr=[[r[par] - r[par + '_lo']], [max(hi - r[par], 0)]],
                             fmt='os^'[k], color=figstyle.COLOURS[k], capsize=1.5, label=lab if i == es[0][0] else None)
-            ax.set(xscale='log', xlabel='$I_M$', title=par if par != 'sigma' else 'σ', yscale='log' if par == 'x0' else 'linear')
+            ax.set(xscale='log', xlabel='$I_M$', title={'mu': 'μ', 'sigma': 'σ', 'x0': '$x_0$'}[par],
+                   yscale='log' if par == 'x0' else 'linear')
     axes[0].legend(fontsize=6, title='Gaussian limits left out', title_fontsize=6)
     figstyle.save(fig, os.path.join(figs, 'eq7_vs_IM.png'))
 
@@ -853,13 +853,13 @@ def analyse(tmp, work, runs):
     """Every number of the report, as attributes of one namespace."""
     R = argparse.Namespace(runs=runs)
     R.S = {pt: summary(rs) for pt, rs in runs['sable'].items()}
-    R.gs, R.gy = cmp_groups(runs)
-    R.SC = R.S if R.gs == 'sable' else {pt: summary(rs) for pt, rs in runs[R.gs].items()}
+    R.gs, R.gy = GS, GY
+    R.SC = {pt: summary(rs) for pt, rs in runs[GS].items()}
     R.Y = {pt: summary(rs) for pt, rs in runs[R.gy].items()}
     R.e4, R.e5, R.e20 = eq4(tmp, R.S), eq5(tmp, R.S), eq20(tmp, runs['sable'])
     R.P = pair_tests(tmp, work, runs['sable'], R.S)
     R.ES = eq7_all(work, runs, 'sable')
-    R.ESC = R.ES if R.gs == 'sable' else eq7_all(work, runs, R.gs)
+    R.ESC = eq7_all(work, runs, GS)
     R.EY = eq7_all(work, runs, R.gy)
     R.C = yade_compare(tmp, work, runs, R.gs, R.gy, R.SC, R.Y)
     return R
