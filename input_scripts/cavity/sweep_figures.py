@@ -206,7 +206,9 @@ def eq4(tmp, S):
     row, curve = fit_sigmoid(tmp, x, y, [S[p]['F'][1] for p in use] if weighted else None,
                              ['r1', 'r2', 'I0'], 'eq4')
     z = {p: (S[p]['F'][0] - sigmoid(S[p]['I_M'], *PAPER_EQ4.values())) / S[p]['F'][1] for p in good}
-    return {'row': row, 'curve': curve, 'weighted': weighted, 'points': use, 'z': z,
+    # outside the plan, a check of the weights: the same means unweighted, errors from the scatter
+    row_u = fit_sigmoid(tmp, x, y, None, ['r1', 'r2', 'I0'], 'eq4u')[0] if weighted else None
+    return {'row': row, 'row_u': row_u, 'curve': curve, 'weighted': weighted, 'points': use, 'z': z,
             'chi2n': float(np.mean([v ** 2 for v in z.values()])) if z else np.nan}
 
 
@@ -385,6 +387,9 @@ def eq4_section(e4, S):
            '**preliminary: fewer than 4 points have 2 seeds, so unweighted (errors from the scatter)**')
     L += [f'Over {len(e4["points"])} points, {how}; chi2 {r["chi2"]:.3g} / {r["dof"]:.0f} dof, '
           f'R² {r["r2_2"]:.3f}.', ''] + param_lines(r, PAPER_EQ4) + ['']
+    if e4['row_u']:
+        L += ['A check of the weights, outside the plan: the same means unweighted (errors from the scatter, '
+              f'Student intervals): {against(e4["row_u"], PAPER_EQ4)}.', '']
     L += ['Each point against the paper\'s curve (r1 0.53, r2 0.86, I_M^0 0.02): z = (mean - Eq. 4)/SE.', '',
           '| N_U | N_P | I_M | mean | Eq. 4 (paper) | z |', '|---|---|---|---|---|---|']
     for pt, z in sorted(e4['z'].items(), key=lambda kv: S[kv[0]]['I_M']):
@@ -596,7 +601,9 @@ def summary_section(e4, e5, e20, P, C, S):
     if e4:
         L.append('- Eq. 4' + (' (preliminary, unweighted)' if not e4['weighted'] else '') + ': ' +
                  against(e4['row'], PAPER_EQ4) +
-            (f'; the paper\'s curve gives χ²/n {e4["chi2n"]:.3g} on our seed SEs.' if e4['z'] else '.'))
+            (f'; the paper\'s curve gives χ²/n {e4["chi2n"]:.3g} on our seed SEs' if e4['z'] else '') +
+            ('; unweighted (a check outside the plan): ' + ', '.join(
+                f'{k} {verdict(e4["row_u"], k, v)}' for k, v in PAPER_EQ4.items()) if e4['row_u'] else '') + '.')
     if e5:
         L.append('- Eq. 5: ' + against(e5['row'], PAPER_EQ5) + '.')
     if e20:
