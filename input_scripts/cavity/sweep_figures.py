@@ -303,7 +303,8 @@ def eq7(work, code, pt, runs, scale, fname):
         analyze('fit-lognormal', src, '--column', 'x', '--raw', '--out', out, '--curve', cur, '--nbins', NBINS)
         os.remove(src)
     return {'row': one_row(out), 'curve': figstyle.read(cur), 'n': len(x), 'n_pos': len(pos),
-            'n_fit': min(len(pos), FIT_MAX), 'zero_frac': 1 - len(pos) / len(x), 'absent': absent}
+            'n_fit': min(len(pos), FIT_MAX), 'zero_frac': 1 - len(pos) / len(x), 'absent': absent,
+            'neg_frac': float(np.mean(x < 0)), 'min': float(x.min())}
 
 
 def eq7_all(work, runs, code):
@@ -479,8 +480,8 @@ def eq7_rows(E, S):
 def eq7_section(E, S):
     L = ['## Eq. 7 (`fit-lognormal`), per point, seeds pooled', '',
          'x = f/f̄ (every grain-wall contact row), F/F̄ (the 10 kHz wall force), F_i/F̄_i (slices 3-9, each over '
-         'its own mean). Eq. 7 is a law of x > 0: the values ≤ 0 (no contact, or a slightly tensile damped '
-         'contact) are left out of the fit (their share is given) and x keeps the mean of all the values '
+         'its own mean). Eq. 7 is a law of x > 0: the values ≤ 0 (no contact, or a tensile damped contact, see '
+         'below) are left out of the fit (their share is given) and x keeps the mean of all the values '
          '(`--raw`), so the fitted law is P(x | x > 0) on the paper\'s axis. At most '
          f'{FIT_MAX} positive values per fit, drawn at random (fixed seed) from the pooled ones: fit-lognormal '
          'needs ~8 min on 5e5 values; the profile intervals take the values as independent, which the 10 kHz '
@@ -500,6 +501,13 @@ def eq7_section(E, S):
         L.append(f'- {scale}: Gaussian limit at I_M ' + (', '.join(flagged) if flagged else 'none') + '; σ by I_M: ' +
                  ', '.join(f'{i:.3g}: {v:.2f}' for i, v in sig) + f'; largest KS D of a fit {worst[1]:.3f} '
                  f'(I_M {worst[0]:.3g}).')
+    for scale, *_ in SCALES:
+        es = [(S[pt]['I_M'], e) for (pt, sc), e in E.items() if sc == scale]
+        if es:
+            i, e = max(es, key=lambda t: t[1]['neg_frac'])
+            L.append(f'- {scale} < 0 (tensile; the normal force is not clamped at zero, presumably the dashpot '
+                     'pulling as grains leave the wall fast): at most '
+                     f'{100 * e["neg_frac"]:.1f} % of the values (I_M {i:.3g}, down to {e["min"]:.2f} times the mean).')
     return L + ['', 'Parameters against I_M: figure eq7_vs_IM.png; PDFs with the fits: pdf_NU*_NP*.png.', '']
 
 
