@@ -127,7 +127,8 @@ def last_error(msg):
     """The ERROR line of the screen file a failed run's message names, else the message."""
     screen = msg.rsplit('see ', 1)[-1].strip()
     if os.path.exists(screen):
-        errs = [l.strip() for l in open(screen, errors='replace') if l.startswith('ERROR')]
+        errs = [l.strip() for l in open(screen, errors='replace')
+                if (l.startswith('ERROR') and len(l.strip()) > 6) or l.startswith('RuntimeError')]
         if errs:
             return errs[-1][:400]
     return msg[:400]
