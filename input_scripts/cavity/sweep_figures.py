@@ -489,28 +489,30 @@ def eq7_section(E, S):
          'needs ~8 min on 5e5 values; the profile intervals take the values as independent, which the 10 kHz '
          'series are not (g in the ACF), so they are optimistic for F and F_i. "Gaussian limit": x0 = ∞ inside '
          'the 95 % region, μ, σ, x0 then not meaningful. Reported against I_M, no test (PLAN).', '']
+    if not E:
+        return L + ['No raw samples under --work: no fits.', '']
     L += eq7_rows(E, S) + ['']
     for scale, *_ in SCALES:
-        flagged = [f'{S[pt]["I_M"]:.3g} (truncated normal m {e["row"]["normal_m"]:.3g}, s {e["row"]["normal_s"]:.3g}'
-                   + (': its peak at x ≤ 0, a PDF decreasing from x = 0, not a Gaussian about the mean)'
-                      if e['row']['normal_m'] <= 0 else ')')
-                   for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
-                   if sc == scale and e['row']['gaussian_limit']]
-        sig = [(S[pt]['I_M'], e['row']['sigma']) for (pt, sc), e in sorted(E.items(), key=lambda kv: S[kv[0][0]]['I_M'])
-               if sc == scale and not e['row']['gaussian_limit']]
-        ks_ = [(S[pt]['I_M'], e['row']['ks_d']) for (pt, sc), e in E.items() if sc == scale]
-        worst = max(ks_, key=lambda t: t[1])
-        L.append(f'- {scale}: Gaussian limit at I_M ' + (', '.join(flagged) if flagged else 'none') + '; σ by I_M: ' +
-                 ', '.join(f'{i:.3g}: {v:.2f}' for i, v in sig) + f'; largest KS D of a fit {worst[1]:.3f} '
-                 f'(I_M {worst[0]:.3g}).')
-    for scale, *_ in SCALES:
-        es = [(S[pt]['I_M'], e) for (pt, sc), e in E.items() if sc == scale]
-        if es:
-            i, e = max(es, key=lambda t: t[1]['neg_frac'])
-            L.append(f'- {scale} < 0 (tensile; the normal force is not clamped at zero, presumably the dashpot '
-                     'pulling as grains leave the wall fast): at most '
-                     f'{100 * e["neg_frac"]:.1f} % of the values (I_M {i:.3g}, down to {e["min"]:.2f} times the mean).')
+        L += eq7_scale_lines([(S[pt]['I_M'], e) for (pt, sc), e in E.items() if sc == scale], scale)
     return L + ['', 'Parameters against I_M: figure eq7_vs_IM.png; PDFs with the fits: pdf_NU*_NP*.png.', '']
+
+
+def eq7_scale_lines(es, scale):
+    """One scale's fits [(I_M, eq7 result)]: Gaussian-limit flags, σ against I_M, worst KS, tensile values."""
+    if not es:
+        return []
+    es = sorted(es, key=lambda t: t[0])
+    flagged = [f'{i:.3g} (truncated normal m {e["row"]["normal_m"]:.3g}, s {e["row"]["normal_s"]:.3g}' +
+               (': its peak at x ≤ 0, a PDF decreasing from x = 0, not a Gaussian about the mean)'
+                if e['row']['normal_m'] <= 0 else ')') for i, e in es if e['row']['gaussian_limit']]
+    sig = ', '.join(f'{i:.3g}: {e["row"]["sigma"]:.2f}' for i, e in es if not e['row']['gaussian_limit'])
+    wi, we = max(es, key=lambda t: t[1]['row']['ks_d'])
+    ni, ne = max(es, key=lambda t: t[1]['neg_frac'])
+    return [f'- {scale}: Gaussian limit at I_M ' + (', '.join(flagged) if flagged else 'none') + f'; σ by I_M: {sig}; '
+            f'largest KS D of a fit {we["row"]["ks_d"]:.3f} (I_M {wi:.3g}).',
+            f'- {scale} < 0 (tensile; the normal force is not clamped at zero, presumably the dashpot pulling as '
+            f'grains leave the wall fast): at most {100 * ne["neg_frac"]:.1f} % of the values (I_M {ni:.3g}, down to '
+            f'{ne["min"]:.2f} times the mean).']
 
 
 def yade_section(C, S, Y, EY, ES, gs):
@@ -810,6 +812,8 @@ def fig_eq7(figs, E, S):
     """mu, sigma, x0 of Eq. 7 against I_M per scale; fits in the Gaussian limit (parameters not meaningful)
     are left out."""
     import matplotlib.pyplot as plt
+    if not E:
+        return
     fig, axes = plt.subplots(1, 3, figsize=(2 * figstyle.WIDTH_IN, figstyle.WIDTH_IN * 0.6), layout='constrained')
     for k, (scale, lab, *_) in enumerate(SCALES):
         es = sorted(((S[pt]['I_M'], e['row']) for (pt, sc), e in E.items()
