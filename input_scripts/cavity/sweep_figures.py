@@ -792,6 +792,32 @@ def fig_acf(figs, runs, S):
     figstyle.save(fig, os.path.join(figs, 'acf_F.png'))
 
 
+def fig_acf_slices(figs, runs, S):
+    """kneib2017 Fig. 9: C^i of each slice's force (seed mean) at the lowest, a middle and the
+    highest I_M, against (U/d) dt; slices no grain touched in a seed have no C and are left out."""
+    import matplotlib.pyplot as plt
+    pts = sorted(runs['sable'], key=lambda p: S[p]['I_M'])
+    pick = [pts[0], pts[len(pts) // 2], pts[-1]]
+    fig, axes = plt.subplots(1, 3, figsize=(3 * figstyle.WIDTH_IN, figstyle.WIDTH_IN * 0.7), layout='constrained',
+                             sharey=True)
+    cmap = plt.get_cmap('viridis')
+    for ax, pt in zip(axes, pick):
+        rs = runs['sable'][pt]
+        for i in range(1, 11):
+            cs = [r['acf'][f'F{i}']['c'] for r in rs if r['acf'][f'F{i}']['c']]
+            if not cs:
+                continue
+            c = np.mean(cs, axis=0)
+            t = np.arange(len(c)) * rs[0]['sample_dt'] * S[pt]['U'] / S[pt]['d']
+            ax.plot(t, c, color=cmap((i - 1) / 9), lw=0.8, label=f'{i}')
+        ax.axhline(0.15, color='0.6', lw=0.6, ls=':')
+        ax.set(xlabel=r'$(U/d)\,\Delta t$', xscale='log',
+               title=f'$N_U$ {pt[0]:g}, $N_P$ {pt[1]:g}, $I_M$ {S[pt]["I_M"]:.3g}')
+    axes[0].set(ylabel=r'$C^i(\Delta t)$ (seed mean)')
+    axes[-1].legend(title='slice $i$', fontsize=5, ncol=2)
+    figstyle.save(fig, os.path.join(figs, 'acf_slices.png'))
+
+
 def fig_dtc(figs, S):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 2, figsize=(2 * figstyle.WIDTH_IN, figstyle.WIDTH_IN * 0.7), layout='constrained')
@@ -866,6 +892,7 @@ def figures(figs, tmp, work, R):
     fig_vs_im(figs, R.S, 'phi', r'$\Phi^*$', 'phi_vs_IM.png')
     fig_eq5(figs, R.S, R.e5)
     fig_acf(figs, R.runs, R.S)
+    fig_acf_slices(figs, R.runs, R.S)
     fig_dtc(figs, R.S)
     fig_rheology(figs, R.e20)
     fig_eq7(figs, R.ES, R.S)
