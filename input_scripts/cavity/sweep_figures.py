@@ -55,8 +55,7 @@ def analyze(*args):
 
 
 def one_row(path):
-    """The one-row CSV of a fit: {column: value}; a repeated name (fit-sigmoid's parameter r2 and
-    its R^2 'r2') gets '_2' on its second occurrence."""
+    """The one-row CSV of a fit: {column: value}; a repeated name gets '_2' on its second occurrence."""
     lines = [l.strip() for l in open(path) if l.strip() and not l.startswith('#')]
     out = {}
     for k, v in zip(lines[0].split(','), lines[1].split(',')):
@@ -389,7 +388,7 @@ def eq4_section(e4, S):
     how = ('weighted by the seed SEs (1.96 intervals)' if e4['weighted'] else
            '**preliminary: fewer than 4 points have 2 seeds, so unweighted (errors from the scatter)**')
     L += [f'Over {len(e4["points"])} points, {how}; chi2 {r["chi2"]:.3g} / {r["dof"]:.0f} dof, '
-          f'R² {r["r2_2"]:.3f}.', ''] + param_lines(r, PAPER_EQ4) + ['']
+          f'R² {r["r_squared"]:.3f}.', ''] + param_lines(r, PAPER_EQ4) + ['']
     if e4['row_u']:
         L += ['A check of the weights, outside the plan: the same means unweighted (errors from the scatter, '
               f'Student intervals): {against(e4["row_u"], PAPER_EQ4)}.', '']
@@ -441,7 +440,7 @@ def eq5_section(e5, S):
         return L + ['Not enough points yet (3 with ℓ/L and I_M > 1e-2).', '']
     r = e5['row']
     L += [f'Seed means of {len(e5["points"])} points, unweighted (ℓ/L carries its own scatter; errors from the '
-          f'residuals, Student intervals); R² {r["r2"]:.3f} (paper 0.96).', '']
+          f'residuals, Student intervals); R² {r["r_squared"]:.3f} (paper 0.96).', '']
     return L + param_lines(r, PAPER_EQ5) + ['']
 
 
@@ -457,7 +456,7 @@ def eq20_section(e20):
           '(szz = 0, 2D stresses in N/m): Eq. 19 *as printed* then gives τ/P₂D exactly, P₂D = (sxx + syy)/2 (the '
           '1/3 and the 3D trace cancel; reference_runs/analysis/README.md, local-rheology notes), the friction '
           'the paper\'s μ1, μ2 describe; I is Eq. 18 with ρ_p d as the 2D density.', '',
-          f'R² {r["r2"]:.3f}.', '']
+          f'R² {r["r_squared"]:.3f}.', '']
     L += ['| parameter | fit | 95 % interval (nodes as independent) | paper | inside |', '|---|---|---|---|---|']
     for k, v in PAPER_EQ20.items():
         L.append(f'| {k} | {fmt(r[k], r[k + "_err"], 4)} | [{fmt(r[k + "_lo"], None, 4)}, {fmt(r[k + "_hi"], None, 4)}]'

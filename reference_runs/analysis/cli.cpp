@@ -436,7 +436,7 @@ int lsq_report(const Cli& c, LsqFit f, const char* formula) {
       t.names.push_back(p.name + suffix);
       t.cols.push_back({v});
     }
-  for (auto [n, v] : {std::pair{"chi2", f.chi2}, {"dof", double(f.dof)}, {"r2", f.r2}, {"n", double(f.n)}}) {
+  for (auto [n, v] : {std::pair{"chi2", f.chi2}, {"dof", double(f.dof)}, {"r_squared", f.r2}, {"n", double(f.n)}}) {
     t.names.push_back(n);
     t.cols.push_back({v});
   }

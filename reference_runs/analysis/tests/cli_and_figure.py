@@ -99,6 +99,9 @@ def cavity(exe, work):
     out = os.path.join(work, "eq4.csv")
     run(exe, "fit-sigmoid", sig, "--x", "I_M", "--y", "F_over_PLd", "--names", "r1,r2,I0", "--out", out)
     p = params(out)
+    header = [l for l in open(out) if not l.startswith("#")][0].strip().split(",")
+    if len(header) != len(set(header)):  # Eq. 4's parameter r2 once clashed with R^2's column name
+        sys.exit(f"FAIL: fit-sigmoid wrote a column name twice: {header}")
     for name, truth in (("r1", 0.53), ("r2", 0.86), ("I0", 0.02)):
         if not p[name + "_lo"] <= truth <= p[name + "_hi"]:
             sys.exit(f"FAIL: fit-sigmoid {name} = {p[name]} [{p[name + '_lo']}, {p[name + '_hi']}] misses {truth}")
