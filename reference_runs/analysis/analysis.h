@@ -149,6 +149,7 @@ void check(const char* what, const Vec& x, const Vec& y, const Vec& yerr, std::s
 Vec weights(const Vec& yerr, std::size_t n);                  // 1/yerr^2, or 1 without errors
 double r_squared(const Vec& y, const Vec& fit, const Vec& w);  // 1 - SS_res/SS_tot about the weighted mean
 double quantile95(bool weighted, std::size_t dof);             // normal 1.96 with errors, Student t(dof) without
+LsqFit start(const std::string& model, std::size_t n, std::size_t np, bool weighted);  // model, n, dof = n - np, weighted
 LsqParam symmetric(const std::string& name, double v, double err, double q);
 // For a model c0 + c1 s(x; t): t scanned over [t0, t1] in `steps` steps, (c0, c1) by weighted linear
 // least squares at each; returns the best chi2's {c0, c1, t}.

@@ -54,6 +54,15 @@ double r_squared(const Vec& y, const Vec& fit, const Vec& w) {
 }
 
 // Known errors: the normal quantile; errors from the scatter: Student t with dof.
+LsqFit start(const std::string& model, std::size_t n, std::size_t np, bool weighted) {
+  LsqFit f;
+  f.model = model;
+  f.n = n;
+  f.dof = n - np;
+  f.weighted = weighted;
+  return f;
+}
+
 double quantile95(bool weighted, std::size_t dof) {
   return weighted ? gsl_cdf_ugaussian_Pinv(0.975) : gsl_cdf_tdist_Pinv(0.975, double(dof));
 }
@@ -167,11 +176,7 @@ LsqFit fit_sigmoid(const Vec& x, const Vec& y, const Vec& yerr) {
   };
   const Nls r = solve(res, n, sigmoid_start(x, y, w));
   if (!r.converged) throw Error("fit-sigmoid: nonlinear least squares did not converge");
-  LsqFit f;
-  f.model = "sigmoid";
-  f.n = n;
-  f.dof = n - 3;
-  f.weighted = !yerr.empty();
+  LsqFit f = start("sigmoid", n, 3, !yerr.empty());
   f.chi2 = r.chi2;
   const double scale = f.weighted ? 1.0 : f.chi2 / double(f.dof);  // no errors given: from the scatter
   f.q = quantile95(f.weighted, f.dof);
@@ -190,11 +195,7 @@ LsqFit fit_linear_down(const Vec& x, const Vec& y, const Vec& yerr) {
   check("fit-linear", x, y, yerr, 2);
   const std::size_t n = x.size();
   const Vec w = weights(yerr, n);
-  LsqFit f;
-  f.model = "linear";
-  f.n = n;
-  f.dof = n - 2;
-  f.weighted = !yerr.empty();
+  LsqFit f = start("linear", n, 2, !yerr.empty());
   double c0, c1, c00, c01, c11;
   // gsl_fit_linear scales its covariance by the residual variance; gsl_fit_wlinear takes the errors as known.
   const int st = f.weighted ? gsl_fit_wlinear(x.data(), 1, w.data(), 1, y.data(), 1, n, &c0, &c1, &c00, &c01, &c11, &f.chi2)

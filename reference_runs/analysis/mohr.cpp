@@ -260,11 +260,7 @@ LsqFit fit_offset_power(const Vec& s, const Vec& k, const Vec& kerr, double s0) 
   };
   const lsq::Nls r = lsq::solve(res, n, t0);
   if (!r.converged) throw Error("fit-offset-power: nonlinear least squares did not converge");
-  LsqFit f;
-  f.model = "offset-power";
-  f.n = n;
-  f.dof = n - 3;
-  f.weighted = !kerr.empty();
+  LsqFit f = lsq::start("offset-power", n, 3, !kerr.empty());
   f.chi2 = r.chi2;
   const double scale = f.weighted ? 1.0 : f.chi2 / double(f.dof);
   f.q = lsq::quantile95(f.weighted, f.dof);
