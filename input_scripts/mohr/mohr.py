@@ -1,0 +1,239 @@
+#!/usr/bin/env python3
+"""petit2017 Mohr study: run mohr.in, reduce a run, run the pre-registered sweep.
+
+    mohr.py run  DIR [--var K V ...]     run the deck in DIR, reduce, print RESULT
+    mohr.py reduce-run DIR               reduce an existing run (result.json)
+    mohr.py sweep [--only NAME,...] [--chunk K] [--dry]
+                                         the runs of reference_runs/mohr/sweep/PLAN.md
+                                         not done yet (K at most; one at a time)
+    mohr.py reduce [--root R]            per point mean +- seed SE, the plan's tests,
+                                         REPORT.md, points.csv (figures: mohr_figures.py)
+
+A run's reduction (result.json): the deck's RESULT; sable-analyze mohr-cycles (mu_M and C
+of every cycle's loading circles, the +-0.5 % limit cycle); bulk-modulus (Eq. 6) on the
+last cycle's loading states and fit-offset-power (Eq. 7: K0, a, alpha; sigma0 = the
+smallest sigma_yy of those increments); Z, porosity, S and the overlaps at the last peak.
+"""
+import argparse
+import csv
+import hashlib
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+DECK = os.path.join(HERE, "mohr.in")
+SWEEP = os.path.join(ROOT, "reference_runs", "mohr", "sweep")
+
+# ---- the pre-registered design (reference_runs/mohr/sweep/PLAN.md says why)
+SEEDS = [32452843, 15485867, 49979687, 86028121, 67867967]
+BASE = {"N": 1000, "mu": 0.3, "rotation": 0, "delta": 0.5, "cycles": 15, "damp": "cundall"}
+SWEEPS = {
+    # cheapest and most important first: the locked-rotation friction series (Fig. 9)
+    "mu_locked": [dict(mu=m) for m in (0.1, 0.3, 0.5, 1.0)],
+    "damping": [dict(damp="restitution")],
+    "delta": [dict(delta=d) for d in (0.0, 0.2, 0.7)],
+    "mu_free": [dict(mu=m, rotation=1) for m in (0.1, 0.3, 0.5, 1.0)],
+}
+
+
+def point_name(v):
+    return "mu{mu}_rot{rotation}_d{delta}_{damp}_N{N}_c{cycles}".format(**v)
+
+
+def sweep_runs(only=None):
+    """(name, vars, seed) in the plan's order: sweep by sweep, seed-major inside one."""
+    out, seen = [], set()
+    for sname, points in SWEEPS.items():
+        if only and sname not in only:
+            continue
+        for seed in SEEDS:
+            for p in points:
+                v = dict(BASE, **p)
+                key = (point_name(v), seed)
+                if key in seen:
+                    continue
+                seen.add(key)
+                out.append((key[0], v, seed))
+    return out
+
+
+def tool(name):
+    for d in ("build", "build-release"):
+        p = os.path.join(ROOT, d, name)
+        if os.path.exists(p):
+            return p
+    sys.exit(f"mohr.py: {name} not found under {ROOT}/build (build the project first)")
+
+
+def read_result(log):
+    res = None
+    with open(log) as f:
+        for line in f:
+            if line.startswith("RESULT "):
+                res = dict(kv.split("=", 1) for kv in line.split()[1:])
+    if res is None:
+        raise RuntimeError(f"{log}: no RESULT line (the run did not finish)")
+    return {k: (float(v) if k not in ("cycles", "states", "capped", "steps") else int(float(v)))
+            for k, v in res.items()}
+
+
+def read_states(path):
+    with open(path) as f:
+        header = f.readline()
+        rows = list(csv.DictReader((l for l in f), delimiter=" "))
+    meta = dict(kv.split("=", 1) for kv in header.split()[3:])
+    return meta, [{k: float(v) for k, v in r.items()} for r in rows]
+
+
+def read_csv(path):
+    with open(path) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def analyze(args, cwd):
+    r = subprocess.run([tool("sable-analyze")] + args, cwd=cwd, capture_output=True, text=True)
+    if r.returncode:
+        raise RuntimeError(f"sable-analyze {' '.join(args)}: {r.stderr.strip()}")
+    return r.stdout
+
+
+def reduce_run(d, out="mohr"):
+    """Reduce the run in folder d (deck outputs with prefix out) into d/result.json."""
+    res = read_result(os.path.join(d, "log.txt"))
+    meta, rows = read_states(os.path.join(d, f"{out}_states.txt"))
+    st = f"{out}_states.txt"
+    analyze(["mohr-cycles", st, "--sxx", "sxx", "--syy", "syy", "--cycle", "cycle", "--loading", "loading",
+             "--out", "cycles.csv"], d)
+    cyc = read_csv(os.path.join(d, "cycles.csv"))
+    with open(os.path.join(d, "cycles.csv")) as f:
+        lim = [l.split(":", 1)[1].strip() for l in f if l.startswith("# limit_cycle:")]
+    analyze(["bulk-modulus", st, "--syy", "syy", "--sxx", "sxx", "--eyy", "eps", "--cycle", "cycle",
+             "--loading", "loading", "--out", "bulk.csv"], d)
+    bulk = read_csv(os.path.join(d, "bulk.csv"))
+    last = max(int(float(r["cycle"])) for r in rows)
+    kl = [r for r in bulk if int(float(r["cycle"])) == last]
+    with open(os.path.join(d, "bulk_last.csv"), "w") as f:
+        f.write("syy,K\n" + "".join(f"{r['syy']},{r['K']}\n" for r in kl))
+    fit = {}
+    try:
+        analyze(["fit-offset-power", "bulk_last.csv", "--x", "syy", "--y", "K", "--out", "eq7.csv"], d)
+        fit = {k: float(v) for k, v in read_csv(os.path.join(d, "eq7.csv"))[0].items()}
+    except RuntimeError as e:  # too few increments or no convergence: reported, not hidden
+        fit = {"error": str(e)}
+    peak = [r for r in rows if int(r["cycle"]) == last and r["loading"] == 1][-1]
+    first_peak = [r for r in rows if int(r["cycle"]) == 1 and r["loading"] == 1][-1]
+    red = {
+        "dir": os.path.relpath(d, ROOT), "meta": meta, "result": res,
+        "mu_M": [float(c["mu_M"]) for c in cyc], "mu_M_err": [float(c["mu_M_err"]) for c in cyc],
+        "C": [float(c["C"]) for c in cyc],
+        "limit_cycle": lim[0] if lim else "none",
+        "mu_M_first": float(cyc[0]["mu_M"]), "mu_M_last": float(cyc[-1]["mu_M"]),
+        "mu_M_last3": sum(float(c["mu_M"]) for c in cyc[-3:]) / len(cyc[-3:]),
+        "K_peak": float(kl[-1]["K"]) if kl else float("nan"),
+        "syy_peak": peak["syy"], "sxx_peak": peak["sxx"],
+        "Z_peak": peak["Z"], "porosity_peak": peak["porosity"], "S_peak": peak["S"],
+        "dmax_peak": peak["dmax"], "dmean_peak": peak["dmean"],
+        "Z_first_peak": first_peak["Z"], "S_first_peak": first_peak["S"],
+        "Z_initial": rows[0]["Z"], "porosity_initial": rows[0]["porosity"], "S_initial": rows[0]["S"],
+        "K0": fit.get("K0", float("nan")), "a": fit.get("a", float("nan")), "alpha": fit.get("alpha", float("nan")),
+        "alpha_err": fit.get("alpha_err", float("nan")), "eq7_r_squared": fit.get("r_squared", float("nan")),
+        "eq7_error": fit.get("error", ""),
+        "capped": res["capped"], "states": res["states"], "PS_per_s": res["PS_per_s"],
+    }
+    with open(os.path.join(d, "result.json"), "w") as f:
+        json.dump(red, f, indent=1)
+    return red
+
+
+def run_case(d, var, sable=None, quiet=False):
+    os.makedirs(d, exist_ok=True)
+    cmd = [sable or tool("sable"), "-in", DECK, "-log", "none"]
+    for k, v in var.items():
+        cmd += ["-var", str(k), str(v)]
+    t0 = time.time()
+    with open(os.path.join(d, "log.txt"), "w") as log:
+        r = subprocess.run(cmd, cwd=d, stdout=log, stderr=subprocess.STDOUT)
+    if r.returncode:
+        raise RuntimeError(f"{d}: sable exited {r.returncode} (see log.txt)")
+    red = reduce_run(d)
+    red["wall_s"] = time.time() - t0
+    with open(os.path.join(d, "result.json"), "w") as f:
+        json.dump(red, f, indent=1)
+    for p in ("log.sable",):
+        if os.path.exists(os.path.join(d, p)):
+            os.remove(os.path.join(d, p))
+    return red
+
+
+def result_line(red):
+    r = red["result"]
+    return ("RESULT muM={:.6g} muM_last={:.6g} C={:.6g} K0={:.6g} a={:.6g} alpha={:.6g} Z={:.5g} porosity={:.6g} "
+            "S={:.6g} limit_cycle={} cycles={} states={} capped={} PS_per_s={:.4g}").format(
+        red["mu_M_first"], red["mu_M_last"], red["C"][-1], red["K0"], red["a"], red["alpha"], r["Z"],
+        r["porosity"], r["S"], red["limit_cycle"], r["cycles"], r["states"], r["capped"], r["PS_per_s"])
+
+
+def cmd_sweep(a):
+    runs = sweep_runs(a.only.split(",") if a.only else None)
+    todo = [(n, v, s) for n, v, s in runs if not os.path.exists(os.path.join(SWEEP, "runs", n, f"s{s}", "result.json"))]
+    print(f"sweep: {len(runs)} runs in the plan, {len(todo)} to do" + (f", this chunk {a.chunk}" if a.chunk else ""))
+    if a.dry:
+        for n, v, s in todo:
+            print(" ", n, s)
+        return
+    sable = os.path.join("/tmp", "sable_mohr_sweep")  # a copy: a relink of build/sable must not kill a run
+    shutil.copy2(tool("sable"), sable)
+    for i, (n, v, s) in enumerate(todo[: a.chunk or None]):
+        d = os.path.join(SWEEP, "runs", n, f"s{s}")
+        t0 = time.time()
+        red = run_case(d, dict(v, seed=s, out="mohr"), sable=sable)
+        print(f"[{i + 1}/{len(todo)}] {n} seed {s}: mu_M {red['mu_M_first']:.4f} -> {red['mu_M_last']:.4f}, "
+              f"Z {red['Z_peak']:.3f}, alpha {red['alpha']:.3f}, capped {red['capped']}, {time.time() - t0:.0f} s",
+              flush=True)
+
+
+def mean_se(xs):
+    xs = [x for x in xs if x == x]
+    n = len(xs)
+    if n == 0:
+        return float("nan"), float("nan"), 0
+    m = sum(xs) / n
+    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1)) if n > 1 else float("nan")
+    return m, sd / math.sqrt(n) if n > 1 else float("nan"), n
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("dir")
+    r.add_argument("--var", nargs=2, action="append", default=[], metavar=("K", "V"))
+    rr = sub.add_parser("reduce-run")
+    rr.add_argument("dir")
+    s = sub.add_parser("sweep")
+    s.add_argument("--only", default="")
+    s.add_argument("--chunk", type=int, default=0)
+    s.add_argument("--dry", action="store_true")
+    rd = sub.add_parser("reduce")
+    rd.add_argument("--root", default=SWEEP)
+    a = p.parse_args()
+    if a.cmd == "run":
+        print(result_line(run_case(os.path.abspath(a.dir), dict(a.var))))
+    elif a.cmd == "reduce-run":
+        print(result_line(reduce_run(os.path.abspath(a.dir))))
+    elif a.cmd == "sweep":
+        cmd_sweep(a)
+    else:
+        import mohr_report
+        mohr_report.report(a.root, SWEEPS, BASE, SEEDS, point_name)
+
+
+if __name__ == "__main__":
+    main()
