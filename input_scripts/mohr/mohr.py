@@ -104,8 +104,35 @@ def analyze(args, cwd):
     return r.stdout
 
 
+BIG = ("log.txt", "mohr_states.txt", "mohr_peak_c1.txt", "mohr_peak_last.txt")
+
+
+def store(d):
+    """A sweep run as committed: the big text files gzipped, the packing (from the seed) dropped."""
+    import gzip
+    for n in BIG:
+        p = os.path.join(d, n)
+        if os.path.exists(p):
+            with open(p, "rb") as f, gzip.open(p + ".gz", "wb", compresslevel=9) as g:
+                shutil.copyfileobj(f, g)
+            os.remove(p)
+    for n in ("mohr_pack.dump", "bulk.csv"):
+        if os.path.exists(os.path.join(d, n)):
+            os.remove(os.path.join(d, n))
+
+
+def unstore(d):
+    import gzip
+    for n in BIG:
+        p = os.path.join(d, n)
+        if os.path.exists(p + ".gz") and not os.path.exists(p):
+            with gzip.open(p + ".gz", "rb") as g, open(p, "wb") as f:
+                shutil.copyfileobj(g, f)
+
+
 def reduce_run(d, out="mohr"):
     """Reduce the run in folder d (deck outputs with prefix out) into d/result.json."""
+    unstore(d)
     res = read_result(os.path.join(d, "log.txt"))
     meta, rows = read_states(os.path.join(d, f"{out}_states.txt"))
     st = f"{out}_states.txt"
@@ -194,6 +221,7 @@ def cmd_sweep(a):
         d = os.path.join(SWEEP, "runs", n, f"s{s}")
         t0 = time.time()
         red = run_case(d, dict(v, seed=s, out="mohr"), sable=sable)
+        store(d)
         print(f"[{i + 1}/{len(todo)}] {n} seed {s}: mu_M {red['mu_M_first']:.4f} -> {red['mu_M_last']:.4f}, "
               f"Z {red['Z_peak']:.3f}, alpha {red['alpha']:.3f}, capped {red['capped']}, {time.time() - t0:.0f} s",
               flush=True)
