@@ -167,6 +167,7 @@ def reduce_run(d, out="mohr"):
         "syy_peak": peak["syy"], "sxx_peak": peak["sxx"],
         "Z_peak": peak["Z"], "porosity_peak": peak["porosity"], "S_peak": peak["S"],
         "dmax_peak": peak["dmax"], "dmean_peak": peak["dmean"],
+        "Z_end": rows[-1]["Z"], "porosity_end": rows[-1]["porosity"], "syy_end": rows[-1]["syy"],
         "Z_first_peak": first_peak["Z"], "S_first_peak": first_peak["S"],
         "Z_initial": rows[0]["Z"], "porosity_initial": rows[0]["porosity"], "S_initial": rows[0]["S"],
         "K0": fit.get("K0", float("nan")), "a": fit.get("a", float("nan")), "alpha": fit.get("alpha", float("nan")),
@@ -251,6 +252,7 @@ def main():
     s.add_argument("--dry", action="store_true")
     rd = sub.add_parser("reduce")
     rd.add_argument("--root", default=SWEEP)
+    rd.add_argument("--rereduce", action="store_true", help="reduce every stored run again first")
     a = p.parse_args()
     if a.cmd == "run":
         print(result_line(run_case(os.path.abspath(a.dir), dict(a.var))))
@@ -259,7 +261,18 @@ def main():
     elif a.cmd == "sweep":
         cmd_sweep(a)
     else:
+        import glob
         import mohr_report
+        if a.rereduce:
+            for f in sorted(glob.glob(os.path.join(a.root, "runs", "*", "s*", "result.json"))):
+                d = os.path.dirname(f)
+                with open(f) as fh:
+                    wall = json.load(fh).get("wall_s")
+                red = reduce_run(d)
+                red["wall_s"] = wall
+                with open(f, "w") as fh:
+                    json.dump(red, fh, indent=1)
+                store(d)
         mohr_report.report(a.root, SWEEPS, BASE, SEEDS, point_name)
 
 
