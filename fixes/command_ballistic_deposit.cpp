@@ -1,4 +1,4 @@
-// ballistic_deposit N|fill TEMPLATE seed S [floor Y]
+// ballistic_deposit N|fill TEMPLATE seed S [floor Y] [clump beta B [body ID]]
 // sable's own setup command (no LIGGGHTS/LAMMPS namesake), for petit2017's
 // packings: in a 2D box periodic in x, disks of fix particletemplate/sphere
 // TEMPLATE are added one at a time. Each falls from above at a uniformly
@@ -12,7 +12,37 @@
 // fill: until the next grain would stick out (that one is not added). Grains
 // already in the box are obstacles too. Velocities zero; type, density and
 // group from the template. Lives in fixes/ because it reads a fix (core knows
-// no concrete fix). Clumps (petit2017's 3-disk grains) are not handled yet.
+// no concrete fix).
+//
+// clump beta B (0 < B <= 1): each body is petit2017's rigid 3-disk clump
+// (Appendix B, Fig. 15), N counts clumps. Read: one disk at the origin, two
+// more at distance r from it at +-30 deg about a common axis (60 deg apart),
+// so the three centres make an equilateral triangle of side r = 2 beta R (the
+// paper's "triangular arrangement"; beta = 1: touching disks, beta -> 0 one
+// disk); one R per clump from the template (its polydispersity applies to R).
+// A clump's own disks overlap whenever beta < 1. Each clump falls vertically,
+// centroid at a uniformly random x and orientation uniform in [0, 2 pi) (both
+// from seed S's stream), and stops at its first contact (any of its disks
+// against a deposited disk or the floor). Then, the disk rule generalised, it
+// turns rigidly (geometrically, no dynamics, no friction model) about the
+// centre of the deposited disk it touches (on the floor: about its own disk
+// that touches it), the way that lowers its centre of mass, until
+//  - a new contact lies on the far side (in x) of its centre of mass from the
+//    pivot's contact: at rest on two contacts either side of it;
+//  - a new contact on the same side: that one becomes the pivot (if it lies at
+//    or below its disk's equator it bears no weight: the clump stays there,
+//    "wedged"; so also when two contacts each block turning about the other);
+//  - its touching disk reaches the pivot disk's equator: it falls again;
+//  - its centre of mass comes straight below the pivot's centre ("hanging").
+// Every clump so ends touching the floor or an earlier grain without overlap;
+// the count of each ending is printed (200 clumps at beta 0.62: 192 at rest on
+// both sides, 8 wedged). Not a dynamic or frictional rest: a deck settles the
+// clumps as rigid bodies afterwards. Atoms: 3 per clump, consecutive IDs (the
+// clump number is (id - first id) / 3), image counters that unwrap each clump
+// next to its centroid (fix rigid/small reads them); body ID: a scalar fix
+// property/atom that receives each clump's number (continuing after the
+// largest value already there), for `variable b atom f_ID` and `fix ...
+// rigid/small custom v_b`. Box wider than 16 largest radii.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -89,6 +119,17 @@ class Deposit {
     const int r0 = row(y);
     for (int c : columns(col(x), 2))
       for (int rw = std::max(0, r0 - 2); rw <= r0 + 2; ++rw)
+        for (int j : cell(c, rw)) out.push_back(j);
+    return out;
+  }
+
+  // Disks whose cells lie within ceil(L / h) + 1 of the cell of (x, y): all
+  // within L of (x, y) (a clump turning about a point reaches farther than a disk).
+  std::vector<int> within(double x, double y, double L) const {
+    std::vector<int> out;
+    const int k = static_cast<int>(std::ceil(L / h_)) + 1, r0 = row(y);
+    for (int c : columns(col(x), k))
+      for (int rw = std::max(0, r0 - k); rw <= r0 + k; ++rw)
         for (int j : cell(c, rw)) out.push_back(j);
     return out;
   }
@@ -253,6 +294,281 @@ class Faller {
   }
 };
 
+// A rigid clump (petit2017 Appendix B, Fig. 15): three disks of one radius R
+// whose centres make an equilateral triangle of side r = 2 beta R. Pose: the
+// centroid (= centre of mass: equal disks) and the angle th; disk m's centre is
+// the centroid + a (cos(th + 2 pi m / 3), sin(th + 2 pi m / 3)), a = r / sqrt 3.
+struct ClumpPose {
+  double X, Y, th;
+};
+
+// One clump's path: drop, turn, drop ... (see the header). Positions unwrapped.
+class ClumpFaller {
+ public:
+  enum class End { Rest, Wedged, Hanging, Stuck };
+
+  ClumpFaller(const Deposit& dep, double R, double a, double rmax) : dep_(dep), R_(R), a_(a), rmax_(rmax) {}
+
+  End settle(double x0, double th0, ClumpPose& p) {
+    p = {x0, 1e300, th0};
+    int skip_m = -1, skip_i = -1;
+    int still = 0;  // consecutive turns blocked at once
+    for (int step = 0; step < 10000; ++step) {
+      Contact piv = drop(p, skip_m, skip_i);
+      skip_m = skip_i = -1;
+      // Turn about successive pivots until at rest or off the pivot's equator.
+      for (; step < 10000; ++step) {
+        const Turn t = turn(p, piv);
+        if (t.kind == Turn::Fall) {
+          skip_m = piv.m, skip_i = piv.i;
+          break;
+        }
+        if (t.kind == Turn::Rest) return End::Rest;
+        if (t.kind == Turn::Hanging) return End::Hanging;
+        still = t.phi > 0 ? 0 : still + 1;
+        if (still >= 2) return End::Wedged;  // each contact blocks turning about the other
+        piv = t.next;
+        if (piv.i >= 0) {  // a contact at or below the new pivot's equator bears no weight
+          double cx, cy;
+          centre(p, piv.m, cx, cy);
+          if (cy - dep_.disks[static_cast<std::size_t>(piv.i)].y <= 1e-12 * R_) return End::Wedged;
+        }
+      }
+    }
+    return End::Stuck;
+  }
+
+  void centre(const ClumpPose& p, int m, double& cx, double& cy) const {
+    const double t = p.th + 2 * std::numbers::pi * m / 3;
+    cx = p.X + a_ * std::cos(t), cy = p.Y + a_ * std::sin(t);
+  }
+
+ private:
+  const Deposit& dep_;
+  double R_, a_, rmax_;
+
+  struct Contact {
+    int m = -1;     // the clump's disk
+    int i = -1;     // the deposit's disk, -1 the floor
+    double ix = 0;  // that disk's x image
+  };
+  struct Turn {
+    enum Kind { Rest, Fall, Hanging, Pivot } kind;
+    double phi = 0;
+    Contact next{};
+  };
+
+  // Drops the clump (Y = 1e300: from above everything) to its first contact.
+  // Disk skip_m ignores deposit disk skip_i (the pivot it slid off).
+  Contact drop(ClumpPose& p, int skip_m, int skip_i) const {
+    double best = -1e300;
+    Contact c;
+    for (int m = 0; m < 3; ++m) {
+      const double t = p.th + 2 * std::numbers::pi * m / 3, ox = a_ * std::cos(t), oy = a_ * std::sin(t);
+      int hit;
+      double hx = 0;
+      const double yk = dep_.drop(p.X + ox, p.Y + oy, R_, m == skip_m ? skip_i : -1, hit, hx) - oy;
+      if (yk > best) best = yk, c = {m, hit, hx};
+    }
+    p.Y = std::min(best, p.Y);
+    return c;
+  }
+
+  // The point where contact c touches (clump at p).
+  double contact_x(const ClumpPose& p, const Contact& c) const {
+    double cx, cy;
+    centre(p, c.m, cx, cy);
+    if (c.i < 0) return cx;
+    const Disk& d = dep_.disks[static_cast<std::size_t>(c.i)];
+    return cx + R_ / (R_ + d.r) * (c.ix - cx);
+  }
+
+  static void rotate(ClumpPose& p, double qx, double qy, double ang) {
+    const double c = std::cos(ang), s = std::sin(ang), dx = p.X - qx, dy = p.Y - qy;
+    p.X = qx + c * dx - s * dy, p.Y = qy + s * dx + c * dy, p.th += ang;
+  }
+
+  // The clump turns rigidly about Q, the centre of the pivot disk it touches
+  // (or, on the floor, of its own disk that touches it: both keep the contact),
+  // the way that lowers its centre of mass, until (the first of) a new contact,
+  // the touching disk reaching the pivot's equator (Fall), or the centre of
+  // mass straight below Q (Hanging). At a new contact on the far side of the
+  // centre of mass from the pivot's: Rest; else that contact is the next pivot.
+  Turn turn(ClumpPose& p, const Contact& piv) const {
+    constexpr double pi = std::numbers::pi;
+    double qx, qy;
+    if (piv.i >= 0) {
+      qx = piv.ix, qy = dep_.disks[static_cast<std::size_t>(piv.i)].y;
+    } else {
+      centre(p, piv.m, qx, qy);
+    }
+    const double vx = p.X - qx, vy = p.Y - qy;
+    if (vx == 0 && vy <= 0) return {Turn::Hanging};
+    const double w = vx >= 0 ? -1.0 : 1.0;  // clockwise when the centre of mass is right of Q
+    const double ac = std::atan2(vy, vx);
+    double phi_max = w < 0 ? ac + pi / 2 : 3 * pi / 2 - (ac < 0 ? ac + 2 * pi : ac);
+    Turn::Kind end = Turn::Hanging;
+    if (piv.i >= 0) {
+      double kx, ky;
+      centre(p, piv.m, kx, ky);
+      const double ak = std::atan2(ky - qy, kx - qx);  // in (0, pi): above the equator
+      const double phi_eq = w < 0 ? ak : pi - ak;
+      if (phi_eq <= phi_max) phi_max = phi_eq, end = Turn::Fall;
+    }
+    phi_max = std::max(0.0, phi_max);
+    // Events: each clump disk m on its circle about Q meets a deposit disk or the floor.
+    double best = 1e300;
+    std::vector<std::pair<double, Contact>> hits;
+    auto consider = [&](double phi, const Contact& c) {
+      if (phi > phi_max) return;
+      hits.push_back({phi, c});
+      best = std::min(best, phi);
+    };
+    double reach = 0;
+    double cxs[3], cys[3];
+    for (int m = 0; m < 3; ++m) {
+      centre(p, m, cxs[m], cys[m]);
+      reach = std::max(reach, std::hypot(cxs[m] - qx, cys[m] - qy));
+    }
+    const std::vector<int> near = dep_.within(qx, qy, reach + R_ + rmax_);
+    const double W = dep_.period();
+    for (int m = 0; m < 3; ++m) {
+      const double ux = cxs[m] - qx, uy = cys[m] - qy, rho = std::hypot(ux, uy), al = std::atan2(uy, ux);
+      if (piv.i < 0 && m == piv.m) continue;  // turns in place on the floor
+      // The angle turned (direction w) to angle ap about Q, in [0, 2 pi).
+      auto turned = [&](double ap) {
+        double f = std::fmod(w * (ap - al), 2 * pi);
+        return f < 0 ? f + 2 * pi : f;
+      };
+      for (int i : near) {
+        if (i == piv.i) continue;  // every clump disk keeps its distance to Q
+        const Disk& d = dep_.disks[static_cast<std::size_t>(i)];
+        const double L = R_ + d.r;
+        for (int n = -1; n <= 1; ++n) {
+          const double ix = dep_.nearest_image(d.x, qx) + n * W, dx = ix - qx, dy = d.y - qy;
+          const double D = std::hypot(dx, dy), now = std::hypot(cxs[m] - ix, cys[m] - d.y);
+          if (D == 0 || rho == 0 || D > rho + L) continue;
+          if (std::abs(now - L) <= 1e-9 * L) {  // touching now: blocks at once if the turn pushes into it
+            const double g = (cxs[m] - ix) * (-w * uy) + (cys[m] - d.y) * (w * ux);
+            if (g < -1e-12 * L * rho) {
+              consider(0, {m, i, ix});
+              continue;
+            }
+          }
+          const double cv = (rho * rho + D * D - L * L) / (2 * rho * D);
+          if (cv > 1 || cv < -1) continue;
+          const double be = std::atan2(dy, dx), h = std::acos(cv);
+          for (double ap : {be - h, be + h}) {
+            const double f = turned(ap);
+            if (f > 1e-9 && f < 2 * pi - 1e-9) consider(f, {m, i, ix});
+          }
+        }
+      }
+      // The floor: centre height floor + R.
+      const double yf = dep_.floor() + R_;
+      if (std::abs(cys[m] - yf) <= 1e-9 * R_ && w * ux < -1e-12 * rho) {
+        consider(0, {m, -1, 0});
+      } else {
+        const double sv = (yf - qy) / rho;
+        if (sv >= -1 && sv <= 1) {
+          const double as = std::asin(sv);
+          for (double ap : {as, pi - as}) {
+            const double f = turned(ap);
+            if (f > 1e-9 && f < 2 * pi - 1e-9) consider(f, {m, -1, 0});
+          }
+        }
+      }
+    }
+    if (hits.empty()) {
+      rotate(p, qx, qy, w * phi_max);
+      return {end, phi_max};
+    }
+    rotate(p, qx, qy, w * best);
+    // Every contact made at that angle: one beyond the centre of mass holds the clump.
+    const double p1 = contact_x(p, piv) - p.X;
+    Turn t{Turn::Pivot, best};
+    double nearest = 1e300;
+    for (const auto& [phi, c] : hits) {
+      if (phi > best + 1e-9) continue;
+      const double p2 = contact_x(p, c) - p.X;
+      if (p1 * p2 <= 0) return {Turn::Rest, best};
+      if (std::abs(p2) < nearest) nearest = std::abs(p2), t.next = c;
+    }
+    return t;
+  }
+};
+
+// ballistic_deposit ... clump beta B [body ID]: n clumps (-1: fill).
+void deposit_clumps(Simulation& sim, const Args& a, Deposit& dep, FixParticletemplateSphere& tmpl, long n, long seed,
+                    double beta, double rmax, int body_col, std::chrono::steady_clock::time_point t0) {
+  const Domain& dom = sim.domain;
+  Atoms& at = sim.atoms;
+  const double W = dom.length(0);
+  for (std::size_t i = 0; i < at.n; ++i) dep.add({at.x[3 * i], at.x[3 * i + 1], at.radius[i]});
+  const std::size_t first = dep.disks.size();
+  struct Placed {
+    FixParticletemplateSphere::Grain g;
+    ClumpPose p;
+    double cx[3];
+  };
+  std::vector<Placed> placed;
+  Rng rng(static_cast<std::uint64_t>(seed));
+  long added = 0, ends[4] = {0, 0, 0, 0};
+  double ymax = dep.floor();
+  while (n < 0 || added < n) {
+    const auto g = tmpl.draw();
+    const double R = g.radius, a3 = 2 * beta * R / std::sqrt(3.0);
+    const double x0 = dom.lo[0] + rng.uniform() * W, th0 = 2 * std::numbers::pi * rng.uniform();
+    ClumpFaller f(dep, R, a3, rmax);
+    ClumpPose p;
+    const auto end = f.settle(x0, th0, p);
+    double top = -1e300;
+    double cx[3], cy[3];
+    for (int m = 0; m < 3; ++m) f.centre(p, m, cx[m], cy[m]), top = std::max(top, cy[m] + R);
+    if (top > dom.hi[1]) {
+      if (n < 0) break;
+      a.fail_line("clump " + std::to_string(added + 1) + " of " + std::to_string(n) + " would rest with its top at y = " +
+                  std::to_string(top) + ", above the box top " + std::to_string(dom.hi[1]) +
+                  ": a taller box, fewer clumps, or 'fill'");
+    }
+    ++ends[static_cast<int>(end)];
+    for (int m = 0; m < 3; ++m) {
+      double x = cx[m] - W * std::floor((cx[m] - dom.lo[0]) / W);
+      if (x >= dom.hi[0]) x = dom.lo[0];
+      dep.add({x, cy[m], R});
+    }
+    placed.push_back({g, p, {cx[0], cx[1], cx[2]}});
+    ++added;
+    ymax = std::max(ymax, top);
+  }
+  // Atoms only once every clump found its place: a failed command adds none.
+  // A clump's three atoms have consecutive IDs; each keeps the image counter
+  // that unwraps it next to its clump's centroid (fix rigid/small unwraps bodies so).
+  double body0 = 0;
+  if (body_col >= 0)
+    for (std::size_t i = 0; i < at.n; ++i) body0 = std::max(body0, at.column(body_col)[i]);
+  for (std::size_t k = 0; k < placed.size(); ++k) {
+    const double shift = W * std::floor((placed[k].p.X - dom.lo[0]) / W);
+    for (int m = 0; m < 3; ++m) {
+      const Disk& d = dep.disks[first + 3 * k + static_cast<std::size_t>(m)];
+      const double ux = placed[k].cx[m] - shift;  // the centre next to the centroid's image in the box
+      const double pos[3] = {d.x, d.y, 0.0};
+      const std::size_t i = at.add(at.max_id + 1, placed[k].g.type, pos, d.r, placed[k].g.density);
+      at.rmass[i] = placed[k].g.mass;
+      at.mask[i] |= tmpl.groupbit;
+      at.image[3 * i] = static_cast<int>(std::lround((ux - d.x) / W));
+      if (body_col >= 0) at.column(body_col)[i] = body0 + static_cast<double>(k + 1);
+    }
+  }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "ballistic_deposit: %ld clumps (%ld disks, beta %g), deposit top %.6g; at rest on contacts either "
+                "side of the centre of mass %ld, wedged %ld, hanging %ld, stopped after 10000 moves %ld; %.3f s",
+                added, 3 * added, beta, ymax, ends[0], ends[1], ends[2], ends[3], secs);
+  sim.print(buf);
+}
+
 void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
   const Domain& dom = sim.domain;
   if (!dom.box_exists) a.fail(0, "a box first (create_box before ballistic_deposit)");
@@ -266,20 +582,39 @@ void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
   auto* tmpl = dynamic_cast<FixParticletemplateSphere*>(sim.find_fix(a.word(2, "a particle template fix ID")));
   if (!tmpl) a.fail(2, "the ID of a fix particletemplate/sphere defined earlier");
   if (tmpl->style != "particletemplate/sphere")
-    a.fail(2, "a fix particletemplate/sphere (clumps are not deposited yet)");
+    a.fail(2, "a fix particletemplate/sphere (for clumps too: 'clump beta B' draws one radius per clump)");
   long seed = 0;
-  double floor = dom.lo[1];
+  double floor = dom.lo[1], beta = 0;
+  std::string body;
+  std::size_t body_at = 0;
   for (std::size_t i = 3; i < a.size(); i += 2) {
-    if (a[i] == "seed") {
+    if (a[i] == "clump") {
+      if (a.word(i + 1, "'beta B' after clump") != "beta") a.fail(i + 1, "'beta B' after clump");
+      ++i;
+      beta = a.num(i + 1, "the clump angularity beta = r/(2R), 0 < beta <= 1");
+      if (!(beta > 0 && beta <= 1)) a.fail(i + 1, "a clump angularity beta = r/(2R) with 0 < beta <= 1");
+    } else if (a[i] == "body") {
+      body = a.word(i + 1, "the ID of a fix property/atom (scalar) to hold each clump's body ID");
+      body_at = i + 1;
+    } else if (a[i] == "seed") {
       seed = parse_prime_seed(a, i + 1);
     } else if (a[i] == "floor") {
       floor = a.num(i + 1, "the floor height y");
       if (!(floor >= dom.lo[1] && floor < dom.hi[1])) a.fail(i + 1, "a floor height inside the box's y range");
     } else {
-      a.fail(i, "a ballistic_deposit keyword: seed, floor");
+      a.fail(i, "a ballistic_deposit keyword: seed, floor, clump, body");
     }
   }
   if (seed == 0) a.fail(a.size(), "'seed S' (a prime > 10000)");
+  const bool clumps = beta > 0;
+  int body_col = -1;
+  if (!body.empty()) {
+    if (!clumps) a.fail(body_at - 1, "'body' only with 'clump beta B' (a body ID per clump)");
+    body_col = sim.atoms.find_column("f_" + body);
+    const Fix* bf = sim.find_fix(body);
+    if (body_col < 0 || !bf || bf->style != "property/atom" || sim.atoms.column_stride(body_col) != 1)
+      a.fail(body_at, "the ID of a scalar fix property/atom defined earlier (it holds each clump's body ID)");
+  }
   Atoms& at = sim.atoms;
   double rmax = tmpl->radius.max();
   for (std::size_t i = 0; i < at.n; ++i) rmax = std::max(rmax, at.radius[i]);
@@ -287,8 +622,12 @@ void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
   // A narrower period lets a disk touch two images of one grain (or itself).
   if (!(W > 4 * rmax))
     a.fail(0, "a box wider than 4 largest radii (" + std::to_string(4 * rmax) + ") in x: it is " + std::to_string(W));
-  if (floor + 2 * tmpl->radius.max() > dom.hi[1])
-    a.fail(0, "a box taller than one grain diameter above the floor");
+  // A clump spans up to 3 diameters; turning about a pivot it reaches about 8 radii from it.
+  if (clumps && !(W > 16 * rmax))
+    a.fail(0, "a box wider than 16 largest radii (" + std::to_string(16 * rmax) + ") in x for clumps: it is " +
+                  std::to_string(W));
+  if (floor + 2 * tmpl->radius.max() * (clumps ? 1 + beta : 1) > dom.hi[1])
+    a.fail(0, std::string("a box taller than one ") + (clumps ? "clump" : "grain") + " above the floor");
   // Disks cover at most ~0.91 of the area: a bound that stops a runaway 'fill' before it starts.
   constexpr double kMaxGrains = 1e7;
   const double rmin = tmpl->radius.min();
@@ -299,6 +638,10 @@ void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Deposit dep(dom.lo[0], W, floor, rmax);
+  if (clumps) {
+    deposit_clumps(sim, a, dep, *tmpl, n, seed, beta, rmax, body_col, t0);
+    return;
+  }
   for (std::size_t i = 0; i < at.n; ++i) dep.add({at.x[3 * i], at.x[3 * i + 1], at.radius[i]});
   const std::size_t first = dep.disks.size();
   std::vector<FixParticletemplateSphere::Grain> grains;
