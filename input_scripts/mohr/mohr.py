@@ -154,6 +154,10 @@ def reduce_run(d, out="mohr"):
         fit = {k: float(v) for k, v in read_csv(os.path.join(d, "eq7.csv"))[0].items()}
     except RuntimeError as e:  # too few increments or no convergence: reported, not hidden
         fit = {"error": str(e)}
+    phimin = {}
+    for tag, f, mu_m in (("c1", f"{out}_peak_c1.txt", float(cyc[0]["mu_M"])), ("last", f"{out}_peak_last.txt",
+                                                                              float(cyc[-1]["mu_M"]))):
+        phimin[tag] = phi_min_eq9(d, f, float(meta["mu"]), mu_m)
     peak = [r for r in rows if int(r["cycle"]) == last and r["loading"] == 1][-1]
     first_peak = [r for r in rows if int(r["cycle"]) == 1 and r["loading"] == 1][-1]
     red = {
@@ -174,10 +178,33 @@ def reduce_run(d, out="mohr"):
         "alpha_err": fit.get("alpha_err", float("nan")), "eq7_r_squared": fit.get("r_squared", float("nan")),
         "eq7_error": fit.get("error", ""),
         "capped": res["capped"], "states": res["states"], "PS_per_s": res["PS_per_s"],
+        "phi_min_c1_deg": phimin["c1"], "phi_min_last_deg": phimin["last"],
     }
     with open(os.path.join(d, "result.json"), "w") as f:
         json.dump(red, f, indent=1)
     return red
+
+
+def phi_min_eq9(d, peak, mu, mu_m):
+    """Eq. 9 inverted (sable-analyze phi-min-eq9) with P(phi) from a peak's contact rows (dump
+    local: phi is the third value); nan where no phi_min reaches mu_m."""
+    path = os.path.join(d, peak)
+    if not os.path.exists(path):
+        return float("nan")
+    with open(path) as f:
+        lines = f.read().splitlines()
+    i = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ENTRIES")) + 1
+    with open(os.path.join(d, "phi.csv"), "w") as f:
+        f.write("phi\n" + "".join(l.split()[2] + "\n" for l in lines[i:] if len(l.split()) >= 5))
+    try:
+        analyze(["phi-min-eq9", "--mu", repr(mu), "--mu-m", repr(mu_m), "phi.csv", "--phi", "phi", "--out", "phimin.csv"], d)
+        v = float(read_csv(os.path.join(d, "phimin.csv"))[0]["phi_min_deg"])
+    except RuntimeError:
+        v = float("nan")
+    for n in ("phi.csv", "phimin.csv"):
+        if os.path.exists(os.path.join(d, n)):
+            os.remove(os.path.join(d, n))
+    return v
 
 
 def run_case(d, var, sable=None, quiet=False):

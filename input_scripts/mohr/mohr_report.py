@@ -34,7 +34,8 @@ def load(root):
 
 
 KEYS = ["mu_M_first", "mu_M_last", "mu_M_last3", "K_peak", "K0", "alpha", "Z_peak", "porosity_peak", "S_peak",
-        "dmax_peak", "Z_end", "porosity_end", "Z_initial", "porosity_initial", "S_initial", "Z_first_peak", "capped", "wall_s"]
+        "dmax_peak", "Z_end", "porosity_end", "Z_initial", "porosity_initial", "S_initial", "Z_first_peak", "phi_min_c1_deg", "phi_min_last_deg", "capped", "wall_s"]
+TABLE2 = {0.1: (22.9, 25.7), 0.3: (31.5, 45.8), 0.5: (39.5, 48.7), 1.0: (39.5, 42.9)}  # petit2017 Table II, -deg
 
 
 def stats(runs):
@@ -147,6 +148,17 @@ def report(root, sweeps, base, seeds, point_name):
                  f"{fmt(*s['Z_end'][:2])} | {fmt(*s['porosity_end'][:2], nd=4)} | "
                  f"{fmt(*s['Z_initial'][:2])} | {fmt(*s['porosity_initial'][:2], nd=4)} | {s['capped'][0]:.1f} | "
                  f"{s['wall_s'][0]:.0f} |")
+    L += ["", "## Eq. 9 inverted (Table II)", "",
+          "phi_min at which Eq. 9, with P(phi) from the peak's contacts (36 bins), gives the run's mu_M "
+          "(sable-analyze phi-min-eq9; nan: no phi_min reaches it), mean +- SE over the runs that have one; "
+          "the paper's Table II values are all negative.", "",
+          "| mu (locked, delta 0.5) | phi_min cycle 1 (deg) | paper C1 | phi_min cycle 15 (deg) | paper C15 |",
+          "|---|---|---|---|---|"]
+    for m, (p1, p15) in TABLE2.items():
+        s = st.get(P(mu=m))
+        if s:
+            L.append(f"| {m} | {fmt(*s['phi_min_c1_deg'][:2], nd=1)} ({s['phi_min_c1_deg'][2]}) | -{p1} | "
+                     f"{fmt(*s['phi_min_last_deg'][:2], nd=1)} ({s['phi_min_last_deg'][2]}) | -{p15} |")
     L += ["", "Figures: `figures/` (mohr_report.figures)."]
     with open(os.path.join(root, "REPORT.md"), "w") as f:
         f.write("\n".join(L) + "\n")
