@@ -107,14 +107,25 @@ def analyze(args, cwd):
 BIG = ("log.txt", "mohr_states.txt", "mohr_peak_c1.txt", "mohr_peak_last.txt")
 
 
+KEEP = ("STATE ", "PEAK ", "RESULT ", "ERROR", "WARNING", "Warning", "fix halt")
+
+
 def store(d):
-    """A sweep run as committed: the big text files gzipped, the packing (from the seed) dropped."""
+    """A sweep run as committed: the big text files gzipped, the log trimmed to its set-up (up to
+    the first run) and its STATE, PEAK, RESULT, halt and warning lines (the thermo tables of
+    ~800 runs repeat what the states file holds), the packing (from the seed) dropped."""
     import gzip
     for n in BIG:
         p = os.path.join(d, n)
         if os.path.exists(p):
-            with open(p, "rb") as f, gzip.open(p + ".gz", "wb", compresslevel=9) as g:
-                shutil.copyfileobj(f, g)
+            with open(p, "rb") as f:
+                data = f.read()
+            if n == "log.txt":
+                lines = data.decode(errors="replace").splitlines(True)
+                first = next((i for i, l in enumerate(lines) if l.lstrip().startswith("step ")), len(lines))
+                data = "".join(lines[:first] + [l for l in lines[first:] if l.startswith(KEEP)]).encode()
+            with gzip.open(p + ".gz", "wb", compresslevel=9) as g:
+                g.write(data)
             os.remove(p)
     for n in ("mohr_pack.dump", "bulk.csv"):
         if os.path.exists(os.path.join(d, n)):
