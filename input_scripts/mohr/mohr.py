@@ -3,9 +3,10 @@
 
     mohr.py run  DIR [--var K V ...]     run the deck in DIR, reduce, print RESULT
     mohr.py reduce-run DIR               reduce an existing run (result.json)
-    mohr.py sweep [--only NAME,...] [--chunk K] [--dry]
+    mohr.py sweep [--only NAME,...] [--chunk K] [--dry] [--reverse]
                                          the runs of reference_runs/mohr/sweep/PLAN.md
-                                         not done yet (K at most; one at a time)
+                                         not started yet (K at most; one at a time; a
+                                         second worker with --reverse takes them from the end)
     mohr.py reduce [--root R]            per point mean +- seed SE, the plan's tests,
                                          REPORT.md, points.csv (figures: mohr_figures.py)
 
@@ -248,16 +249,26 @@ def result_line(red):
 
 def cmd_sweep(a):
     runs = sweep_runs(a.only.split(",") if a.only else None)
-    todo = [(n, v, s) for n, v, s in runs if not os.path.exists(os.path.join(SWEEP, "runs", n, f"s{s}", "result.json"))]
+    todo = [(n, v, s) for n, v, s in runs if not os.path.exists(os.path.join(SWEEP, "runs", n, f"s{s}"))]
     print(f"sweep: {len(runs)} runs in the plan, {len(todo)} to do" + (f", this chunk {a.chunk}" if a.chunk else ""))
     if a.dry:
         for n, v, s in todo:
             print(" ", n, s)
         return
-    sable = os.path.join("/tmp", "sable_mohr_sweep")  # a copy: a relink of build/sable must not kill a run
+    sable = os.path.join("/tmp", f"sable_mohr_sweep{os.getpid()}")  # a copy: a relink of build/sable must not kill a run
     shutil.copy2(tool("sable"), sable)
-    for i, (n, v, s) in enumerate(todo[: a.chunk or None]):
+    if a.reverse:
+        todo.reverse()
+    done = 0
+    for i, (n, v, s) in enumerate(todo):
+        if a.chunk and done >= a.chunk:
+            break
         d = os.path.join(SWEEP, "runs", n, f"s{s}")
+        try:  # a second worker (--reverse) may have taken or finished it
+            os.makedirs(d)
+        except FileExistsError:
+            continue
+        done += 1
         t0 = time.time()
         red = run_case(d, dict(v, seed=s, out="mohr"), sable=sable)
         store(d)
@@ -288,6 +299,7 @@ def main():
     s.add_argument("--only", default="")
     s.add_argument("--chunk", type=int, default=0)
     s.add_argument("--dry", action="store_true")
+    s.add_argument("--reverse", action="store_true", help="from the plan's end (a second worker)")
     rd = sub.add_parser("reduce")
     rd.add_argument("--root", default=SWEEP)
     rd.add_argument("--rereduce", action="store_true", help="reduce every stored run again first")
