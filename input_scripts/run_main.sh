@@ -53,5 +53,15 @@ rm -rf "$out/cavity"
   --seed-var seed --seed-values 7 8 9 --var Hd 8 --var NU 1 --var NP 1 --var tshear 0.3 --var trec 0.1 \
   --var phase shear --var fields 0 --sable "$root/build/sable" --out "$out" > "$out/cavity_smoke.txt" 2>&1 || status=1
 grep -E '^\| |^\*\*|^- ' "$out/cavity/seeds.md" || tail -n 5 "$out/cavity_smoke.txt"
-echo "logs, tables (comparison.md, drag/results.md, cavity/seeds.md) and figures (comparison.png, drag/*.png) in $out"
+
+# The Mohr study's small comparison (input_scripts/mohr/README.md): sable runs mohr.in now
+# (N 500, 3 cycles, 5 seeds, ~40 s); YADE's runs of the same packings (mohr_yade.py, ~7 min)
+# are the stored ones (reference_runs/reference/mohr/yade/), refused when mohr.in or
+# mohr_yade.py changed since. Judged at 2 combined standard errors; a failure fails the job.
+echo "== mohr small (sable vs YADE stored; 5 seeds, N 500, 3 cycles)"
+rm -rf "$out/mohr"
+/usr/bin/python3 input_scripts/mohr/compare_mohr.py --ref yade-stored --sable "$root/build/sable" \
+  --out "$out/mohr" > "$out/mohr_compare.txt" 2>&1 || status=1
+grep -E '^\| |^- ' "$out/mohr/compare.md" || tail -n 5 "$out/mohr_compare.txt"
+echo "logs, tables (comparison.md, drag/results.md, cavity/seeds.md, mohr/compare.md) and figures (comparison.png, drag/*.png, mohr/mohr_circles.png) in $out"
 exit $status
