@@ -38,7 +38,7 @@ printf 'mohr N %s, %s cycles, %s steps, %s repeats: sable %.3g PS/s (%.1f s a ru
   "$repeats" "$ms" "$(median "${ws[@]}")"
 if [ ${#y[@]} -gt 0 ]; then
   my=$(median "${y[@]}")
-  printf ', YADE %.3g PS/s (%.1f s a run), sable / YADE %.2f\n' "$my" "$(median "${wy[@]}")" "$(echo "$ms / $my" | bc -l)"
+  printf ', YADE %.3g PS/s (%.1f s a run), sable / YADE %.2f\n' "$my" "$(median "${wy[@]}")" "$(awk -v a="$ms" -v b="$my" 'BEGIN {print a / b}')"
 else
   echo ' (no yade on the PATH)'
 fi
