@@ -297,6 +297,23 @@ def figures(root, pts, base, point_name):
         f.savefig(os.path.join(fd, n), dpi=110)
         plt.close(f)
 
+    # Fig. 12: S against state for the delta series (first seed of each point)
+    fig, ax = plt.subplots(figsize=(5, 4))
+    for dl in (0.0, 0.2, 0.5, 0.7):
+        runs = pts.get(P(delta=dl), [])
+        if not runs:
+            continue
+        sp = os.path.join(root, "runs", P(delta=dl), os.path.basename(runs[0]["dir"]), "mohr_states.txt.gz")
+        sp = sp if os.path.exists(sp) else sp[:-3]
+        if os.path.exists(sp):
+            rows = read_states(sp)
+            ax.plot([r["state"] for r in rows], [r["S"] for r in rows], lw=1, label=f"delta {dl}")
+    ax.set_xlabel("state"), ax.set_ylabel("S (Eq. 10, 36 bins)"), ax.legend(fontsize=7)
+    ax.set_title("mu 0.3, locked (first seed)", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(fd, "entropy_vs_state_delta.png"), dpi=110)
+    plt.close(fig)
+
     # Figs. 10, 11: against delta
     ds = [0.0, 0.2, 0.5, 0.7]
     fig, axs = plt.subplots(1, 4, figsize=(12, 3))
@@ -310,6 +327,10 @@ def figures(root, pts, base, point_name):
                 xs.append(dl), ys.append(a[0] / sc), es.append((a[1] if a[1] == a[1] else 0) / sc)
         ax.errorbar(xs, ys, es, marker="o", capsize=3)
         ax.set_xlabel("delta"), ax.set_ylabel(lab)
+    xs1 = [dl for dl in ds if pts.get(P(delta=dl))]
+    axs[0].errorbar(xs1, [mean_se([r["mu_M_first"] for r in pts[P(delta=dl)]])[0] for dl in xs1],
+                    [mean_se([r["mu_M_first"] for r in pts[P(delta=dl)]])[1] or 0 for dl in xs1], marker="s",
+                    mfc="none", capsize=3, label="cycle 1")
     axs[0].axhline(0.54, color="r", ls=":", label="paper 0.54")
     axs[1].axhline(0.458, color="r", ls=":", label="paper 0.458")
     axs[0].legend(fontsize=7), axs[1].legend(fontsize=7)
