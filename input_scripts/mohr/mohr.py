@@ -34,12 +34,18 @@ SWEEP = os.path.join(ROOT, "reference_runs", "mohr", "sweep")
 # ---- the pre-registered design (reference_runs/mohr/sweep/PLAN.md says why)
 SEEDS = [32452843, 15485867, 49979687, 86028121, 67867967]
 BASE = {"N": 1000, "mu": 0.3, "rotation": 0, "delta": 0.5, "cycles": 15, "damp": "cundall"}
+# the damping follow-up (PLAN_damping.md): 10 new seeds, both damping choices
+SEEDS_DAMPING2 = [10000019, 10000079, 10000103, 10000121, 10000139, 10000141, 10000169, 10000189, 10000223,
+                  10000229]
+SWEEP_SEEDS = {"damping2": SEEDS_DAMPING2}
+SWEEP_ROOT = {"damping2": os.path.join(SWEEP, "damping2")}  # kept apart: the main plan's points keep their 5 seeds
 SWEEPS = {
     # cheapest and most important first: the locked-rotation friction series (Fig. 9)
     "mu_locked": [dict(mu=m) for m in (0.1, 0.3, 0.5, 1.0)],
     "damping": [dict(damp="restitution")],
     "delta": [dict(delta=d) for d in (0.0, 0.2, 0.7)],
     "mu_free": [dict(mu=m, rotation=1) for m in (0.1, 0.3, 0.5, 1.0)],
+    "damping2": [dict(), dict(damp="restitution")],
 }
 
 
@@ -48,19 +54,19 @@ def point_name(v):
 
 
 def sweep_runs(only=None):
-    """(name, vars, seed) in the plan's order: sweep by sweep, seed-major inside one."""
+    """(name, vars, seed, root) in the plan's order: sweep by sweep, seed-major inside one."""
     out, seen = [], set()
     for sname, points in SWEEPS.items():
         if only and sname not in only:
             continue
-        for seed in SEEDS:
+        for seed in SWEEP_SEEDS.get(sname, SEEDS):
             for p in points:
                 v = dict(BASE, **p)
-                key = (point_name(v), seed)
+                key = (point_name(v), seed, sname in SWEEP_ROOT)
                 if key in seen:
                     continue
                 seen.add(key)
-                out.append((key[0], v, seed))
+                out.append((key[0], v, seed, SWEEP_ROOT.get(sname, SWEEP)))
     return out
 
 
@@ -249,21 +255,21 @@ def result_line(red):
 
 def cmd_sweep(a):
     runs = sweep_runs(a.only.split(",") if a.only else None)
-    todo = [(n, v, s) for n, v, s in runs if not os.path.exists(os.path.join(SWEEP, "runs", n, f"s{s}"))]
+    todo = [(n, v, s, r) for n, v, s, r in runs if not os.path.exists(os.path.join(r, "runs", n, f"s{s}"))]
     print(f"sweep: {len(runs)} runs in the plan, {len(todo)} to do" + (f", this chunk {a.chunk}" if a.chunk else ""))
     if a.dry:
-        for n, v, s in todo:
-            print(" ", n, s)
+        for n, v, s, r in todo:
+            print(" ", os.path.relpath(r, SWEEP), n, s)
         return
     sable = os.path.join("/tmp", f"sable_mohr_sweep{os.getpid()}")  # a copy: a relink of build/sable must not kill a run
     shutil.copy2(tool("sable"), sable)
     if a.reverse:
         todo.reverse()
     done = 0
-    for i, (n, v, s) in enumerate(todo):
+    for i, (n, v, s, r) in enumerate(todo):
         if a.chunk and done >= a.chunk:
             break
-        d = os.path.join(SWEEP, "runs", n, f"s{s}")
+        d = os.path.join(r, "runs", n, f"s{s}")
         try:  # a second worker (--reverse) may have taken or finished it
             os.makedirs(d)
         except FileExistsError:
