@@ -329,7 +329,9 @@ def main():
                 with open(f, "w") as fh:
                     json.dump(red, fh, indent=1)
                 store(d)
-        mohr_report.report(a.root, SWEEPS, BASE, SEEDS, point_name)
+        mohr_report.report(a.root, {k: v for k, v in SWEEPS.items() if k not in SWEEP_ROOT}, BASE, SEEDS, point_name)
+        if os.path.isdir(os.path.join(a.root, "damping2")):
+            mohr_report.report_damping(a.root, SEEDS_DAMPING2, SEEDS, point_name, BASE)
 
 
 if __name__ == "__main__":
