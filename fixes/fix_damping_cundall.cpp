@@ -9,10 +9,6 @@
 
 namespace sable {
 
-namespace {
-inline double sgn(double x) { return static_cast<double>((x > 0) - (x < 0)); }
-}  // namespace
-
 FixDampingCundall::FixDampingCundall(Simulation& s, const Args& a) : Fix(s, a) {
   hooks = atom_tasks = POST_FORCE;
   alpha_ = a.num(4, "the damping coefficient alpha (0 <= alpha < 1)");
@@ -39,20 +35,22 @@ void FixDampingCundall::begin(FixHook) {
 
 // YADE's cundallDamp2nd on the force (accel = F/m) and the torque (F -> T,
 // m -> I): the sign of the component against the velocity at the force's time.
+// Grains of rigid bodies (a nonzero pair-exclusion key) are left to their body.
 void FixDampingCundall::range(FixHook, const AtomRange& r) {
   Atoms& at = sim.atoms;
   const double a = alpha_, h = 0.5 * sim.dt;
   double* kept = keep_ ? added_.data() : nullptr;
+  const double* member = at.pair_exclusion >= 0 ? at.column(at.pair_exclusion).data() : nullptr;
   for (std::size_t i = r.lo; i < r.hi; ++i) {
-    if (!(at.mask[i] & groupbit)) continue;
+    if (!(at.mask[i] & groupbit) || (member && member[i] != 0.0)) continue;
     const double m = at.rmass[i], inertia = at.inertia(i);
     for (int k = 0; k < 3; ++k) {
       double& f = at.f[3 * i + k];
-      const double df = -a * f * sgn(f) * sgn(at.v[3 * i + k] + h * f / m);
+      const double df = law(a, f, at.v[3 * i + k] + h * f / m);
       f += df;
       if (kept) kept[3 * i + k] = df;
       double& t = at.torque[3 * i + k];
-      t -= a * t * sgn(t) * sgn(at.omega[3 * i + k] + h * t / inertia);
+      t += law(a, t, at.omega[3 * i + k] + h * t / inertia);
     }
   }
 }

@@ -12,6 +12,14 @@
 // force (gravity, walls, viscous; a later one is warned about), and before
 // enforce2d and freeze, which only zero components.
 //
+// A grain of a rigid body (fix rigid, rigid/small, multisphere) is damped as
+// its body, as YADE damps a clump: not the member's own force and torque, but
+// the body's summed force and torque against the body's velocity and angular
+// velocity (fixes/rigid_body_set.cpp, with `law` below), the body damped when
+// a member is in the group. Damping each member alone would act as dry
+// friction on the body (|sum of the members' damping| > |net force| when the
+// members' forces nearly cancel): bodies would hang, never in balance.
+//
 // What it added to each grain's force (3 per atom, this step) is kept when a
 // compute asks (compute unbalanced/force measures the force without it, as
 // YADE's unbalancedForce() reads forces before the integrator damps them).
@@ -23,7 +31,13 @@ namespace sable {
 
 class FixDampingCundall : public Fix {
  public:
+  // The law on one component: what damping adds to force f of a grain (or
+  // body) whose velocity at the force's time is u.
+  static double law(double alpha, double f, double u) {
+    return -alpha * f * static_cast<double>((f > 0) - (f < 0)) * static_cast<double>((u > 0) - (u < 0));
+  }
   FixDampingCundall(Simulation& s, const Args& a);
+  double alpha() const { return alpha_; }
   void init() override;
   bool keeps_plane() const override { return true; }  // a zero component stays zero
   void begin(FixHook) override;

@@ -51,6 +51,7 @@ FixMultisphere::FixMultisphere(Simulation& s, const Args& a) : Fix(s, a), set_(s
 }
 
 void FixMultisphere::init() {
+  set_.find_damping();
   pair_col_ = sim.atoms.add_column("rigid:pair_exclusion", 1);
   sim.atoms.pair_exclusion = pair_col_;
   std::vector<int> count(set_.bodies.size(), 0);
@@ -92,6 +93,7 @@ void FixMultisphere::sum_forces() {
     }
     for (Body& b : set_.bodies)
       for (int e = 0; e < 3; ++e) b.force[e] += b.mass * g[e];
+    set_.damp_again();  // fix damping/cundall on the corrected sums
   }
 }
 

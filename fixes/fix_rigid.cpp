@@ -12,6 +12,7 @@
 // members: a flat dumbbell bouncing on a floor at e = 0.5 comes back at 0.366).
 // Grains of one body never pair (LIGGGHTS' fix multisphere; with LAMMPS' fix
 // rigid a deck asks for it by neigh_modify exclude): their forces would cancel.
+// fix damping/cundall damps a body as a whole (BodySet::damping), not its members.
 // f_ID[i][j]: body i, columns x y z (centre of mass, in the box), vx vy vz,
 // fx fy fz, tx ty tz (summed force and torque before the force/torque flags),
 // ix iy iz (image counters), as LAMMPS' global array.
@@ -56,6 +57,7 @@ class FixRigid : public Fix {
     pair_col_ = sim.atoms.add_column("rigid:pair_exclusion", 1);
     sim.atoms.pair_exclusion = pair_col_;
     refresh_state();
+    set_.find_damping();
     set_.place_members(false);
     refresh_contact_mass(true);
   }

@@ -5,6 +5,7 @@
 
 #include "core/simulation.h"
 #include "core/threads.h"
+#include "fixes/fix_damping_cundall.h"
 
 namespace sable::rigid {
 
@@ -242,8 +243,9 @@ bool BodySet::any_rotates() const { return std::any_of(bodies.begin(), bodies.en
 namespace {
 void kick(Body& b, double dtf) {
   for (int k = 0; k < 3; ++k) {
-    if (b.fflag[k]) b.vcm[k] += dtf * b.force[k] * b.inv_mass;
-    if (b.tflag[k]) b.angmom[k] += dtf * b.torque[k];
+    // (undamped: the sums alone, bit for bit)
+    if (b.fflag[k]) b.vcm[k] += dtf * (b.fdamp[k] == 0.0 ? b.force[k] : b.force[k] + b.fdamp[k]) * b.inv_mass;
+    if (b.tflag[k]) b.angmom[k] += dtf * (b.tdamp[k] == 0.0 ? b.torque[k] : b.torque[k] + b.tdamp[k]);
   }
 }
 
@@ -468,8 +470,10 @@ void BodySet::sum_body(int k, const double* accel) {
   const auto& c = at.column(col);
   Body& b = bodies[k];
   b.force = b.torque = V3{0, 0, 0};
+  std::uint32_t mask = 0;
   for (int m = start_[k]; m < start_[k + 1]; ++m) {
     const std::size_t i = static_cast<std::size_t>(member_[m]);
+    mask |= at.mask[i];
     V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
     if (accel)
       for (int e = 0; e < 3; ++e) f[e] += at.rmass[i] * accel[e];
@@ -480,6 +484,44 @@ void BodySet::sum_body(int k, const double* accel) {
       b.torque[e] += t[e] + at.torque[3 * i + e];
     }
   }
+  damp(b, mask);
+}
+
+// fix damping/cundall's law (YADE's cundallDamp2nd, as for a clump) on the
+// summed force against vcm + dt/2 F/M and the summed torque against
+// omega + dt/2 I^-1 T, component by component in the box frame.
+void BodySet::damp(Body& b, std::uint32_t mask) const {
+  b.fdamp = b.tdamp = V3{0, 0, 0};
+  if (damping.empty()) return;
+  const double h = 0.5 * sim_.dt;
+  V3 f = b.force, t = b.torque;
+  const V3 w = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+  for (const Damping& d : damping) {
+    if (!(mask & d.groupbit)) continue;
+    const V3 dw = omega_of(t, b.ex, b.ey, b.ez, b.inv_moments);
+    for (int e = 0; e < 3; ++e) {
+      const double df = FixDampingCundall::law(d.alpha, f[e], b.vcm[e] + h * f[e] * b.inv_mass);
+      const double dq = FixDampingCundall::law(d.alpha, t[e], w[e] + h * dw[e]);
+      f[e] += df, t[e] += dq;
+      b.fdamp[e] += df, b.tdamp[e] += dq;
+    }
+  }
+}
+
+void BodySet::damp_again() {
+  if (damping.empty()) return;
+  const Atoms& at = sim_.atoms;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    std::uint32_t mask = 0;
+    for (int m = start_[k]; m < start_[k + 1]; ++m) mask |= at.mask[member_[m]];
+    damp(bodies[k], mask);
+  }
+}
+
+void BodySet::find_damping() {
+  damping.clear();
+  for (auto& f : sim_.fixes)
+    if (const auto* d = dynamic_cast<const FixDampingCundall*>(f.get())) damping.push_back({d->groupbit, d->alpha()});
 }
 
 void BodySet::sum_forces() {

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,9 @@ struct alignas(64) Body {
   Q4 q{1, 0, 0, 0};
   std::array<bool, 3> fflag{true, true, true}, tflag{true, true, true};
   int members = 0;
+  // What fix damping/cundall adds to force and torque (BodySet::damping), set
+  // with each sum and applied by both half kicks; not in the sums above.
+  V3 fdamp{}, tdamp{};
 };
 
 // Principal moments (one below 1e-7 of the largest set to zero: no spin about
@@ -73,6 +77,16 @@ class BodySet {
   std::vector<Body> bodies;
   std::vector<int> number;
   int col = -1;  // the per-atom column
+  // Cundall's local damping of whole bodies, one entry per fix damping/cundall
+  // (in fix order): a body with a member in the group gets its summed force
+  // and torque damped against its own vcm and omega (not each member's).
+  struct Damping {
+    std::uint32_t groupbit;
+    double alpha;
+  };
+  std::vector<Damping> damping;
+  void find_damping();  // from the simulation's fixes; each run's init
+  void damp_again();     // after the owner changed the sums (multisphere's gravity)
 
   explicit BodySet(Simulation& s) : sim_(s) {}
   int body_of_atom(std::size_t i) const;  // -1: in no body
@@ -134,6 +148,7 @@ class BodySet {
   void list_members();
   void owned(const Fix::AtomRange& r, int& k0, int& k1) const;  // the bodies of r's thread
   void sum_body(int k, const double* accel);
+  void damp(Body& b, std::uint32_t mask) const;
   void advance(int k0, int k1, double dt, bool final_first, const double* accel);
   void turn(int k0, int k1, double dt);
   void place_range(std::size_t lo, std::size_t hi, bool positions);

@@ -471,3 +471,66 @@ run 20)");
   }
   EXPECT_EQ(d->cleared_steps, 0);  // two integrators: separate passes
 }
+
+// fix damping/cundall on rigid members damps the body, as YADE damps a clump:
+// its summed force against its own velocity, not each member's force against
+// the member's. Two glued overlapping spheres pulled apart by equal and
+// opposite forces along their axis, coasting along it at 0.01 m/s: the net
+// force is zero, so the body coasts on unchanged (damping member by member
+// shrank the force along the motion and grew the one against it: a net drag
+// of 2 alpha F, a dry friction that stopped the body).
+TEST(FixRigid, CundallDampingActsOnTheBodyNotItsMembers) {
+  Deck d;
+  d(granular("f f f", "-0.02 0.02 -0.02 0.02 -0.02 0.02", "1e-6") + R"(create_atoms 1 single -0.001 0 0 units box
+create_atoms 1 single 0.001 0 0 units box
+set group all diameter 0.004 density 2500
+group a1 id 1
+group a2 id 2
+fix p1 a1 addforce -0.01 0 0
+fix p2 a2 addforce 0.01 0 0
+fix damp all damping/cundall 0.7
+fix rb all rigid single
+velocity all set 0.01 0 0
+run 2000)");
+  EXPECT_NEAR(value(d, "f_rb[1][4]"), 0.01, 1e-15);
+  EXPECT_NEAR(value(d, "f_rb[1][1]"), 0.002 * 0.01, 1e-15);
+}
+
+// petit2017's clumps (3 disks overlapping, beta 0.62) settling on a floor under
+// a downward force with damping/cundall 0.7 (the Mohr deck's relaxation): the
+// pile comes to rest in balance, the floor carrying the whole load. Damped
+// member by member, the bodies hung on the damping as on dry friction: the
+// unbalanced-force ratio stayed at 0.76 and the floor carried 84 % of the load.
+TEST(FixRigid, CundallDampedClumpPileComesToBalance) {
+  Deck d;
+  d(R"(units si
+atom_style granular
+atom_modify map array
+dimension 2 grains disks
+boundary p f p
+region box block 0 0.025 0 0.04 -0.001 0.001 units box
+create_box 1 box
+neighbor 0.0002 bin
+neigh_modify delay 0
+fix pt all particletemplate/sphere 15485863 density constant 5.3 radius gaussian number 0.001 0.0005 cut 1
+fix bp all property/atom bodyid scalar no no no 0
+ballistic_deposit 20 pt seed 32452843 clump beta 0.62 body bp
+variable b atom f_bp
+fix m1 all property/global youngsModulus peratomtype 1e8
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.3
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+fix fw all wall/gran model hertz tangential history primitive type 1 yplane 0.0
+fix g all addforce 0 -0.01 0
+fix d all damping/cundall 0.7
+fix i all rigid/small custom v_b
+fix e2 all enforce2d
+compute ub all unbalanced/force
+run 40000)");
+  const double load = 0.01 * static_cast<double>(d->atoms.n);
+  EXPECT_LT(value(d, "c_ub"), 1e-3);
+  EXPECT_NEAR(-value(d, "f_fw[2]"), load, 1e-3 * load);
+}
