@@ -38,7 +38,8 @@ BASE = {"N": 1000, "mu": 0.3, "rotation": 0, "delta": 0.5, "cycles": 15, "damp":
 SEEDS_DAMPING2 = [10000019, 10000079, 10000103, 10000121, 10000139, 10000141, 10000169, 10000189, 10000223,
                   10000229]
 SWEEP_SEEDS = {"damping2": SEEDS_DAMPING2}
-SWEEP_ROOT = {"damping2": os.path.join(SWEEP, "damping2")}  # kept apart: the main plan's points keep their 5 seeds
+SWEEP_ROOT = {"damping2": os.path.join(SWEEP, "damping2"),  # kept apart: the main plan's points keep their 5 seeds
+              "clumps": os.path.join(SWEEP, "clumps")}
 SWEEPS = {
     # cheapest and most important first: the locked-rotation friction series (Fig. 9)
     "mu_locked": [dict(mu=m) for m in (0.1, 0.3, 0.5, 1.0)],
@@ -46,11 +47,14 @@ SWEEPS = {
     "delta": [dict(delta=d) for d in (0.0, 0.2, 0.7)],
     "mu_free": [dict(mu=m, rotation=1) for m in (0.1, 0.3, 0.5, 1.0)],
     "damping2": [dict(), dict(damp="restitution")],
+    # Fig. 16 (PLAN_clumps.md): rigid 3-disk clumps, 400 of them (1200 disks)
+    "clumps": [dict(beta=b, rotation=1, mu=m, N=400) for b in (0.25, 0.62, 0.90) for m in (0.1, 0.3, 0.5, 1.0)],
 }
 
 
 def point_name(v):
-    return "mu{mu}_rot{rotation}_d{delta}_{damp}_N{N}_c{cycles}".format(**v)
+    name = "mu{mu}_rot{rotation}_d{delta}_{damp}_N{N}_c{cycles}".format(**v)
+    return name + (f"_beta{v['beta']}" if v.get("beta", 0) else "")
 
 
 def sweep_runs(only=None):
