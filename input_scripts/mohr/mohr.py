@@ -336,6 +336,8 @@ def main():
         mohr_report.report(a.root, {k: v for k, v in SWEEPS.items() if k not in SWEEP_ROOT}, BASE, SEEDS, point_name)
         if os.path.isdir(os.path.join(a.root, "damping2")):
             mohr_report.report_damping(a.root, SEEDS_DAMPING2, SEEDS, point_name, BASE)
+        if os.path.isdir(os.path.join(a.root, "clumps")):
+            mohr_report.report_clumps(a.root, point_name, BASE)
 
 
 if __name__ == "__main__":
