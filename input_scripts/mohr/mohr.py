@@ -280,7 +280,14 @@ def cmd_sweep(a):
             continue
         done += 1
         t0 = time.time()
-        red = run_case(d, dict(v, seed=s, out="mohr"), sable=sable)
+        try:
+            red = run_case(d, dict(v, seed=s, out="mohr"), sable=sable)
+        except RuntimeError as e:  # the run stopped: kept (log) and reported, the sweep goes on
+            with open(os.path.join(d, "failed.txt"), "w") as f:
+                f.write(str(e) + "\n")
+            store(d)
+            print(f"[{i + 1}/{len(todo)}] {n} seed {s}: FAILED ({e})", flush=True)
+            continue
         store(d)
         print(f"[{i + 1}/{len(todo)}] {n} seed {s}: mu_M {red['mu_M_first']:.4f} -> {red['mu_M_last']:.4f}, "
               f"Z {red['Z_peak']:.3f}, alpha {red['alpha']:.3f}, capped {red['capped']}, {time.time() - t0:.0f} s",
