@@ -294,16 +294,6 @@ def cmd_sweep(a):
               flush=True)
 
 
-def mean_se(xs):
-    xs = [x for x in xs if x == x]
-    n = len(xs)
-    if n == 0:
-        return float("nan"), float("nan"), 0
-    m = sum(xs) / n
-    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1)) if n > 1 else float("nan")
-    return m, sd / math.sqrt(n) if n > 1 else float("nan"), n
-
-
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True)

@@ -171,6 +171,13 @@ def report(root, sweeps, base, seeds, point_name):
     print("\n".join(L))
 
 
+def save(fig, path, dpi=110):
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    import matplotlib.pyplot as plt
+    plt.close(fig)
+
+
 def read_states(path):
     op = gzip.open if path.endswith(".gz") else open
     with op(path, "rt") as f:
@@ -221,9 +228,7 @@ def figures(root, pts, base, point_name):
     ax.set_xlabel("grain friction mu")
     ax.set_ylabel("Mohr friction mu_M")
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(fd, "muM_vs_mu.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(fd, "muM_vs_mu.png"), 110)
 
     # mu_M against cycle (mean over seeds)
     fig, ax = plt.subplots(figsize=(5, 4))
@@ -236,9 +241,7 @@ def figures(root, pts, base, point_name):
     ax.set_xlabel("cycle")
     ax.set_ylabel("mu_M (mean over seeds)")
     ax.legend(fontsize=5)
-    fig.tight_layout()
-    fig.savefig(os.path.join(fd, "muM_vs_cycle.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(fd, "muM_vs_cycle.png"), 110)
 
     # one run in detail: Mohr circles (Fig. 5), K against sigma_yy (Figs. 2, 3), S against state (Fig. 8)
     fig5, ax5 = plt.subplots(figsize=(6, 3.5))
@@ -251,7 +254,6 @@ def figures(root, pts, base, point_name):
         runs = pts.get(P(mu=m), [])
         if not runs:
             continue
-        d = os.path.join(os.path.dirname(os.path.dirname(root)), "..", runs[0]["dir"])
         d = os.path.join(root, "runs", P(mu=m), os.path.basename(runs[0]["dir"]))
         sp = os.path.join(d, "mohr_states.txt.gz")
         if not os.path.exists(sp):
@@ -298,9 +300,7 @@ def figures(root, pts, base, point_name):
     ax14.set_xlabel("overlap / (R_i + R_j) (%)"), ax14.set_ylabel("PDF"), ax14.set_yscale("log"), ax14.legend(fontsize=7)
     for f, n in ((fig5, "mohr_circles.png"), (fig3, "K_vs_syy.png"), (fig8, "entropy_vs_state.png"),
                  (fig7, "angles_peak.png"), (fig14, "overlaps_peak.png")):
-        f.tight_layout()
-        f.savefig(os.path.join(fd, n), dpi=110)
-        plt.close(f)
+        save(f, os.path.join(fd, n))
 
     # Fig. 12: S against state for the delta series (first seed of each point)
     fig, ax = plt.subplots(figsize=(5, 4))
@@ -315,9 +315,7 @@ def figures(root, pts, base, point_name):
             ax.plot([r["state"] for r in rows], [r["S"] for r in rows], lw=1, label=f"delta {dl}")
     ax.set_xlabel("state"), ax.set_ylabel("S (Eq. 10, 36 bins)"), ax.legend(fontsize=7)
     ax.set_title("mu 0.3, locked (first seed)", fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(fd, "entropy_vs_state_delta.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(fd, "entropy_vs_state_delta.png"), 110)
 
     # Figs. 10, 11: against delta
     ds = [0.0, 0.2, 0.5, 0.7]
@@ -339,9 +337,7 @@ def figures(root, pts, base, point_name):
     axs[0].axhline(0.54, color="r", ls=":", label="paper 0.54")
     axs[1].axhline(0.458, color="r", ls=":", label="paper 0.458")
     axs[0].legend(fontsize=7), axs[1].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(fd, "vs_delta.png"), dpi=100)
-    plt.close(fig)
+    save(fig, os.path.join(fd, "vs_delta.png"), 100)
 
 
 def report_damping(sweep_root, new_seeds, old_seeds, point_name, base):
@@ -449,7 +445,5 @@ def report_clumps(sweep_root, point_name, base, betas=(0.25, 0.62, 0.90), mus=(0
                     capsize=3, label=lab)
     ax.set_xlabel("grain friction mu"), ax.set_ylabel("mu_M, cycle 15"), ax.set_ylim(0, 1.6)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(croot, "muM_vs_mu_clumps.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(croot, "muM_vs_mu_clumps.png"), 110)
     print("\n".join(L))

@@ -24,6 +24,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mohr  # noqa: E402
+from mohr_report import mean_se  # noqa: E402
 
 OUT = os.path.join(mohr.ROOT, "reference_runs", "mohr", "speed_error")
 SEEDS = [32452843, 15485867, 49979687]
@@ -90,7 +91,7 @@ def cmd_report():
                     if a and b:
                         d.append((a[key] - b[key]) / b[key])
                         w.append((a["wall_s"], a["result"]["steps"] * int(a["meta"]["N"])))
-                m, se, n = mohr.mean_se(d)
+                m, se, n = mean_se(d)
                 rows.append(dict(knob=k, value=v, obs=key, n=n, rel_err=m, rel_err_se=se,
                                  wall=sum(x[0] for x in w) / len(w) if w else float("nan"),
                                  ps=sum(x[1] for x in w) / len(w) if w else float("nan")))
