@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tests/unit/ballistic_scene.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
@@ -31,8 +32,7 @@ struct Disk {
 // +-1 sigma (delta 0.5), the body IDs in fix property/atom bid.
 std::string deck(double W, double H, double beta, const std::string& count, long seed = 32452843,
                  const std::string& extra = " body bid") {
-  return "units si\natom_style granular\ndimension 2 grains disks\nboundary p f p\nregion box block 0 " +
-         std::to_string(W) + " 0 " + std::to_string(H) + " -0.5 0.5 units box\ncreate_box 1 box\n" +
+  return sable::test::ballistic_box(W, H) +
          "fix pt all particletemplate/sphere 15485863 density constant 2650 radius gaussian number 1.0 0.5 cut 1\n"
          "fix bid all property/atom bodyid scalar no no no 0\n"
          "ballistic_deposit " + count + " pt seed " + std::to_string(seed) + " clump beta " + std::to_string(beta) +
@@ -50,9 +50,7 @@ std::vector<Disk> disks(Deck& d) {
 
 // Centre distance of i and j over ri + rj, j's x image nearest i's.
 double gap(const Disk& i, const Disk& j, double W, double* jx = nullptr) {
-  const double x = j.x + W * std::round((i.x - j.x) / W);
-  if (jx) *jx = x;
-  return std::hypot(i.x - x, i.y - j.y) / (i.r + j.r);
+  return sable::test::periodic_gap(i, j, W, jx);
 }
 
 // Clump k: disks 3k, 3k+1, 3k+2 (consecutive IDs).

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "tests/unit/ballistic_scene.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;
@@ -28,8 +29,7 @@ std::string deck(double W, double H, double sigma, const std::string& count, lon
                  const std::string& radius_extra = " cut 1") {
   const std::string radius = sigma > 0 ? "radius gaussian number 1.0 " + std::to_string(sigma) + radius_extra
                                        : "radius constant 1.0";
-  return "units si\natom_style granular\ndimension 2 grains disks\nboundary p f p\nregion box block 0 " +
-         std::to_string(W) + " 0 " + std::to_string(H) + " -0.5 0.5 units box\ncreate_box 1 box\n" +
+  return sable::test::ballistic_box(W, H) +
          "fix pt all particletemplate/sphere 15485863 density constant 2650 " + radius + "\n" +
          "ballistic_deposit " + count + " pt seed " + std::to_string(seed) + "\n";
 }
@@ -44,9 +44,7 @@ std::vector<Disk> disks(Deck& d) {
 // Centre distance of i and j over ri + rj, j's x image nearest i's (the box is
 // wider than 4 radii, so no disk touches two images of another).
 double gap(const Disk& i, const Disk& j, double W, double* jx = nullptr) {
-  const double x = j.x + W * std::round((i.x - j.x) / W);
-  if (jx) *jx = x;
-  return std::hypot(i.x - x, i.y - j.y) / (i.r + j.r);
+  return sable::test::periodic_gap(i, j, W, jx);
 }
 
 double min_gap(const std::vector<Disk>& g, double W) {
