@@ -35,6 +35,8 @@ DECK = os.path.join(HERE, 'mohr.in')
 YSCRIPT = os.path.join(HERE, 'mohr_yade.py')
 STORED = os.path.join(REPO, 'reference_runs', 'reference', 'mohr', 'yade')
 ANALYZE = os.path.join(REPO, 'build', 'sable-analyze')
+sys.path.insert(0, HERE)
+import mohr_report  # noqa: E402  (the states files' one reader)
 SEEDS = ['32452843', '15485867', '49979687', '67867967', '86028121']
 DEFAULTS = {'N': '500', 'cycles': '3'}
 # judged quantities (name, text); the others are listed, not judged
@@ -52,9 +54,7 @@ def show(p):
 
 
 def read_states(path):
-    lines = [l for l in open(path) if l.strip() and not l.startswith('#')]
-    names = lines[0].split()
-    return [dict(zip(names, map(float, l.split()))) for l in lines[1:]]
+    return mohr_report.read_states(path)[1]
 
 
 def analyze(args, *cmd):

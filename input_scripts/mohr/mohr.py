@@ -30,6 +30,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 DECK = os.path.join(HERE, "mohr.in")
 SWEEP = os.path.join(ROOT, "reference_runs", "mohr", "sweep")
+sys.path.insert(0, HERE)
+from mohr_report import read_states  # noqa: E402  (the states files' one reader)
 
 # ---- the pre-registered design (reference_runs/mohr/sweep/PLAN.md says why)
 SEEDS = [32452843, 15485867, 49979687, 86028121, 67867967]
@@ -92,14 +94,6 @@ def read_result(log):
         raise RuntimeError(f"{log}: no RESULT line (the run did not finish)")
     return {k: (float(v) if k not in ("cycles", "states", "capped", "steps") else int(float(v)))
             for k, v in res.items()}
-
-
-def read_states(path):
-    with open(path) as f:
-        header = f.readline()
-        rows = list(csv.DictReader((l for l in f), delimiter=" "))
-    meta = dict(kv.split("=", 1) for kv in header.split()[3:])
-    return meta, [{k: float(v) for k, v in r.items()} for r in rows]
 
 
 def read_csv(path):

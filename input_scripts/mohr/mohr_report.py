@@ -179,11 +179,14 @@ def save(fig, path, dpi=110):
 
 
 def read_states(path):
+    """A states file of mohr.in or mohr_yade.py (plain or .gz): (the header line's key=value
+    settings, the rows as dicts of floats)."""
     op = gzip.open if path.endswith(".gz") else open
     with op(path, "rt") as f:
-        f.readline()
+        header = f.readline()
         rows = list(csv.DictReader(f, delimiter=" "))
-    return [{k: float(v) for k, v in r.items()} for r in rows]
+    meta = dict(kv.split("=", 1) for kv in header.split()[3:] if "=" in kv)
+    return meta, [{k: float(v) for k, v in r.items()} for r in rows]
 
 
 def read_peak(path):
@@ -260,7 +263,7 @@ def figures(root, pts, base, point_name):
             sp = sp[:-3]
         if not os.path.exists(sp):
             continue
-        rows = read_states(sp)
+        _, rows = read_states(sp)
         ax8.plot([r["state"] for r in rows], [r["S"] for r in rows], lw=1, label=f"mu {m}")
         last = max(int(r["cycle"]) for r in rows)
         ld = [r for r in rows if int(r["cycle"]) == last and r["loading"] == 1]
@@ -311,7 +314,7 @@ def figures(root, pts, base, point_name):
         sp = os.path.join(root, "runs", P(delta=dl), os.path.basename(runs[0]["dir"]), "mohr_states.txt.gz")
         sp = sp if os.path.exists(sp) else sp[:-3]
         if os.path.exists(sp):
-            rows = read_states(sp)
+            _, rows = read_states(sp)
             ax.plot([r["state"] for r in rows], [r["S"] for r in rows], lw=1, label=f"delta {dl}")
     ax.set_xlabel("state"), ax.set_ylabel("S (Eq. 10, 36 bins)"), ax.legend(fontsize=7)
     ax.set_title("mu 0.3, locked (first seed)", fontsize=8)
