@@ -2,12 +2,19 @@
 """Run the drag study's deck (input_scripts/drag/drag.in) in sable and LIGGGHTS.
 
     /usr/bin/python3 reference_runs/drag/run_drag.py (--preset NAME | --cases FILE.json)
-        [--out DIR] [-j N] [--sable PATH] [--liggghts PATH] [--only CASE ...] [--dry-run]
+        [--out DIR] [-j N] [--sable PATH] [--sable-commit HASH] [--liggghts PATH] [--only CASE ...] [--dry-run]
+    /usr/bin/python3 reference_runs/drag/run_drag.py --freeze-sable DIR
 
 A case is a name, deck variables, codes and seeds (and optionally a speed-against-
 error `series` name). Each run gets its own folder OUT/<case>/<code>_s<seed>/ with
 the cylinder STL, log.txt, stdout.txt, drag_torque.txt and run.json (the parsed
 SCENE, SETTLED, BLOCK and RESULT lines, wall and CPU time, code version, status).
+Every run.json names the commits it was made with: `harness` (this checkout's HEAD, its
+uncommitted changes under input_scripts/drag and reference_runs/drag, the deck's sha256)
+and, for sable, the binary's sha256 and the commit it was built from (--sable-commit, else
+BINARY.commit, else the HEAD of the checkout whose build folder holds it when the binary is
+newer than the sources there); without one the campaign refuses to start. --freeze-sable DIR
+copies build/sable to DIR/sable_<HEAD> with its .commit file, for campaigns.
 Runs whose run.json says "ok" are skipped, so a cut campaign resumes where it
 stopped; failed runs are run again and reported with their error tail.
 
@@ -92,21 +99,137 @@ def scene(variables):
                 Estar=v['E'] / (v['rho'] * g * d), particle_steps=n1 * fill1 + ntot * (fill2 + steps_rot))
 
 
-# ---------------------------------------------------------------- one run
-def code_version(code, exe):
-    """What identifies the binary: for sable its sha256, build time and its checkout's
-    HEAD at run time (the build may be older); for LIGGGHTS the Debian package version."""
+# ---------------------------------------------------------------- what made a run
+SOURCES = ['core', 'fixes', 'computes', 'contact_models', 'tools', 'CMakeLists.txt']  # what build/sable is made of
+HARNESS_PATHS = ['input_scripts/drag', 'reference_runs/drag']
+HEX = re.compile(r'^[0-9a-fA-F]{7,40}$')
+
+
+def git(top, *a):
+    """git's stdout in the checkout top (trailing blanks cut), or None when it fails. --no-optional-locks:
+    `status` does not take the index lock of a checkout others work in."""
+    p = subprocess.run(['git', '--no-optional-locks', '-C', top, *a], capture_output=True, text=True)
+    return p.stdout.rstrip() if p.returncode == 0 else None
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, 'rb') as f:
+        for b in iter(lambda: f.read(1 << 20), b''):
+            h.update(b)
+    return h.hexdigest()
+
+
+def porcelain(top, paths):
+    """`git status --porcelain -- paths`: (tracked changes, untracked) as lists of lines."""
+    lines = (git(top, 'status', '--porcelain', '--', *paths) or '').splitlines()
+    return [l for l in lines if not l.startswith('??')], [l[3:] for l in lines if l.startswith('??')]
+
+
+def harness(out=None):
+    """The checkout that holds this script and the deck: its HEAD (full hash), uncommitted
+    changes under input_scripts/drag and reference_runs/drag (`dirty`: tracked files changed;
+    `untracked`: new files there, run folders under `out` left out) and the deck's sha256.
+    Exits when the checkout is not a git checkout: a run must name its commit."""
+    head = git(REPO, 'rev-parse', 'HEAD')
+    if not head:
+        sys.exit(f'{REPO} is not a git checkout: the runs could not name the commit of run_drag.py and the deck')
+    changed, new = porcelain(REPO, HARNESS_PATHS)
+    o = os.path.relpath(os.path.abspath(out), REPO).rstrip('/') + '/' if out else None
+    new = [n for n in new if not (o and (o.startswith(n) or n.startswith(o)))]
+    return {'commit': head, 'dirty': bool(changed), 'changes': changed[:20], 'untracked': new[:20],
+            'deck': os.path.relpath(DECK, REPO), 'deck_sha256': sha256(DECK)}
+
+
+def full_hash(h, top=REPO):
+    """h as a full hash where a checkout knows it, else h itself."""
+    return git(top, 'rev-parse', '--verify', '--quiet', h + '^{commit}') or h
+
+
+def sable_commit(exe, given=None):
+    """(commit, how it was established) of the sable binary, in this order: --sable-commit;
+    the file <binary>.commit (written by --freeze-sable or a campaign); the HEAD of the git
+    checkout whose build folder holds the binary, if the binary is newer than HEAD or than
+    the newest commit touching the sources (SOURCES: then HEAD's sources are the ones it was
+    built from), with that checkout's uncommitted source changes named. Exits otherwise."""
+    if given:
+        if not HEX.match(given):
+            sys.exit(f'--sable-commit {given}: not a commit hash')
+        return full_hash(given), '--sable-commit'
+    tag = exe + '.commit'
+    if os.path.exists(tag):
+        words = open(tag).read().split()
+        if not words or not HEX.match(words[0]):
+            sys.exit(f'{tag}: no commit hash in it')
+        return full_hash(words[0]), f'file {tag}'
+    refuse = (f'sable: cannot establish the commit {exe} was built from: {{}}.\n'
+              f'Give --sable-commit HASH, or write the hash into {tag}, or freeze a build with '
+              f'`run_drag.py --freeze-sable DIR` and run with --sable DIR/sable_<hash>.')
+    top = os.path.dirname(os.path.dirname(os.path.realpath(exe)))
+    if git(top, 'rev-parse', '--show-toplevel') != top:
+        sys.exit(refuse.format(f'no {os.path.basename(tag)} next to it and {top} is not the git checkout '
+                               'whose build folder holds it'))
+    head = git(top, 'rev-parse', 'HEAD')
+    built = os.path.getmtime(exe)
+    stamp = lambda t: time.strftime('%Y-%m-%d %H:%M', time.localtime(float(t)))
+    head_t = float(git(top, 'log', '-1', '--format=%ct', 'HEAD'))
+    src, src_t = (git(top, 'log', '-1', '--format=%H %ct', 'HEAD', '--', *SOURCES) or f'{head} {head_t}').split()
+    if built >= head_t:
+        how = f'HEAD of {top} (binary newer than HEAD)'
+    elif built >= float(src_t):
+        how = (f'HEAD of {top}: built from an older tree than HEAD ({stamp(built)} < {stamp(head_t)}), '
+               f'after {src[:12]}, the newest commit touching {" ".join(SOURCES)}: same sources')
+    else:
+        sys.exit(refuse.format(f'built from an older tree than HEAD: the binary ({stamp(built)}) is older than '
+                               f'{src[:12]} ({stamp(src_t)}), the newest commit touching {" ".join(SOURCES)}'))
+    changed, new = porcelain(top, SOURCES)
+    if changed or new:
+        how += '; plus uncommitted source changes: ' + ', '.join(changed + ['?? ' + n for n in new])[:300]
+    return head, how
+
+
+def code_version(code, exe, commit=None):
+    """What identifies the binary: for sable its sha256, build time and the commit it was
+    built from (commit: (hash, how), from sable_commit); for LIGGGHTS the Debian package
+    version and the binary's sha256."""
+    path = exe if os.path.exists(exe) else shutil.which(exe) or exe
     if code == 'liggghts':
         p = subprocess.run(['dpkg-query', '-W', '-f', '${Version}', 'liggghts'], capture_output=True, text=True)
-        return {'binary': exe, 'package': p.stdout.strip() or 'unknown'}
-    digest = hashlib.sha256(open(exe, 'rb').read()).hexdigest()[:16]
-    top = os.path.dirname(os.path.dirname(os.path.realpath(exe)))
-    git = subprocess.run(['git', '-C', top, 'log', '-1', '--format=%h %cd', '--date=short'],
-                         capture_output=True, text=True).stdout.strip()
-    return {'binary': exe, 'sha256': digest, 'built': time.strftime('%Y-%m-%d %H:%M', time.localtime(os.path.getmtime(exe))),
-            'checkout_head': git or 'unknown'}
+        return {'binary': exe, 'package': p.stdout.strip() or 'not a Debian package (dpkg-query: none)',
+                'sha256': sha256(path)}
+    c, how = commit or sable_commit(exe)
+    return {'binary': exe, 'sha256': sha256(path), 'commit': c, 'commit_source': how,
+            'built': time.strftime('%Y-%m-%d %H:%M', time.localtime(os.path.getmtime(path)))}
 
 
+def freeze_sable(folder):
+    """Copy build/sable to folder/sable_<short HEAD> with folder/sable_<short HEAD>.commit holding
+    the full HEAD hash; refuses when the sources (SOURCES) have uncommitted changes or build/sable
+    is older than the newest commit touching them. Returns the copy's path."""
+    src = os.path.join(REPO, 'build', 'sable')
+    if not os.path.exists(src):
+        sys.exit(f'{src} not found: build sable first')
+    changed, new = porcelain(REPO, SOURCES)
+    if changed or new:
+        sys.exit('refusing to freeze: uncommitted changes under ' + ' '.join(SOURCES) + ':\n  ' +
+                 '\n  '.join(changed + ['?? ' + n for n in new]))
+    head = git(REPO, 'rev-parse', 'HEAD')
+    last, last_t = git(REPO, 'log', '-1', '--format=%H %ct', 'HEAD', '--', *SOURCES).split()
+    if os.path.getmtime(src) < float(last_t):
+        sys.exit(f'refusing to freeze: {src} is older than {last[:12]}, the newest commit touching '
+                 f'{" ".join(SOURCES)}: rebuild it first')
+    dst = os.path.join(os.path.abspath(folder), 'sable_' + head[:12])
+    if os.path.exists(dst) and sha256(dst) != sha256(src):
+        sys.exit(f'{dst} exists and differs from {src}: remove it or freeze into another folder')
+    os.makedirs(folder, exist_ok=True)
+    if not os.path.exists(dst):
+        shutil.copy2(src, dst)
+    with open(dst + '.commit', 'w') as f:
+        f.write(head + '\n')
+    return dst
+
+
+# ---------------------------------------------------------------- one run
 def parse_stdout(text):
     """SCENE/SETTLED/RESULT key=value lines, BLOCK values, summed Loop times."""
     rec = {'blocks': [float(m) for m in re.findall(r'^BLOCK \d+ F=(\S+)', text, re.M)],
@@ -140,10 +263,12 @@ def launch(cmd, folder, stdout_name, threads):
     return os.waitstatus_to_exitcode(status), time.monotonic() - t0, usage.ru_utime + usage.ru_stime, text
 
 
-def run_one(case, code, seed, folder, exe, threads=1, chunk=0):
+def run_one(case, code, seed, folder, exe, threads=1, chunk=0, version=None, out=None):
     """Run the deck in its folder and write run.json; returns the record. sable runs on
     `threads` OpenMP threads (default 1, as LIGGGHTS' one process, so that times compare per core).
-    chunk > 0: in pieces of that many half-turns (run_pieces)."""
+    chunk > 0: in pieces of that many half-turns (run_pieces). version: code_version's record,
+    established when the campaign started (the run fails if the binary changed since); the
+    record also gets the harness (run_drag.py's and the deck's commit, `harness()`)."""
     os.makedirs(folder, exist_ok=True)
     v = {**{k: str(x) for k, x in case['vars'].items()}, 'seed': str(seed), 'stl': 'cylinder.stl', 'out': 'drag'}
     s = scene(v)
@@ -155,8 +280,12 @@ def run_one(case, code, seed, folder, exe, threads=1, chunk=0):
     rec = {'case': case['name'], 'code': code, 'seed': seed, 'vars': v, 'series': case.get('series'),
            'command': ' '.join(cmd), 'started': datetime.datetime.now().isoformat(timespec='seconds'),
            'threads': threads if code == 'sable' else 1,
-           'version': code_version(code, exe), 'estimate': {'grains': s['grains'], 'particle_steps': s['particle_steps']}}
-    if chunk:
+           'version': version or code_version(code, exe), 'harness': harness(out), 'estimate': {'grains': s['grains'], 'particle_steps': s['particle_steps']}}
+    now = sha256(exe if os.path.exists(exe) else shutil.which(exe) or exe)
+    if now != rec['version']['sha256']:
+        rec.update(returncode=None, status='failed', error_tail=[
+            f"{exe} changed since the campaign started (sha256 {now[:16]}, was {rec['version']['sha256'][:16]})"])
+    elif chunk:
         run_pieces(rec, cmd, folder, threads, chunk, int(s['turns']))
     else:
         rc, rec['wall_s'], rec['cpu_s'], text = launch(cmd + ['-log', 'log.txt'], folder, 'stdout.txt', threads)
@@ -181,6 +310,13 @@ def run_pieces(rec, cmd, folder, threads, chunk, turns):
     except (OSError, ValueError):
         st = {'done': 0, 'halves': [], 'pieces': []}
     total = 2 * turns
+    sha = rec['version']['sha256']
+    other = [p['sha256'] for p in st['pieces'] if p.get('sha256', sha) != sha]
+    if other:
+        rec.update(returncode=None, status='failed', pieces_done=st['done'], error_tail=[
+            f"the finished pieces were run by another binary (sha256 {other[0][:16]}, now {sha[:16]}): "
+            f"run it with that one, or remove {folder} to start over"])
+        return
     while st['done'] < total:
         k, n = st['done'], min(chunk, total - st['done'])
         name = f'piece{k}'
@@ -196,7 +332,8 @@ def run_pieces(rec, cmd, folder, threads, chunk, turns):
             st['scene'], st['settled'] = piece.get('scene'), piece.get('settled')
         st['halves'] += [h[1] for h in halves]
         st['pieces'].append({'from': k, 'halves': n, 'wall_s': wall, 'cpu_s': cpu,
-                             'loop_time_s': piece['loop_time_s'], 'step': piece['piece']['step']})
+                             'loop_time_s': piece['loop_time_s'], 'step': piece['piece']['step'], 'sha256': sha,
+                             'harness': rec['harness']['commit'], 'harness_dirty': rec['harness']['dirty']})
         st['done'] = k + n
         st['last'] = piece['piece']
         with open(state_file, 'w') as f:
@@ -293,9 +430,14 @@ def main():
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument('--preset', choices=PRESETS)
     g.add_argument('--cases', help='JSON case file')
+    g.add_argument('--freeze-sable', metavar='DIR', help='copy build/sable to DIR/sable_<HEAD> with the commit '
+                   'in DIR/sable_<HEAD>.commit (refused with uncommitted sources or a build older than them); '
+                   'prints the path for --sable')
     p.add_argument('--out', default=os.path.join(REPO, 'build', 'drag_runs'))
     p.add_argument('-j', type=int, default=1, help='runs at once (default 1: wall times measured alone)')
     p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
+    p.add_argument('--sable-commit', metavar='HASH', help='the commit the sable binary was built from (default: '
+                   'the file BINARY.commit, else the HEAD of the checkout whose build folder holds it)')
     p.add_argument('--liggghts', default=shutil.which('liggghts') or 'liggghts')
     p.add_argument('--threads', type=int, default=1, help="sable's OpenMP threads per run (default 1)")
     p.add_argument('--only', nargs='+', metavar='CASE', help='only these cases')
@@ -306,6 +448,9 @@ def main():
                         'a cut campaign goes on from the last finished piece); 0: whole runs')
     p.add_argument('--dry-run', action='store_true', help='print the plan and the time estimate only')
     args = p.parse_args()
+    if args.freeze_sable:
+        print(freeze_sable(args.freeze_sable))
+        return
     exe = {'sable': os.path.abspath(args.sable), 'liggghts': args.liggghts}
     cases = load_cases(args)
     print(f'drag campaign: {len(cases)} cases into {args.out}')
@@ -315,7 +460,17 @@ def main():
           f'(sable {SPEED["sable"]:.2g}, LIGGGHTS {SPEED["liggghts"]:.2g} particle-steps/s), '
           f'{todo_s / 60 / max(1, min(args.j, len(todo) or 1)):.1f} min at -j {args.j}', flush=True)
     if args.dry_run:
+        if any(r[1] == 'sable' for r in todo) and os.path.exists(exe['sable']):
+            try:
+                print('sable commit: %s (%s)' % sable_commit(exe['sable'], args.sable_commit))
+            except SystemExit as e:
+                print(f'the run would refuse to start: {e}')
         return
+    h = harness(args.out)  # both exit, before anything is written, when a commit cannot be named
+    print(f"harness: {h['deck']} at {h['commit'][:12]}" + (', with uncommitted changes: ' + '; '.join(h['changes'])
+                                                          if h['dirty'] else ''))
+    commit = (sable_commit(exe['sable'], args.sable_commit)
+              if any(r[1] == 'sable' for r in todo) and os.path.exists(exe['sable']) else None)
     os.makedirs(args.out, exist_ok=True)
     for code in {r[1] for r in todo}:
         if not (os.path.exists(exe[code]) or shutil.which(exe[code])):
@@ -324,12 +479,15 @@ def main():
             if missing:
                 sys.exit(f'{code}: no stored run for ' + ', '.join(f'{r[0]["name"]} s{r[2]}' for r in missing))
             todo = [r for r in todo if r[1] != code]
+    versions = {code: code_version(code, exe[code], commit) for code in sorted({r[1] for r in todo})}
+    for code, v in versions.items():
+        print(f'{code}: ' + ', '.join(f'{k} {x}' for k, x in v.items() if k != 'binary'))
     save_cases(args.out, cases)
     failed, lock, t0, count = [], threading.Lock(), time.monotonic(), [0]
 
     def job(r):
         c, code, seed, folder, _ = r
-        rec = run_one(c, code, seed, folder, exe[code], args.threads, args.chunk)
+        rec = run_one(c, code, seed, folder, exe[code], args.threads, args.chunk, versions[code], args.out)
         with lock:
             count[0] += 1
             res = rec.get('result', {})
