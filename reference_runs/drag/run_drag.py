@@ -21,7 +21,9 @@ stopped; failed runs are run again and reported with their error tail.
 -j N runs N at once. Keep the default 1 for campaigns whose wall times feed the
 speed-against-error plot: those must come from runs alone on the machine.
 Case file: {"cases": [{"name": ..., "vars": {"hL": 2, ...}, "codes": ["sable", "liggghts"],
-"seeds": [49979687, ...], "series": "dt" (or a list)}, ...]}. Exit status 1 if any run failed.
+"seeds": [49979687, ...], "series": "dt" (or a list)}, ...]}; "seeds" may also give each code
+its own list: {"sable": [...], "liggghts": [...]} (codes default to its keys). Exit status 1
+if any run failed.
 """
 import argparse, concurrent.futures, datetime, hashlib, json, math, os, re, shutil, subprocess, sys, threading, time
 
@@ -384,12 +386,20 @@ def load_cases(args):
     if args.only:
         cases = [c for c in cases if c['name'] in args.only]
     for c in cases:
+        if isinstance(c.get('seeds'), dict):
+            c.setdefault('codes', list(c['seeds']))
         c.setdefault('codes', BOTH)
         if args.codes:
             c['codes'] = [x for x in c['codes'] if x in args.codes.split(',')]
         c.setdefault('seeds', SEEDS[:1])
         c['vars'] = {k: str(x) for k, x in c['vars'].items()}
     return cases
+
+
+def seeds_of(case, code):
+    """The case's seeds for one code (a case gives one list for all codes, or one per code)."""
+    s = case['seeds']
+    return s.get(code, []) if isinstance(s, dict) else s
 
 
 def save_cases(out, cases):
@@ -400,8 +410,13 @@ def save_cases(out, cases):
     for c in cases:
         old = known.pop(c['name'], None)
         if old is not None and old['vars'] == c['vars']:
-            c = dict(c, codes=old['codes'] + [x for x in c['codes'] if x not in old['codes']],
-                     seeds=old['seeds'] + [x for x in c['seeds'] if x not in old['seeds']])
+            codes = old['codes'] + [x for x in c['codes'] if x not in old['codes']]
+            merged = lambda a, b: a + [x for x in b if x not in a]
+            if isinstance(old['seeds'], dict) or isinstance(c['seeds'], dict):
+                seeds = {k: merged(seeds_of(old, k), seeds_of(c, k)) for k in codes}
+            else:
+                seeds = merged(old['seeds'], c['seeds'])
+            c = dict(c, codes=codes, seeds=seeds)
         known[c['name']] = c
     with open(path, 'w') as f:
         json.dump({'cases': list(known.values())}, f, indent=1)
@@ -413,7 +428,7 @@ def plan(cases, out):
     for c in cases:
         s = scene(c['vars'])
         for code in c['codes']:
-            for seed in c['seeds']:
+            for seed in seeds_of(c, code):
                 folder = run_dir(out, c, code, seed)
                 done = is_done(folder)
                 runs.append((c, code, seed, folder, done))
