@@ -1,20 +1,25 @@
 #!/usr/bin/python3
 """Tables and figures of a drag campaign run by run_drag.py.
 
-    /usr/bin/python3 reference_runs/drag/report_drag.py [--out RUNS_DIR] [--report DIR] [--sigma K]
+    /usr/bin/python3 reference_runs/drag/report_drag.py [--out RUNS_DIR] [--report DIR] [--margin 0.1]
+        [--time wall|cpu]
 
 Reads RUNS_DIR/cases.json and every RUNS_DIR/<case>/<code>_s<seed>/run.json whose
 status is ok, and writes DIR/results.md (default DIR = RUNS_DIR) and the figures
 DIR/drag_turns.png, drag_depth.png, drag_stiffness.png and, when some cases form
-a speed-against-error series, speed_error.png. Per case and code, F_first and
-F_stat are the mean over seeds +- SE with
-    SE^2 = sd^2 / n + sum_i(err_i^2) / n^2,
-sd the sample standard deviation over the n seeds (0 for n = 1) and err_i run i's
-block error (F_stat_err; for F_first, a one-half-turn mean, F_stat_err sqrt(turns):
-the sd of one stationary half-turn block). The two terms overlap (the seed
-scatter contains the block noise): the SE errs on the large side. A case passes
-when |sable - LIGGGHTS| <= K sqrt(SE_s^2 + SE_l^2) (K = --sigma, default 1) or
-<= 5 % of LIGGGHTS. Exit status 1 if a judged quantity fails.
+a speed-against-error series, speed_error.png. Statistics over seeds are
+reference_runs/analysis/seedstats.py's: per case and code, F_first and F_stat are
+the mean over the n seeds +- the seed-to-seed SE, sd / sqrt(n) (none for one seed).
+A run's block error (F_stat_err; for F_first, a one-half-turn mean, F_stat_err
+sqrt(turns), the sd of one stationary half-turn block) is never added to it; it is
+shown as a check, seedstats.block_check: the rms block error over the seed sd
+(below 1 when the seed scatter holds the block noise). sable against LIGGGHTS:
+Welch's difference of the means with its 90 % interval, and the equivalence test
+(TOST, alpha 0.05) against +- margin x |LIGGGHTS mean| (--margin, default 0.10):
+'equivalent' when the 90 % interval lies inside; 'n/a (n<2)' when either code has
+fewer than two seeds (not judged). Exit status 1 only if a judged row is not shown
+equivalent. Times: CPU seconds per run (user + system) and their ratio
+LIGGGHTS / sable; wall seconds beside them, not compared.
 """
 import argparse, datetime, glob, json, math, os, re, sys
 
@@ -25,11 +30,13 @@ matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'analysis'))
 import run_drag  # noqa: E402  (the deck's numbers)
+import seedstats  # noqa: E402  (statistics over seeds)
 
 NAMES = {'sable': 'sable', 'liggghts': 'LIGGGHTS'}
 COLORS = {'sable': 'tab:blue', 'liggghts': 'tab:red'}
-REL_TOL = 0.05
+MARGIN = 0.10  # equivalence margin, fraction of the LIGGGHTS mean (--margin)
 SPEED_TOL = 0.05  # the speed-against-error target (issue 21: which settings reach 5 % fastest)
 SMOOTH = 5  # 1/100-turn rows per point of the F*(turns) curves
 
@@ -66,40 +73,43 @@ def load(out):
 
 
 # ---------------------------------------------------------------- statistics
-def mean_se(values, errors=None):
-    """Mean over seeds and its SE (seed scatter and block errors in quadrature)."""
-    v = np.array(values, float)
-    n = len(v)
-    if n == 0:
-        return math.nan, math.nan, 0
-    var = np.var(v, ddof=1) / n if n > 1 else 0.0
-    var += np.sum(np.square(errors)) / n ** 2 if errors is not None else 0.0
-    if n == 1 and errors is None:
-        var = math.nan
-    return float(v.mean()), math.sqrt(var), n
+def mean_se(values):
+    """(mean, seed-to-seed SE, n) over seeds (seedstats.summary; SE nan for one seed)."""
+    m = seedstats.summary(values)
+    return m.mean, m.se, m.n
 
 
 def summary(c, code):
-    """Per code: F_first, F_stat as (mean, SE, n), wall and CPU time, measured depth."""
+    """Per code: F_first, F_stat as (mean, SE, n) (SE: seed-to-seed only), their values over
+    the seeds and block checks, wall and CPU time, measured depth."""
     runs = c['runs'].get(code, [])
     res = [r['result'] for r in runs]
-    # F_first is one half-turn mean: its error is taken as the sd of one stationary half-turn block
-    return {'F_first': mean_se([r['F_first'] for r in res], [r['F_stat_err'] * math.sqrt(r['turns']) for r in res]),
-            'F_stat': mean_se([r['F_stat'] for r in res], [r['F_stat_err'] for r in res]),
+    values = {'F_first': [r['F_first'] for r in res], 'F_stat': [r['F_stat'] for r in res]}
+    # each run's block noise: F_stat_err for F_stat; F_first is one half-turn mean, whose noise
+    # is taken as the sd of one stationary half-turn block, F_stat_err sqrt(turns)
+    block = {'F_first': [r['F_stat_err'] * math.sqrt(r['turns']) for r in res],
+             'F_stat': [r['F_stat_err'] for r in res]}
+    return {**{q: mean_se(v) for q, v in values.items()},
+            'values': values,
+            'block': {q: seedstats.block_check(block[q], values[q]) for q in values},
             'wall': np.mean([r['wall_s'] for r in runs]) if runs else math.nan,
             'cpu': np.mean([r['cpu_s'] for r in runs]) if runs else math.nan,
+            'threads': sorted({r.get('threads', 1) for r in runs}),
             'hL': np.mean([r['result']['h_meas'] for r in runs]) / c['scene']['L'] if runs else math.nan,
             'stored': any(r.get('stored') for r in runs)}
 
 
-def judge(a, b, sigma):
-    """(diff, combined error, verdict) of sable's (mean, SE, n) against LIGGGHTS'."""
-    if not (a[2] and b[2]):
-        return math.nan, math.nan, '—'
-    diff = a[0] - b[0]
-    comb = math.sqrt(a[1] ** 2 + b[1] ** 2)
-    ok = abs(diff) <= REL_TOL * abs(b[0]) or (not math.isnan(comb) and abs(diff) <= sigma * comb)
-    return diff, comb, 'pass' if ok else 'FAIL'
+def judge(a, b, margin):
+    """sable's values over seeds against LIGGGHTS': (Welch difference, TOST, verdict); the
+    margin is a fraction of |LIGGGHTS mean|. Not judged ('n/a (n<2)', None, None) when
+    either has fewer than two seeds, or '—' when either has none."""
+    if not (a and b):
+        return None, None, '—'
+    if len(a) < 2 or len(b) < 2:
+        return None, None, 'n/a (n<2)'
+    d = seedstats.welch_diff(a, b)
+    e = seedstats.tost(d, margin * abs(seedstats.summary(b).mean))
+    return d, e, 'equivalent' if e.equivalent else 'not shown equivalent'
 
 
 # ---------------------------------------------------------------- the table
@@ -108,6 +118,10 @@ def fmt(m):
     if not n:
         return '—'
     return f'{mean:.3f} ± {se:.3f} ({n})' if not math.isnan(se) else f'{mean:.3f} ({n})'
+
+
+def check(x):
+    return 'n/a' if math.isnan(x) else f'{x:.2f}'
 
 
 def times(sm):
@@ -132,68 +146,97 @@ def series_table(cases, name, clock='wall'):
                 if c is ref:
                     shown = 'ref'
                 else:
-                    shown = f'{100 * err:.1f} ± {100 * comb:.1f} %'
+                    shown = f'{100 * err:.1f} %' + ('' if math.isnan(comb) else f' ± {100 * comb:.1f} %')
                     if err <= SPEED_TOL:
-                        within.append((sm[clock], c['name'], err + comb <= SPEED_TOL))
+                        within.append((sm[clock], c['name'], None if math.isnan(comb) else err + comb <= SPEED_TOL))
                 lines.append(f"| {c['name']} | {NAMES[code]} | {c['scene']['particle_steps']:.3g} | {fmt(sm['F_stat'])} "
                              f"| {shown} | {times(sm)} |")
         if within:
             t, best, sure = min(within)
             verdicts.append(f"- {NAMES[code]}: fastest within {100 * SPEED_TOL:g} % of its reference: {best} "
                             f"({t:.0f} s {clock})" + ('' if sure else ', within the statistical error only '
-                                                      '(error + combined SE above 5 %)'))
+                                                      '(error + combined SE above 5 %)' if sure is False else
+                                                      ' (no seed-to-seed SE: fewer than 2 seeds)'))
     return lines + [''] + verdicts + ['']
 
 
 def rel_error(a, ref):
-    """|a / ref - 1| and its SE from both (mean, SE, n)."""
+    """|a / ref - 1| and its SE from both (mean, SE, n); nan when either has one seed."""
     err = abs(a[0] - ref[0]) / ref[0]
     return err, math.sqrt(a[1] ** 2 + ref[1] ** 2) / ref[0]
 
 
-def case_table(c, sigma):
-    """Markdown lines for one case; and whether every judged row passed."""
+def case_table(c, margin):
+    """Markdown lines for one case; and whether every judged row was shown equivalent."""
     s = c['scene']
     sm = {code: summary(c, code) for code in ('sable', 'liggghts')}
     hl = sm['sable']['hL'] if not math.isnan(sm['sable']['hL']) else sm['liggghts']['hL']
     lig = 'LIGGGHTS' + (' (stored)' if sm['liggghts']['stored'] else '')
     lines = [f"### {c['name']}: h/L = {s['hL']:g} (measured {hl:.2f}), E* = {s['Estar']:.3g}, "
              f"{s['grains']} grains, {s['turns']:g} turns, dt = {s['dt']:.3g} s", '',
-             f'| quantity | sable mean ± SE (n) | {lig} mean ± SE (n) | sable − LIGGGHTS | combined SE | result |',
-             '|---|---|---|---|---|---|']
+             f'| quantity | sable mean ± SE (n) | block/sd | {lig} mean ± SE (n) | block/sd | sable − LIGGGHTS '
+             f'| 90 % interval (margin ± {100 * margin:g} %) | TOST p | result |',
+             '|---|---|---|---|---|---|---|---|---|']
     ok = True
     for q in ('F_first', 'F_stat'):
         a, b = sm['sable'][q], sm['liggghts'][q]
-        diff, comb, verdict = judge(a, b, sigma)
-        ok = ok and verdict != 'FAIL'
-        d = '—' if math.isnan(diff) else f'{diff:+.3f} ({100 * diff / b[0]:+.1f} %)'
-        lines.append(f"| {q} | {fmt(a)} | {fmt(b)} | {d} | {'—' if math.isnan(comb) else f'{comb:.3f}'} | {verdict} |")
-    ws, wl = sm['sable']['wall'], sm['liggghts']['wall']
-    ratio = f'LIGGGHTS / sable {wl / ws:.2f}' if ws > 0 and wl > 0 else ''
-    lines.append(f"| wall (CPU) s per run | {times(sm['sable'])} | {times(sm['liggghts'])} | {ratio} | | |")
+        d, e, verdict = judge(sm['sable']['values'][q], sm['liggghts']['values'][q], margin)
+        ok = ok and verdict != 'not shown equivalent'
+        diff = a[0] - b[0] if a[2] and b[2] else math.nan
+        shown = '—' if math.isnan(diff) else f'{diff:+.3f} ({100 * diff / b[0]:+.1f} %)'
+        ci = '—' if d is None or math.isnan(d.lo) else f'[{d.lo:+.3f}, {d.hi:+.3f}] (± {e.margin_hi:.3f})'
+        p = '—' if e is None or math.isnan(e.p) else f'{e.p:.3f}'
+        blk = {code: check(sm[code]['block'][q]) if sm[code][q][2] else '—' for code in sm}
+        lines.append(f"| {q} | {fmt(a)} | {blk['sable']} | {fmt(b)} | {blk['liggghts']} | {shown} | {ci} | {p} "
+                     f"| {verdict} |")
+    cs, cl = sm['sable']['cpu'], sm['liggghts']['cpu']
+    ratio = f'LIGGGHTS / sable {cl / cs:.2f}' if cs > 0 and cl > 0 else ''
+    cpu = {code: '—' if math.isnan(sm[code]['cpu']) else f"{sm[code]['cpu']:.0f}" for code in sm}
+    wall = {code: '—' if math.isnan(sm[code]['wall']) else f"{sm[code]['wall']:.0f}" for code in sm}
+    th = '/'.join(str(t) for t in sm['sable']['threads']) or '—'
+    lines.append(f"| CPU s per run | {cpu['sable']} | | {cpu['liggghts']} | | {ratio} | | | |")
+    lines.append(f"| wall s per run (not compared; sable threads: {th}) | {wall['sable']} | | {wall['liggghts']} "
+                 "| | | | | |")
     return lines + [''], ok
 
 
+def short(v):
+    """One code version record, old (sha256 16 hex, checkout_head) or new (commit, commit_source)."""
+    if 'commit' in v:
+        return f"commit {v['commit'][:12]} ({v.get('commit_source', '?')}), sha256 {v['sha256'][:16]}"
+    return ', '.join(f'{k} {x}' for k, x in v.items() if k != 'binary')
+
+
 def versions(cases):
-    v = {}
+    """Per code its binaries' versions, and the harness commits (run_drag.py and the deck) of
+    the runs; runs made before run.json recorded them say so."""
+    v, hv = {}, {}
     for c in cases:
         for code, runs in c['runs'].items():
             for r in runs:
-                v.setdefault(code, set()).add(', '.join(f'{k} {x}' for k, x in r['version'].items() if k != 'binary'))
-    return [f'- {NAMES.get(k, k)}: ' + '; '.join(sorted(x)) for k, x in v.items()]
+                v.setdefault(code, set()).add(short(r['version']))
+                h = r.get('harness')
+                key = (f"{h['commit'][:12]}" + (' with uncommitted changes' if h['dirty'] else '') +
+                       f", deck sha256 {h['deck_sha256'][:12]}") if h else 'not recorded (runs made before it was)'
+                hv[key] = hv.get(key, 0) + 1
+    return ([f'- {NAMES.get(k, k)}: ' + '; '.join(sorted(x)) for k, x in v.items()] +
+            ['- harness (run_drag.py and the deck): ' + '; '.join(f'{k}: {n} runs' for k, n in sorted(hv.items()))])
 
 
-def write_markdown(cases, path, sigma, figures, clock='wall'):
+def write_markdown(cases, path, margin, figures, clock='wall'):
     lines = [f'# Drag: sable against LIGGGHTS ({datetime.date.today().isoformat()})', '',
              'F* = F / (ρ g D L²), F = 4|M_z|/L. F_first: over turns 0-0.5; F_stat: over the last half of '
-             'the turns in half-turn blocks. Mean over seeds ± SE, SE² = sd²/n + Σ err_i²/n² (seed scatter '
-             'and each run\'s block error; for F_first, one half-turn, err = F_stat_err √turns, the sd of one '
-             'stationary half-turn block). '
-             f'Pass: |sable − LIGGGHTS| ≤ {sigma:g} × combined SE or ≤ {100 * REL_TOL:g} % of LIGGGHTS. '
-             'Wall time: the process alone; CPU: its user + system time.', '']
+             'the turns in half-turn blocks. Mean over seeds ± the seed-to-seed SE, sd/√n (none for one seed; '
+             'reference_runs/analysis/seedstats.py). block/sd: the runs\' rms block error (F_stat_err; for '
+             'F_first, one half-turn, F_stat_err √turns) over the seed sd, a check that should be below 1 '
+             '(n/a for one seed); it is not added to the SE. sable − LIGGGHTS: Welch\'s difference with its '
+             f'90 % interval; equivalent (TOST, α 0.05) when that interval lies within ± {100 * margin:g} % of the '
+             'LIGGGHTS mean; n/a (n<2) when either code has fewer than two seeds (not judged). '
+             'CPU: the process\' user + system time per run, and the ratio LIGGGHTS / sable; wall: the process '
+             'alone, not compared (sable may run on several threads).', '']
     status = True
     for c in cases:
-        t, ok = case_table(c, sigma)
+        t, ok = case_table(c, margin)
         lines += t
         status = status and ok
     for name in series_names(cases):
@@ -312,7 +355,7 @@ def fig_speed(cases, path, clock):
                 m, se, _ = sm['F_stat']
                 y = 100 * abs(m - f_ref) / f_ref
                 star = c is ref
-                ax.errorbar(sm[clock], y, 100 * se / f_ref, marker='*' if star else 'o', ms=10 if star else 5,
+                ax.errorbar(sm[clock], y, 0 if math.isnan(se) else 100 * se / f_ref, marker='*' if star else 'o', ms=10 if star else 5,
                             color=COLORS[code], capsize=2, ls='none')
                 ax.annotate(c['name'] + (' (ref)' if star else ''), (sm[clock], y), fontsize=6,
                             xytext=(3, 3), textcoords='offset points')
@@ -351,7 +394,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('--out', default=os.path.join(run_drag.REPO, 'build', 'drag_runs'), help='the runs folder')
     p.add_argument('--report', default=None, help='where results.md and the figures go (default: --out)')
-    p.add_argument('--sigma', type=float, default=1.0)
+    p.add_argument('--margin', type=float, default=MARGIN,
+                   help='equivalence margin, fraction of the LIGGGHTS mean (default 0.10)')
     p.add_argument('--time', choices=('wall', 'cpu'), default='wall',
                    help='the speed plot\'s clock (cpu: for runs made on a busy machine)')
     args = p.parse_args()
@@ -361,7 +405,7 @@ def main():
     if not cases:
         sys.exit(f'no finished runs in {args.out}')
     figs = figures(cases, folder, args.time)
-    ok, lines = write_markdown(cases, os.path.join(folder, "results.md"), args.sigma, figs, args.time)
+    ok, lines = write_markdown(cases, os.path.join(folder, "results.md"), args.margin, figs, args.time)
     print('\n'.join(l for l in lines if l.startswith(('|', '###'))))
     print(f"written: {os.path.join(folder, 'results.md')} and {', '.join(figs)}")
     sys.exit(0 if ok else 1)
