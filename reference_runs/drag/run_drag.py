@@ -153,7 +153,8 @@ def sable_commit(exe, given=None):
     the file <binary>.commit (written by --freeze-sable or a campaign); the HEAD of the git
     checkout whose build folder holds the binary, if the binary is newer than HEAD or than
     the newest commit touching the sources (SOURCES: then HEAD's sources are the ones it was
-    built from), with that checkout's uncommitted source changes named. Exits otherwise."""
+    built from), with that checkout's uncommitted source changes named; or, with no such
+    changes, if it is newer than every source file there (built, then committed). Exits otherwise."""
     if given:
         if not HEX.match(given):
             sys.exit(f'--sable-commit {given}: not a commit hash')
@@ -171,23 +172,43 @@ def sable_commit(exe, given=None):
     if git(top, 'rev-parse', '--show-toplevel') != top:
         sys.exit(refuse.format(f'no {os.path.basename(tag)} next to it and {top} is not the git checkout '
                                'whose build folder holds it'))
+    head, how, why = built_from_head(top, exe)
+    if how is None:
+        sys.exit(refuse.format(why))
+    return head, how
+
+
+def built_from_head(top, exe):
+    """Whether exe was built from the sources of HEAD of the checkout top: (HEAD, how, None) when
+    exe is newer than HEAD, or than the newest commit touching SOURCES, or (with no uncommitted
+    source changes) than every file under SOURCES (built, then committed), uncommitted source
+    changes named in `how`; else (HEAD, None, why)."""
     head = git(top, 'rev-parse', 'HEAD')
     built = os.path.getmtime(exe)
     stamp = lambda t: time.strftime('%Y-%m-%d %H:%M', time.localtime(float(t)))
     head_t = float(git(top, 'log', '-1', '--format=%ct', 'HEAD'))
     src, src_t = (git(top, 'log', '-1', '--format=%H %ct', 'HEAD', '--', *SOURCES) or f'{head} {head_t}').split()
+    changed, new = porcelain(top, SOURCES)
+    files = (git(top, 'ls-files', '-z', '--', *SOURCES) or '').split('\0')
+    newest = max((os.path.getmtime(os.path.join(top, f)) for f in files if f and os.path.exists(os.path.join(top, f))),
+                 default=math.inf)
+    srcs = ' '.join(SOURCES)
     if built >= head_t:
         how = f'HEAD of {top} (binary newer than HEAD)'
     elif built >= float(src_t):
         how = (f'HEAD of {top}: built from an older tree than HEAD ({stamp(built)} < {stamp(head_t)}), '
-               f'after {src[:12]}, the newest commit touching {" ".join(SOURCES)}: same sources')
+               f'after {src[:12]}, the newest commit touching {srcs}: same sources')
+    elif not (changed or new) and built >= newest:
+        how = (f'HEAD of {top}: binary older than {src[:12]}, the newest commit touching {srcs}, '
+               f'but newer than every file there ({stamp(newest)}), which are as committed: built, then committed')
     else:
-        sys.exit(refuse.format(f'built from an older tree than HEAD: the binary ({stamp(built)}) is older than '
-                               f'{src[:12]} ({stamp(src_t)}), the newest commit touching {" ".join(SOURCES)}'))
-    changed, new = porcelain(top, SOURCES)
+        return head, None, (f'built from an older tree than HEAD: the binary ({stamp(built)}) is older than '
+                            f'{src[:12]} ({stamp(src_t)}), the newest commit touching {srcs}' +
+                            (f', and older than files there ({stamp(newest)})' if newest != math.inf else '') +
+                            (', which have uncommitted changes' if changed or new else ''))
     if changed or new:
         how += '; plus uncommitted source changes: ' + ', '.join(changed + ['?? ' + n for n in new])[:300]
-    return head, how
+    return head, how, None
 
 
 def code_version(code, exe, commit=None):
@@ -207,7 +228,8 @@ def code_version(code, exe, commit=None):
 def freeze_sable(folder):
     """Copy build/sable to folder/sable_<short HEAD> with folder/sable_<short HEAD>.commit holding
     the full HEAD hash; refuses when the sources (SOURCES) have uncommitted changes or build/sable
-    is older than the newest commit touching them. Returns the copy's path."""
+    is older than the newest commit touching them (and than their files: built_from_head).
+    Returns the copy's path."""
     src = os.path.join(REPO, 'build', 'sable')
     if not os.path.exists(src):
         sys.exit(f'{src} not found: build sable first')
@@ -215,11 +237,9 @@ def freeze_sable(folder):
     if changed or new:
         sys.exit('refusing to freeze: uncommitted changes under ' + ' '.join(SOURCES) + ':\n  ' +
                  '\n  '.join(changed + ['?? ' + n for n in new]))
-    head = git(REPO, 'rev-parse', 'HEAD')
-    last, last_t = git(REPO, 'log', '-1', '--format=%H %ct', 'HEAD', '--', *SOURCES).split()
-    if os.path.getmtime(src) < float(last_t):
-        sys.exit(f'refusing to freeze: {src} is older than {last[:12]}, the newest commit touching '
-                 f'{" ".join(SOURCES)}: rebuild it first')
+    head, how, why = built_from_head(REPO, src)
+    if how is None:
+        sys.exit(f'refusing to freeze {src}: {why}; rebuild it first')
     dst = os.path.join(os.path.abspath(folder), 'sable_' + head[:12])
     if os.path.exists(dst) and sha256(dst) != sha256(src):
         sys.exit(f'{dst} exists and differs from {src}: remove it or freeze into another folder')
