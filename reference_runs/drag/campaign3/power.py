@@ -82,8 +82,8 @@ def ledger(rate):
 
 def power(cv, runs):
     """The tests' standard errors under the scatter measured, and their power."""
-    print('\n3. Power of the pre-registered tests (alpha 0.05; normal sampling, t quantile at the'
-          ' Satterthwaite df)')
+    print('\n3. Power of the pre-registered tests (alpha 0.05; the estimate normal, its estimated error'
+          ' sampled as chi^2 over the Satterthwaite df: seedstats.tost_power)')
     m = {float(h): S.summary([r['result']['F_stat'] for r in rs]).mean for (c, h), rs in runs.items() if c == 'sable'}
     hm = {1: 1.16, 2: 2.17, 3.7: 3.9, 5: 5.22}  # measured depth of each nominal one, in L
     F = {1: m[1], 2: m[2], 3.7: m[4] + (m[4] - m[3]) * (3.9 - 4.22) / (4.22 - 3.19), 5: m[5]}
