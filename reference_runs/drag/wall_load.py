@@ -109,8 +109,8 @@ def pm(v):
 
 
 def table(rows):
-    out = ['Drags: mean over the seeds ± SE as in report_drag.py\'s results.md (seed scatter and block '
-           'errors). Shares, lambda, J and the lift: the runs with load files (drag.in -var load 1). '
+    out = ['Drags: mean over the seeds ± the seed-to-seed SE (report_drag.summary; none for one seed). '
+           'Shares, lambda, J and the lift: the runs with load files (drag.in -var load 1). '
            'A negative share: the side wall pushes the bed down.', '',
            '| h/L | grains | seeds (with loads) | side-wall share: first half-turn / stationary | '
            'lambda/L first / stationary | J(h) first / stationary | cylinder lift share | '
