@@ -36,7 +36,7 @@ YSCRIPT = os.path.join(HERE, 'mohr_yade.py')
 STORED = os.path.join(REPO, 'reference_runs', 'reference', 'mohr', 'yade')
 ANALYZE = os.path.join(REPO, 'build', 'sable-analyze')
 sys.path.insert(0, HERE)
-import mohr_report  # noqa: E402  (the states files' one reader)
+import mohr_report  # noqa: E402  (the states files' one reader; mean_se: seedstats.summary)
 SEEDS = ['32452843', '15485867', '49979687', '67867967', '86028121']
 DEFAULTS = {'N': '500', 'cycles': '3'}
 # judged quantities (name, text); the others are listed, not judged
@@ -115,16 +115,6 @@ def run(cmd, cwd, log, timeout):
         except subprocess.TimeoutExpired:
             return f'timed out after {timeout} s'
     return None if r.returncode == 0 else f'exit status {r.returncode}'
-
-
-def stats(v):
-    v = [x for x in v if not math.isnan(x)]
-    n = len(v)
-    if n == 0:
-        return math.nan, math.nan, 0
-    m = sum(v) / n
-    sd = math.sqrt(sum((x - m) ** 2 for x in v) / (n - 1)) if n > 1 else math.nan
-    return m, sd / math.sqrt(n) if n > 1 else math.nan, n
 
 
 def figure(path, seeds, states, envs):
@@ -300,13 +290,13 @@ def main():
     for q in JUDGED + INFO:
         vs = [values['sable'][s][q] for s in a.seeds if s in values['sable']]
         vy = [values['yade'][s][q] for s in a.seeds if s in values['yade']]
-        ms, ses, ns = stats(vs)
-        my, sey, ny = stats(vy)
+        ms, ses, ns = mohr_report.mean_se(vs)
+        my, sey, ny = mohr_report.mean_se(vy)
         se = math.sqrt(ses ** 2 + sey ** 2)
         diff = ms - my
         pd = [values['sable'][s][q] - values['yade'][s][q] for s in a.seeds
               if s in values['sable'] and s in values['yade']]
-        pm, pse, _ = stats(pd)
+        pm, pse, _ = mohr_report.mean_se(pd)
         if q in JUDGED:
             passed = abs(diff) <= 2 * se if not math.isnan(se) else False
             res = 'PASS' if passed else 'FAIL'

@@ -7,21 +7,20 @@ import gzip
 import json
 import math
 import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "reference_runs", "analysis"))
+import seedstats  # noqa: E402  (statistics over seeds, one module for every study)
 
 SE_DIFF = 2.0      # "different": |d| > 2 combined SE
 Z_EQ = 1.645       # one-sided 5 % for the equivalence and "consistent" tests
 
 
 def mean_se(xs):
-    xs = [x for x in xs if x == x]
-    n = len(xs)
-    if n == 0:
-        return float("nan"), float("nan"), 0
-    m = sum(xs) / n
-    if n < 2:
-        return m, float("nan"), n
-    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (n - 1))
-    return m, sd / math.sqrt(n), n
+    """(mean, seed-to-seed SE, n) of the seeds' values, nan dropped: seedstats.summary (SE nan for one seed)."""
+    s = seedstats.summary(xs)
+    return s.mean, s.se, s.n
 
 
 def load(root):
