@@ -17,6 +17,7 @@ combinations of independent means carry Welch-Satterthwaite degrees of freedom.
 import math
 from dataclasses import dataclass
 
+import numpy as _np
 from scipy import stats as _st
 
 LEVEL = 0.90  # two-sided interval level: the TOST at alpha = 0.05 reads the 90 % interval
@@ -62,14 +63,15 @@ class OneSided:
 
 
 def summary(values):
-    """Mean, seed-to-seed sd and standard error of independent runs (nan values dropped)."""
-    v = [float(x) for x in values if x is not None and not math.isnan(float(x))]
+    """Mean, seed-to-seed sd and standard error of independent runs (nan and None dropped).
+    The sums are numpy's (np.mean, np.std(ddof=1): pairwise), so the scripts that used those
+    before give the same numbers to the last bit."""
+    v = _np.array([float(x) for x in values if x is not None and not math.isnan(float(x))], float)
     n = len(v)
     if n == 0:
         return Summary(math.nan, math.nan, 0, math.nan, math.nan)
-    m = sum(v) / n
-    sd = math.sqrt(sum((x - m) ** 2 for x in v) / (n - 1)) if n > 1 else math.nan
-    return Summary(m, sd, n, sd / math.sqrt(n) if n > 1 else math.nan, n - 1.0)
+    sd = float(v.std(ddof=1)) if n > 1 else math.nan
+    return Summary(float(v.mean()), sd, n, sd / math.sqrt(n) if n > 1 else math.nan, n - 1.0)
 
 
 def _as_summary(x):

@@ -57,6 +57,18 @@ class SummaryTest(unittest.TestCase):
         self.assertAlmostEqual(s.sd, math.sqrt(2.0), places=14)
         self.assertAlmostEqual(s.se, 1.0, places=14)
 
+    def test_same_bits_as_numpy(self):
+        # the scripts that used np.mean / np.std(ddof=1) keep their numbers to the last bit, also
+        # at 8 seeds and more, where numpy's pairwise sum and a running sum part
+        rng = np.random.default_rng(100)
+        sets = [rng.normal(4.6, 0.02, n) for n in (2, 3, 5, 8, 10, 10, 10, 16) for _ in range(5)]
+        self.assertTrue(any(sum(v.tolist()) / len(v) != float(np.mean(v)) for v in sets))  # the check can fail
+        for v in sets:
+            s = S.summary(v.tolist())
+            self.assertEqual(s.mean, float(np.mean(v)))
+            self.assertEqual(s.sd, float(np.std(v, ddof=1)))
+            self.assertEqual(s.se, float(np.std(v, ddof=1)) / math.sqrt(len(v)))
+
     def test_empty(self):
         s = S.summary([NAN])
         self.assertEqual(s.n, 0)
