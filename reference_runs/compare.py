@@ -17,6 +17,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 STORED = os.path.join(HERE, 'reference')
+sys.path.insert(0, os.path.join(HERE, 'analysis'))
+import seedstats  # noqa: E402  (statistics over seeds)
 
 
 def show(path):
@@ -250,9 +252,12 @@ def run_code(code, deck, outdir, variables, h, args):
         rec['seeds'] = {seeds[0]: [v[seeds[0]] for _, v in runs]}
     names = list(dict.fromkeys(n for r in results for n in r[0]))
     values = {n: [r[0].get(n, math.nan) for r in results] for n in names}
-    rec['observables'] = {n: float(np.mean(v)) for n, v in values.items()}
+    # seed means and sds (seedstats.summary); a seed without the observable leaves both nan
+    seeds_stat = {n: seedstats.summary(v) for n, v in values.items()}
+    full = {n: s.n == len(values[n]) for n, s in seeds_stat.items()}
+    rec['observables'] = {n: s.mean if full[n] else math.nan for n, s in seeds_stat.items()}
     if len(results) > 1:
-        rec['std'] = {n: float(np.std(v, ddof=1)) for n, v in values.items()}
+        rec['std'] = {n: s.sd if full[n] else math.nan for n, s in seeds_stat.items()}
         rec['values'] = values
     rec['series'] = results[0][1]
     rec['errors'] = [r[2] for r in results if r[2]]

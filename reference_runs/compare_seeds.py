@@ -38,18 +38,16 @@ a line that decides no observable fails the comparison, as in compare.py.
 """
 import argparse, datetime, json, math, os, shutil, sys
 
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'analysis'))
 import compare  # noqa: E402  (the deck conventions and the runner)
+import seedstats  # noqa: E402  (statistics over seeds)
 
 
 def stats(values):
-    v = np.array([x for x in values if not math.isnan(x)], float)
-    if len(v) == 0:
-        return math.nan, math.nan, 0
-    sd = float(np.std(v, ddof=1)) if len(v) > 1 else math.nan
-    return float(v.mean()), sd, len(v)
+    """(mean, seed-to-seed sd, n) of the seeds' values, nan dropped (seedstats.summary; sd nan for one)."""
+    s = seedstats.summary(values)
+    return s.mean, s.sd, s.n
 
 
 def result_values(screen):

@@ -35,7 +35,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), 'analysis'))
 import compare  # noqa: E402  (parse_screen: OBSERVABLE lines and thermo tables)
+import seedstats  # noqa: E402  (statistics over seeds)
 
 SOURCE = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public'
 SEEDS = [49979687, 67867967, 86028121, 104395301, 122949823, 141650939, 160481183, 179424673,
@@ -249,10 +251,9 @@ def run_one(name, code, seed, args):
 
 
 def stats(values):
-    v = np.array([x for x in values if x is not None and not math.isnan(x)], float)
-    if len(v) == 0:
-        return math.nan, math.nan, 0
-    return float(v.mean()), float(v.std(ddof=1)) if len(v) > 1 else 0.0, len(v)
+    """(mean, seed-to-seed sd, n) over the seeds (seedstats.summary); sd 0 for one seed."""
+    s = seedstats.summary(values)
+    return s.mean, 0.0 if s.n == 1 else s.sd, s.n
 
 
 def table(results, codes, k):
