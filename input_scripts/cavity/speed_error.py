@@ -25,6 +25,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sweep  # noqa: E402  (the deck, the binaries, key_values, csv_table)
+sys.path.insert(0, os.path.join(sweep.ROOT, 'reference_runs', 'analysis'))
+import seedstats  # noqa: E402  (statistics over seeds)
 
 OUT = os.path.join(sweep.ROOT, 'reference_runs', 'cavity', 'speed_error')
 BASE = {'Hd': 8, 'NU': 1, 'NP': 1, 'tshear': 2, 'trec': 0.5, 'dtfrac': 0.1, 'N0': 1.5e4, 'rate': 10}
@@ -162,18 +164,17 @@ def ks(work, a, b, tag):
 
 
 def mean_se(rs, key):
-    x = np.array([r[key] for r in rs])
-    return x.mean(), (x.std(ddof=1) / np.sqrt(len(x)) if len(x) > 1 else float('nan'))
+    """Seed mean and seed-to-seed SE of one key (seedstats.summary; SE nan for one seed)."""
+    s = seedstats.summary([r[key] for r in rs])
+    return s.mean, s.se
 
 
 def paired(rs, ref):
     """Seed by seed differences of F/(PLd) (setting - finest) over the seeds both ran: the
     error's mean and its standard error (both share each seed's deposit where they can)."""
     by = {r['seed']: r['F_PLd'] for r in ref}
-    d = np.array([r['F_PLd'] - by[r['seed']] for r in rs if r['seed'] in by])
-    if len(d) == 0:
-        return float('nan'), float('nan'), 0
-    return d.mean(), (d.std(ddof=1) / np.sqrt(len(d)) if len(d) > 1 else float('nan')), len(d)
+    s = seedstats.summary([r['F_PLd'] - by[r['seed']] for r in rs if r['seed'] in by])
+    return s.mean, s.se, s.n
 
 
 def report(a):
@@ -218,7 +219,6 @@ def report(a):
 
 
 def figure(rows):
-    sys.path.insert(0, os.path.join(sweep.ROOT, 'reference_runs', 'analysis'))
     import figstyle
     figstyle.use()
     import matplotlib.pyplot as plt

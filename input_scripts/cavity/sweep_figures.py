@@ -23,6 +23,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, 'reference_runs', 'analysis'))
 import sweep  # noqa: E402  (the plan's points, seeds and run names live there once)
 import figstyle  # noqa: E402
+import seedstats  # noqa: E402  (statistics over seeds)
 
 ANALYZE = os.path.join(ROOT, 'build', 'sable-analyze')
 PAPER_EQ4 = {'r1': 0.53, 'r2': 0.86, 'I0': 0.02}
@@ -70,11 +71,9 @@ def write_csv(path, **cols):
 
 
 def mean_se(x):
-    x = np.asarray(x, float)
-    x = x[np.isfinite(x)]
-    if len(x) == 0:
-        return np.nan, np.nan
-    return float(x.mean()), float(x.std(ddof=1) / np.sqrt(len(x))) if len(x) > 1 else np.nan
+    """Seed mean and seed-to-seed SE of the finite values (seedstats.summary; SE nan for one)."""
+    s = seedstats.summary([v for v in np.asarray(x, float) if np.isfinite(v)])
+    return s.mean, s.se
 
 
 def sigmoid(x, a, b, x0):
@@ -212,18 +211,12 @@ def eq4(tmp, S):
 
 
 def welch_tost(a, b):
-    """Welch t (two-sided) on a - b and TOST with margin ±MARGIN (each side at ALPHA)."""
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    va, vb = a.var(ddof=1) / len(a), b.var(ddof=1) / len(b)
-    se = np.sqrt(va + vb)
-    df = (va + vb) ** 2 / (va ** 2 / (len(a) - 1) + vb ** 2 / (len(b) - 1))
-    d = a.mean() - b.mean()
-    p_diff = float(stats.ttest_ind(a, b, equal_var=False).pvalue)
-    p_lo = float(stats.t.sf((d + MARGIN) / se, df))  # H0: d <= -MARGIN
-    p_hi = float(stats.t.cdf((d - MARGIN) / se, df))  # H0: d >= +MARGIN
-    q = stats.t.ppf(1 - ALPHA, df)
-    return {'d': d, 'se': se, 'df': df, 't': d / se, 'p_diff': p_diff, 'p_tost': max(p_lo, p_hi),
-            'ci90': (d - q * se, d + q * se)}
+    """Welch t (two-sided) on a - b and TOST with margin ±MARGIN (each side at ALPHA): seedstats."""
+    d = seedstats.welch_diff(a, b, level=1 - 2 * ALPHA)
+    e = seedstats.tost(d, MARGIN, alpha=ALPHA)
+    t = d.est / d.se
+    return {'d': d.est, 'se': d.se, 'df': d.df, 't': t, 'p_diff': float(2 * stats.t.sf(abs(t), d.df)),
+            'p_tost': e.p, 'ci90': (e.lo, e.hi)}
 
 
 def ks(tmp, a, b, name, n_dec_a, n_dec_b):
