@@ -25,8 +25,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import seedstats as S  # noqa: E402
 
 NAN = float("nan")
-M = 4000  # Monte Carlo campaigns per coverage check
-MR = 2000  # per rate check of the tests (each campaign calls scipy's t a few times: the slow part)
+M = 3000  # Monte Carlo campaigns per coverage check
+MR = 1500  # per rate check of the tests (each campaign calls scipy's t a few times: the slow part)
 
 
 def mc_se(p, m=M):
