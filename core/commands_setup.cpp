@@ -136,6 +136,39 @@ void cmd_neighbor(Simulation& sim, const Args& a) {
   if (s != "bin" && s != "multi" && s != "nsq") a.fail(2, "bin");
 }
 
+// neigh_modify exclude type M N | group G1 G2 | none; returns the index of its last word.
+static std::size_t parse_exclusion(Simulation& sim, const Args& a, std::size_t i) {
+  std::vector<Neighbor::Exclusion>& ex = sim.neighbor.exclusions;
+  const std::string& how = a.word(i + 1, "type, group or none");
+  if (how == "none") {
+    ex.clear();
+    return i + 1;
+  }
+  if (how == "type") {
+    int t[2];
+    for (int k = 0; k < 2; ++k) {
+      const long v = a.integer(i + 2 + k, "an atom type");
+      if (v < 1 || v > sim.atoms.ntypes) a.fail(i + 2 + k, "an atom type from 1 to " + std::to_string(sim.atoms.ntypes));
+      t[k] = static_cast<int>(v);
+    }
+    ex.push_back({true, t[0], t[1], 0, 0});
+    return i + 3;
+  }
+  if (how == "group") {
+    std::uint32_t bit[2];
+    for (int k = 0; k < 2; ++k) {
+      const int g = sim.groups.find(a.word(i + 2 + k, "a group ID"));
+      if (g < 0) a.fail(i + 2 + k, "the ID of a group defined before");
+      bit[k] = sim.groups.bit(g);
+    }
+    ex.push_back({false, 0, 0, bit[0], bit[1]});
+    return i + 3;
+  }
+  if (how == "molecule/intra" || how == "molecule/inter")
+    a.fail(i + 1, "type, group or none (granular atoms have no molecule IDs)");
+  a.fail(i + 1, "type, group or none");
+}
+
 void cmd_neigh_modify(Simulation& sim, const Args& a) {
   Neighbor& n = sim.neighbor;
   for (std::size_t i = 1; i < a.size(); ++i) {
@@ -151,9 +184,13 @@ void cmd_neigh_modify(Simulation& sim, const Args& a) {
       n.every = static_cast<int>(e);
     }
     else if (k == "check") n.check = a.yes_no(++i, "yes or no");
-    else if (k == "once" || k == "include" || k == "page" || k == "one" || k == "binsize") ++i;
-    else if (k == "exclude") i = a.size();
-    else a.fail(i, "a neigh_modify keyword: delay, every, check");
+    else if (k == "once") {
+      if (a.yes_no(++i, "yes or no")) a.fail(i, "no (sable rebuilds the list whenever grains move; 'once yes' is not supported)");
+    }
+    else if (k == "page" || k == "one" || k == "binsize") ++i;  // list memory and bin sizes: sable sizes its own
+    else if (k == "include") a.fail(i, "a neigh_modify keyword sable supports: delay, every, check, exclude (not include: lists restricted to a group)");
+    else if (k == "exclude") i = parse_exclusion(sim, a, i);
+    else a.fail(i, "a neigh_modify keyword: delay, every, check, exclude");
   }
   if (n.every < 1) a.fail_line("every must be >= 1");
 }

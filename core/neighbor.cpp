@@ -556,6 +556,19 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   // Entries of atom i (partners j > i within the cutoff plus skin) in the bins
   // of `st`, appended to (js, shifts).
   const double* exclusion = atoms.pair_exclusion >= 0 ? atoms.column(atoms.pair_exclusion).data() : nullptr;
+  const bool rules = !exclusions.empty();
+  const int* type = atoms.type.data();
+  const std::uint32_t* mask = atoms.mask.data();
+  auto ruled_out = [&](int i, int j) {
+    for (const Exclusion& e : exclusions) {
+      const bool hit = e.by_type ? (type[i] == e.type_a && type[j] == e.type_b) ||
+                                       (type[i] == e.type_b && type[j] == e.type_a)
+                                 : ((mask[i] & e.bit_a) && (mask[j] & e.bit_b)) ||
+                                       ((mask[i] & e.bit_b) && (mask[j] & e.bit_a));
+      if (hit) return true;
+    }
+    return false;
+  };
   auto scan = [&](std::size_t i, const Stencil& st, std::vector<int>& js, std::vector<std::uint8_t>& shifts) {
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2], ri = radius[i];
     const int ii = static_cast<int>(i);
@@ -568,7 +581,8 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
       auto test = [&](int j) {
         const double dx = x[3 * j] + s0 - xi0, dy = x[3 * j + 1] + s1 - xi1, dz = x[3 * j + 2] + s2 - xi2;
         const double cut = ri + radius[j] + skin;
-        if (dx * dx + dy * dy + dz * dz < cut * cut && (key == 0.0 || exclusion[j] != key)) {
+        if (dx * dx + dy * dy + dz * dz < cut * cut && (key == 0.0 || exclusion[j] != key) &&
+            !(rules && ruled_out(ii, j))) {
           js.push_back(j);
           shifts.push_back(code);
         }

@@ -127,6 +127,15 @@ class Neighbor {
 
   NeighborList list;
 
+  // neigh_modify exclude (LAMMPS' rules): pairs of these types, or with one grain in
+  // each group, never enter the list; empty: nothing is tested.
+  struct Exclusion {
+    bool by_type;
+    int type_a, type_b;          // by_type
+    std::uint32_t bit_a, bit_b;  // by group
+  };
+  std::vector<Exclusion> exclusions;
+
   // Rebuild now: wrap periodic atoms, bin, (sort), list, carry history.
   void build(Atoms& atoms, const Domain& domain, ContactStore* store, long step);
   // True when a rebuild is due at this step (LIGGGHTS rules).

@@ -225,6 +225,10 @@ bool YadeExporter::intercept(const std::string& line, const DeckLocation& where)
 // output and flow commands may follow (the scene is translated once).
 void YadeExporter::record(const Args& a) {
   const std::string& c = a.command();
+  if (c == "neigh_modify")  // YADE's collider has no per-type or per-group exclusion
+    for (std::size_t i = 1; i + 1 < a.size(); ++i)
+      if (a[i] == "exclude" && a[i + 1] != "none")
+        a.fail(i, "a neigh_modify keyword other than exclude (export-yade: excluded pairs are not translated to YADE)");
   if (c == "variable" && a.size() >= 2) snaps_.erase(a[1]);
   if (c == "variable" && a.size() >= 4 && a[2] == "equal") formulas_[a[1]] = a.joined(3);
   if (c == "variable" && a.size() >= 3 && a[2] != "equal") formulas_.erase(a[1]);
