@@ -6,12 +6,8 @@
 # The whole run also writes the walls' vertical loads (-var load 1, which must not
 # change the run): per half-turn, floor + side wall + cylinder balance the weight
 # (Newton: the bed's mean vertical momentum change over a half-turn is negligible).
-set -u
-sable=$1; src=$2; work=$3
-rm -rf "$work"; mkdir -p "$work" && cd "$work" || exit 1
-python3 "$src/input_scripts/drag/make_cylinder_stl.py" 0.003 0.006 cyl.stl > /dev/null || exit 1
-scene="-var Wd 10 -var Ld 4 -var Dd 2 -var zcL 1 -var hL 1 -var period 0.2 -var turns 2 -var settle 0.05 -var stl cyl.stl -log none -echo none"
-deck="$src/input_scripts/drag/drag.in"
+source "$(dirname "$0")/drag_small_scene.sh"
+scene="$scene -var hL 1"
 "$sable" -in "$deck" $scene -var out whole -var load 1 > whole.out 2>&1 || { tail -5 whole.out; exit 1; }
 "$sable" -in "$deck" $scene -var out part -var halves 1 > p0.out 2>&1 || { tail -5 p0.out; exit 1; }
 "$sable" -in "$deck" $scene -var out part -var halves 3 -var resume 1 > p1.out 2>&1 || { tail -5 p1.out; exit 1; }

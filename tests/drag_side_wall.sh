@@ -5,12 +5,8 @@
 # cylinder carry it all; with the default (the beads' friction) the
 # same scene's side wall carries a share, so the check can fail. Small scene, 5 rev/s:
 # the bed's momentum change within a half-turn leaves up to ~1.5 % off the weight (3 % allowed).
-set -u
-sable=$1; src=$2; work=$3
-rm -rf "$work"; mkdir -p "$work" && cd "$work" || exit 1
-python3 "$src/input_scripts/drag/make_cylinder_stl.py" 0.003 0.006 cyl.stl > /dev/null || exit 1
-scene="-var Wd 10 -var Ld 4 -var Dd 2 -var zcL 1 -var hL 1.5 -var period 0.2 -var turns 2 -var settle 0.05 -var stl cyl.stl -var load 1 -log none -echo none"
-deck="$src/input_scripts/drag/drag.in"
+source "$(dirname "$0")/drag_small_scene.sh"
+scene="$scene -var hL 1.5 -var load 1"
 "$sable" -in "$deck" $scene -var out rough > rough.out 2>&1 || { tail -5 rough.out; exit 1; }
 "$sable" -in "$deck" $scene -var out smooth -var muside 0 > smooth.out 2>&1 || { tail -5 smooth.out; exit 1; }
 grep -h '^RESULT' rough.out smooth.out

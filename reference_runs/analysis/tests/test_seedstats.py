@@ -167,36 +167,37 @@ class MonteCarloTest(unittest.TestCase):
         self.assertLessEqual(abs(rate - expected), k * mc_se(expected),
                              f"{what}: rate {rate:.4f}, expected {expected:.4f} +- {k:g} MC SE")
 
-    def test_welch_coverage(self):
-        rng = np.random.default_rng(101)
+    def coverage(self, seed, estimate, true):
+        """Share of M synthetic campaigns whose 90 % interval holds the true value."""
+        rng = np.random.default_rng(seed)
         hit = 0
-        for _ in range(M):  # n 4 vs 3, sd 2 vs 0.5, true difference 1
-            d = S.welch_diff(rng.normal(1.0, 2.0, 4), rng.normal(0.0, 0.5, 3))
-            hit += d.lo <= 1.0 <= d.hi
+        for _ in range(M):
+            e = estimate(rng)
+            hit += e.lo <= true <= e.hi
+        return hit / M
+
+    def test_welch_coverage(self):
+        # n 4 vs 3, sd 2 vs 0.5, true difference 1
+        rate = self.coverage(101, lambda rng: S.welch_diff(rng.normal(1.0, 2.0, 4), rng.normal(0.0, 0.5, 3)), 1.0)
         # Welch's df is an approximation: 0.87-0.93 (about +-6 MC SE)
-        self.assertTrue(0.87 <= hit / M <= 0.93, hit / M)
+        self.assertTrue(0.87 <= rate <= 0.93, rate)
+
+    @staticmethod
+    def slope_of(rng):  # 4 groups of 4 seeds, true slope 0.7
+        x, sds = [1.0, 2.0, 3.0, 5.0], [0.5, 1.0, 1.5, 2.0]
+        return S.slope(x, [rng.normal(2 + 0.7 * xi, s, 4) for xi, s in zip(x, sds)])
 
     def test_slope_coverage(self):
-        rng = np.random.default_rng(102)
-        x, sds = [1.0, 2.0, 3.0, 5.0], [0.5, 1.0, 1.5, 2.0]
-        hit = 0
-        for _ in range(M):  # 4 groups of 4 seeds, true slope 0.7
-            b = S.slope(x, [rng.normal(2 + 0.7 * xi, s, 4) for xi, s in zip(x, sds)])
-            hit += b.lo <= 0.7 <= b.hi
-        self.assertTrue(0.87 <= hit / M <= 0.93, hit / M)
+        rate = self.coverage(102, self.slope_of, 0.7)
+        self.assertTrue(0.87 <= rate <= 0.93, rate)
 
     def test_ratio_coverage(self):
-        rng = np.random.default_rng(103)
-        x, sds = [1.0, 2.0, 3.0, 5.0], [0.5, 1.0, 1.5, 2.0]
-        hit = 0
-        for _ in range(M):  # slope 0.7 over a mean 5 (sd 1, 4 seeds): true ratio 0.14
-            b = S.slope(x, [rng.normal(2 + 0.7 * xi, s, 4) for xi, s in zip(x, sds)])
-            m = S.linear_contrast([rng.normal(5.0, 1.0, 4)], [1.0])
-            r = S.ratio(b, m)
-            hit += r.lo <= 0.14 <= r.hi
+        # slope 0.7 over a mean 5 (sd 1, 4 seeds): true ratio 0.14
+        ratio = lambda rng: S.ratio(self.slope_of(rng), S.linear_contrast([rng.normal(5.0, 1.0, 4)], [1.0]))
+        rate = self.coverage(103, ratio, 0.14)
         # the delta method is first order (the denominator's 10 % error makes it cover a little
         # under 0.90): the same 0.87-0.93 band holds here
-        self.assertTrue(0.87 <= hit / M <= 0.93, hit / M)
+        self.assertTrue(0.87 <= rate <= 0.93, rate)
 
     def test_tost_at_the_margin(self):
         rng = np.random.default_rng(104)
