@@ -60,6 +60,57 @@ class ContactKernel {
   std::unique_ptr<ContactLoop> loop_;
 };
 
+// The steps of one contact, in order: the normal force (damped, limited), the
+// cohesive pull, the tangential force and rolling torque, then the force and
+// torques on the grains. Free functions so that a law composed another way
+// can do the same operations in the same order and give the same bits.
+
+// The normal model's force with the damping model's dashpot, then limitForce.
+template <class N, class D, class K>
+[[gnu::always_inline]] inline NormalForce damped_normal_force(const N& normal, const D& damping, const K& c, double* h,
+                                                              const StepContext& ctx) {
+  NormalForce nf = normal.force(c, h, ctx);
+  damping.damp(normal, c, nf);
+  nf.Fn = nf.Fel - nf.gamman * c.vn;
+  normal.limit(nf);
+  return nf;
+}
+
+// A cohesive pull f acts on the grains; the Coulomb cap and rolling friction
+// see it only when `seen` (tangential_reduce on, LIGGGHTS 3.8's sidata.Fn).
+// Returns the part kept apart from nf.Fn.
+[[gnu::always_inline]] inline double add_cohesion(NormalForce& nf, double f, bool seen) {
+  nf.Fn += seen ? f : 0.0;
+  return seen ? 0.0 : f;
+}
+
+// Force on i (normal fn along en plus ft) and the torques on i and j (lever
+// arms cri, crj; rolling torque mr taken from i, given to j).
+template <class K>
+[[gnu::always_inline]] inline ContactParts contact_parts(const K& c, double fn, const Vec3& ft, const Vec3& mr) {
+  constexpr bool k3 = K::kDim == 3;
+  const double* en = c.en;
+  ContactParts p{};
+  p.f[0] = fn * en[0] + ft.x;
+  p.f[1] = fn * en[1] + ft.y;
+  p.f[2] = k3 ? fn * en[2] + ft.z : 0.0;
+  if constexpr (K::kRotation) {
+    const double tor2 = en[0] * ft.y - en[1] * ft.x;
+    p.ti[2] = -c.cri * tor2 - mr.z;
+    p.tj[2] = -c.crj * tor2 + mr.z;
+    if constexpr (k3) {
+      const double tor0 = en[1] * ft.z - en[2] * ft.y, tor1 = en[2] * ft.x - en[0] * ft.z;
+      p.ti[0] = -c.cri * tor0 - mr.x;
+      p.ti[1] = -c.cri * tor1 - mr.y;
+      p.tj[0] = -c.crj * tor0 + mr.x;
+      p.tj[1] = -c.crj * tor1 + mr.y;
+    } else {
+      p.ti[0] = p.ti[1] = p.tj[0] = p.tj[1] = 0.0;
+    }
+  }
+  return p;
+}
+
 template <class N, class D, class T, class R, class C>
 class GranKernel final
     : public ContactKernel,
@@ -126,43 +177,14 @@ class GranKernel final
   // those parts are then not computed (the scatter adds no torque).
   template <class K>
   [[gnu::always_inline]] inline Parts evaluate_one(const K& c, double* h, const StepContext& ctx) const {
-    constexpr bool k3 = K::kDim == 3;
-    NormalForce nf = normal_.force(c, h, ctx);
-    damping_.damp(normal_, c, nf);
-    nf.Fn = nf.Fel - nf.gamman * c.vn;
-    normal_.limit(nf);
-    // The cohesive pull acts on the grains; the Coulomb cap and rolling
-    // friction see it only with tangential_reduce on (LIGGGHTS 3.8's sidata.Fn).
+    NormalForce nf = damped_normal_force(normal_, damping_, c, h, ctx);
     double fcoh = 0.0;
-    if constexpr (C::kActive) {
-      const double f = cohesion_.force(c, nf, h + kHN + kHD + kHT + kHR, ctx);
-      const bool seen = cohesion_.reduces_tangential();
-      nf.Fn += seen ? f : 0.0;
-      fcoh = seen ? 0.0 : f;
-    }
+    if constexpr (C::kActive)
+      fcoh = add_cohesion(nf, cohesion_.force(c, nf, h + kHN + kHD + kHT + kHR, ctx), cohesion_.reduces_tangential());
     const Vec3 ft = tangential_.force(c, nf, h + kHN + kHD, ctx);
-    const double* en = c.en;
-    const double fn = nf.Fn + fcoh;
-    Parts p{};
-    p.f[0] = fn * en[0] + ft.x;
-    p.f[1] = fn * en[1] + ft.y;
-    p.f[2] = k3 ? fn * en[2] + ft.z : 0.0;
-    if constexpr (K::kRotation) {
-      const Vec3 mr = rolling_.torque(c, nf, h + kHN + kHD + kHT, ctx);
-      const double tor2 = en[0] * ft.y - en[1] * ft.x;
-      p.ti[2] = -c.cri * tor2 - mr.z;
-      p.tj[2] = -c.crj * tor2 + mr.z;
-      if constexpr (k3) {
-        const double tor0 = en[1] * ft.z - en[2] * ft.y, tor1 = en[2] * ft.x - en[0] * ft.z;
-        p.ti[0] = -c.cri * tor0 - mr.x;
-        p.ti[1] = -c.cri * tor1 - mr.y;
-        p.tj[0] = -c.crj * tor0 + mr.x;
-        p.tj[1] = -c.crj * tor1 + mr.y;
-      } else {
-        p.ti[0] = p.ti[1] = p.tj[0] = p.tj[1] = 0.0;
-      }
-    }
-    return p;
+    Vec3 mr{};
+    if constexpr (K::kRotation) mr = rolling_.torque(c, nf, h + kHN + kHD + kHT, ctx);
+    return contact_parts(c, nf.Fn + fcoh, ft, mr);
   }
 
   // Columns in,  force/torque columns and new history out.
