@@ -64,8 +64,9 @@ class ModelSettings {
 
 // What each axis asks of a sub-model (contact_models/README.md). A header
 // under contact_models/<axis>/ ends with SABLE_<AXIS>_MODEL(Type); the build
-// finds that line and composes the type with every model of the other axes
-// (no list to edit); the macro itself checks the interface.
+// finds that line and the type runs with every model of the other axes
+// (composed at run time; compiled when contact_models/compiled_laws.txt lists
+// the combination: no list to edit otherwise); the macro checks the interface.
 template <class M>
 concept SubModel = requires(M m, ModelSettings& s, std::vector<HistorySlot>& h) {
   { M::kName } -> std::convertible_to<const char*>;

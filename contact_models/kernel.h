@@ -10,6 +10,8 @@
 // (core/contact_loop.h), shared by every law and every contact source: the
 // pair list, primitive walls, meshes. The same law serves them all, as
 // LIGGGHTS registers each ContactModel<Style> for both pair and wall.
+// Compiled for the combinations of contact_models/compiled_laws.txt; every
+// other combination runs composed at run time (composed.h) with the same steps.
 //
 // A sub-model struct provides (see contact_models/README.md):
 //   static constexpr const char* kName;  static constexpr int kHistory;
@@ -60,10 +62,9 @@ class ContactKernel {
   std::unique_ptr<ContactLoop> loop_;
 };
 
-// The steps of one contact, in order: the normal force (damped, limited), the
-// cohesive pull, the tangential force and rolling torque, then the force and
-// torques on the grains. Free functions so that a law composed another way
-// can do the same operations in the same order and give the same bits.
+// The steps of one contact that every law shares, compiled (GranKernel) or
+// composed at run time (contact_models/composed.h): one definition, so both
+// do the same operations in the same order and give the same bits.
 
 // The normal model's force with the damping model's dashpot, then limitForce.
 template <class N, class D, class K>

@@ -20,7 +20,7 @@ std::uint32_t frozen_groupbits(const Simulation& sim) {
 
 PairGran::PairGran(Simulation& s, const Args& a) : Pair(s, a) {
   const ModelSelection sel = parse_model_selection(a, 2);
-  kernel_ = make_kernel(sel, a);
+  kernel_ = make_kernel(sel, a, s);
   ModelSettings settings;
   kernel_->settings(settings);
   settings.on_off("historyResetAtRebuild", keep_history_until_rebuild_);  // sable addition, see pair_gran.h

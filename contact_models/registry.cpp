@@ -1,16 +1,26 @@
 #include "contact_models/registry.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <set>
 #include <sstream>
 
 #include "core/args.h"
+#include "core/simulation.h"
 
 namespace sable {
 
 static std::set<std::string> axis_names(ModelAxis axis) {
+  const auto& p = GranModelRegistry::parts();
   std::set<std::string> s;
-  for (auto& [k, f] : GranModelRegistry::table()) s.insert(k[axis]);
+  auto keys = [&s](const auto& m) {
+    for (auto& [k, f] : m) s.insert(k);
+  };
+  if (axis == kNormalAxis || axis == kDampingAxis)
+    for (auto& [k, f] : p.normal) s.insert(k[axis == kNormalAxis ? 0 : 1]);
+  if (axis == kTangentialAxis) keys(p.tangential);
+  if (axis == kRollingAxis) keys(p.rolling);
+  if (axis == kCohesionAxis) keys(p.cohesion);
   return s;
 }
 
@@ -63,7 +73,30 @@ ModelSelection parse_model_selection(const Args& a, std::size_t i) {
   return s;
 }
 
-std::unique_ptr<ContactKernel> make_kernel(const ModelSelection& s, const Args& a) {
+// The selection's parts, or an error: a normal model registered without this
+// damping model (SABLE_GRAN_MODEL: damping liggghts only), or too much history.
+static ComposedParts compose(const ModelSelection& s, const Args& a) {
+  const auto& p = GranModelRegistry::parts();
+  const auto nd = p.normal.find({s.names[kNormalAxis], s.names[kDampingAxis]});
+  if (nd == p.normal.end())
+    a.fail(s.at[kDampingAxis] ? s.at[kDampingAxis] : s.at[kNormalAxis],
+           "a damping model registered with model " + s.names[kNormalAxis] + " (damping " + s.names[kDampingAxis] +
+               " is not; SABLE_GRAN_NORMAL registers a normal model with every damping model)");
+  ComposedParts c;
+  std::copy(s.names.begin(), s.names.end(), c.names.begin());
+  c.normal = nd->second();
+  c.tangential = p.tangential.at(s.names[kTangentialAxis])();
+  c.rolling = p.rolling.at(s.names[kRollingAxis])();
+  c.cohesion = p.cohesion.at(s.names[kCohesionAxis])();
+  if (c.history() > kMaxLoopHistory)
+    a.fail(s.at[kNormalAxis], "models with at most " + std::to_string(kMaxLoopHistory) +
+                                  " history values per contact together (core/contact_loop.h), not " +
+                                  std::to_string(c.history()));
+  return c;
+}
+
+// Each selected name is registered on its axis, or an error naming those that are.
+static void check_names(const ModelSelection& s, const Args& a) {
   for (int x = 0; x < kAxes; ++x) {
     const auto ax = static_cast<ModelAxis>(x);
     if (GranModelRegistry::has_name(ax, s.names[ax])) continue;
@@ -73,14 +106,18 @@ std::unique_ptr<ContactKernel> make_kernel(const ModelSelection& s, const Args& 
     a.fail(s.at[ax], std::string(kAxisWhat[ax]) + ": " + known +
                          (ax == kNormalAxis ? " (or one a 'plugin load' registers)" : ""));
   }
-  const auto* f = GranModelRegistry::find(s.names);
-  if (!f) {
-    std::string combo;
-    for (int x = 0; x < kAxes; ++x) combo += std::string(x ? " " : "") + kAxisKeyword[x] + " " + s.names[x];
-    a.fail(s.at[kNormalAxis], "a registered combination: " + combo +
-                                  " was not compiled (register it with SABLE_GRAN_MODEL or SABLE_GRAN_NORMAL)");
-  }
-  return (*f)();
+}
+
+std::unique_ptr<ContactKernel> make_kernel(const ModelSelection& s, const Args& a, Simulation& sim) {
+  check_names(s, a);
+  const char* env = std::getenv("SABLE_COMPOSED_LAWS");
+  const bool all_composed = env && *env && std::string(env) != "0";
+  if (const auto* f = GranModelRegistry::find(s.names); f && !all_composed) return (*f)();
+  auto law = make_composed_kernel(compose(s, a));
+  const std::string why =
+      all_composed ? "SABLE_COMPOSED_LAWS is set" : "not among the compiled laws, contact_models/compiled_laws.txt";
+  sim.print_once("NOTE: the contact law '" + law->name() + "' runs on the slower runtime-composed path (" + why + ")");
+  return law;
 }
 
 void ModelSettings::parse(const Args& a, std::size_t i) const {

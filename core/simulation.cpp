@@ -42,6 +42,10 @@ void Simulation::print(const std::string& line) {
 
 void Simulation::warn(const std::string& line) { print("WARNING: " + line); }
 
+void Simulation::print_once(const std::string& line) {
+  if (printed_once.insert(line).second) print(line);
+}
+
 void Simulation::open_log(const std::string& path) {
   if (logfile) std::fclose(logfile);
   logfile = nullptr;

@@ -88,6 +88,9 @@ class Simulation {
   // Output to screen and log.
   void print(const std::string& line);
   void warn(const std::string& line);
+  // The first time only (a note that each style using it would repeat).
+  void print_once(const std::string& line);
+  std::set<std::string> printed_once;
   FILE* screen = stdout;
   FILE* logfile = nullptr;
   bool echo_screen = false, echo_log = true;

@@ -20,7 +20,7 @@ FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
   hooks = atom_tasks = POST_FORCE;
   vector_size = 3;
   const ModelSelection sel = parse_model_selection(a, 4);
-  kernel_ = make_kernel(sel, a);
+  kernel_ = make_kernel(sel, a, s);
   ModelSettings settings;
   kernel_->settings(settings);
   bool have_wall = false;

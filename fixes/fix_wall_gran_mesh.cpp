@@ -21,7 +21,7 @@ FixWallGranMesh::FixWallGranMesh(Simulation& s, const Args& a) : Fix(s, a) {
   hooks = atom_tasks = POST_FORCE;
   vector_size = 3;
   const ModelSelection sel = parse_model_selection(a, 4);
-  kernel_ = make_kernel(sel, a);
+  kernel_ = make_kernel(sel, a, s);
   ModelSettings settings;
   kernel_->settings(settings);
   std::size_t i = sel.next;

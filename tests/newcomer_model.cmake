@@ -1,7 +1,9 @@
 # A newcomer's sub-model is one header: written here into a copy of
 # contact_models/, with nothing else edited, the build's generator
-# (contact_models/models.cmake) must list it on its axis and register it with
-# every other model, and that composition must compile.
+# (contact_models/models.cmake) must list it on its axis, and the source that
+# registers every listed model for laws composed at run time
+# (contact_models/builtin_parts.cpp) must compile with it; once a line of
+# compiled_laws.txt names it, its compiled law must be generated and compile.
 # cmake -DSRC=<source dir> -DWORK=<scratch dir> -DCXX=<compiler> -P newcomer_model.cmake
 file(REMOVE_RECURSE ${WORK})
 file(COPY ${SRC}/contact_models DESTINATION ${WORK})
@@ -35,14 +37,23 @@ endif()
 if(NOT models MATCHES "using Rollings = TypeList<[^>]*sable::RollingNewcomer")
   message(FATAL_ERROR "the newcomer is not on the rolling axis:\n${models}")
 endif()
-list(LENGTH SABLE_MODEL_SOURCES n)
-message(STATUS "generated ${n} law sources; the rolling axis: newcomer listed")
-# Every normal x damping source composes the newcomer; compile one of them in full semantic analysis.
-list(GET SABLE_MODEL_SOURCES 0 first)
 list(TRANSFORM INC PREPEND -I)
-execute_process(COMMAND ${CXX} -std=c++20 -fsyntax-only -I${WORK} -I${WORK}/generated -I${SRC} ${INC} ${first}
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the composition with the newcomer does not compile:\n${err}")
+function(compiles what file)
+  execute_process(COMMAND ${CXX} -std=c++20 -fsyntax-only -I${WORK} -I${WORK}/generated -I${SRC} ${INC} ${file}
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} does not compile:\n${err}")
+  endif()
+  message(STATUS "${what}: compiles")
+endfunction()
+# Composed at run time with every other model: no list edited.
+compiles("the newcomer as a part of composed laws (builtin_parts.cpp)" ${WORK}/contact_models/builtin_parts.cpp)
+# Compiled once the list names it.
+file(APPEND ${WORK}/contact_models/compiled_laws.txt "hertz liggghts history newcomer off  # the newcomer, fast\n")
+sable_generate_models(${WORK} ${WORK}/generated)
+set(law ${WORK}/generated/law_hertz_liggghts_history_newcomer_off.cpp)
+list(FIND SABLE_MODEL_SOURCES ${law} at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "no compiled law generated for the newcomer's line: ${SABLE_MODEL_SOURCES}")
 endif()
-message(STATUS "compiled ${first} with the newcomer: ok")
+compiles("the newcomer's compiled law (${law})" ${law})
