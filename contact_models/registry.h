@@ -69,9 +69,8 @@ std::unique_ptr<Base> make_part() {
   return std::make_unique<P>();
 }
 template <class N, class D>
-bool register_normal_part() {
+void add_normal_part() {
   GranModelRegistry::parts().normal[{N::kName, D::kName}] = &make_part<NormalPartOf<N, D>, NormalPart>;
-  return true;
 }
 template <class T>
 void add_tangential_part() {
@@ -94,7 +93,7 @@ std::unique_ptr<ContactKernel> make_gran_kernel() {
 // One compiled law; its sub-models also join the composed laws.
 template <class N, class D, class T, class R, class C>
 bool register_gran_model() {
-  register_normal_part<N, D>();
+  add_normal_part<N, D>();
   add_tangential_part<T>();
   add_rolling_part<R>();
   add_cohesion_part<C>();
@@ -104,7 +103,8 @@ bool register_gran_model() {
 // N with every damping model of the list, composed at run time.
 template <class N, class... Ds>
 bool register_normal(TypeList<Ds...>) {
-  return (register_normal_part<N, Ds>() && ...);
+  (add_normal_part<N, Ds>(), ...);
+  return true;
 }
 
 // A name as a template argument: the law sources that models.cmake generates
