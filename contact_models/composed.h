@@ -64,7 +64,7 @@ class PartOf : public Base {
 };
 
 // A normal model with one damping model: compiled together, since the damping
-// model may read the normal one (damping liggghts applies its own dashpot).
+// model reads what the normal one exports (damping liggghts: its LIGGGHTS form).
 template <class N, class D>
 class NormalPartOf final : public PartOf<N, NormalPart> {
  public:
@@ -85,7 +85,7 @@ class NormalPartOf final : public PartOf<N, NormalPart> {
   void forces(const Contact* c, int n, double* h, int hs, const StepContext& ctx, NormalForce* nf) const override {
     for (int m = 0; m < n; ++m) nf[m] = damped_normal_force(this->m_, damping_, c[m], h + m * hs, ctx);
   }
-  double contact_time(const ContactTimeInput& in) const override { return this->m_.contact_time(in); }
+  double contact_time(const ContactTimeInput& in) const override { return law_contact_time(this->m_, damping_, in); }
 
  private:
   D damping_;

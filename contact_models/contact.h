@@ -10,8 +10,10 @@
 //   cri   contact radius r_i - deltan/2 (lever arm of the tangential force)
 //   force on i = Fn en + Ft, force on j = -(Fn en + Ft)
 //   torque on i = -cri en x Ft - Mr, torque on j = -crj en x Ft + Mr
+#include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -24,22 +26,33 @@ class Args;
 class PropertyRequest;
 
 // The normal force of one contact, built along the axes: the normal model
-// sets kn, kt, the elastic force Fel (and s, a factor its own damping reuses),
-// the damping model gamman and gammat; then Fn = Fel - gamman vn, limited by
-// the normal model (limitForce), plus the cohesion force. kt and gammat feed
-// the tangential model, as LIGGGHTS' normal models set sidata.kt/gammat; Fn
-// (damped, possibly limited) is the force the Coulomb cap uses.
+// sets kn, kt, the elastic force Fel (and s, what the Hertz dashpots scale
+// with), the damping model gamman and gammat from them; then Fn = Fel - gamman vn,
+// limited by the normal model (limitForce), plus the cohesion force. kt and
+// gammat feed the tangential model, as LIGGGHTS' normal models set
+// sidata.kt/gammat; Fn (damped, possibly limited) is the force the Coulomb cap uses.
 struct NormalForce {
   double Fn = 0, kn = 0, kt = 0, gamman = 0, gammat = 0;
   double Fel = 0;  // elastic part
-  double s = 0;    // the normal model's own: sqrt(R* dn) for Hertz-type models
+  double s = 0;    // sqrt(R* dn) for Hertz-type models (0 for linear springs)
 };
+
+// Which of LIGGGHTS' dashpots a normal model has in LIGGGHTS 3.8, applied by
+// `damping liggghts` (damping/liggghts.h, which lists the formulas); `own`: the
+// model brings its dashpot as damping()/connect_damping() (a plugin's model).
+enum class LiggghtsDamping { hertz, hooke, stiffness, hertz_stiffness, restitution, own };
 
 // Stability check inputs for one pair of grains touching at speed v.
 struct ContactTimeInput {
   double meff, reff, v;
   int tp;
 };
+
+// Half period of a linear spring kn with dashpot gamman: pi / sqrt(kn/m* - (gamman / 2m*)^2).
+inline double linear_contact_time(double kn, double meff, double gamman = 0.0) {
+  const double w2 = kn / meff - gamman * gamman / (4.0 * meff * meff);
+  return std::numbers::pi / std::sqrt(std::max(w2, 1e-300));
+}
 
 // Keywords a sub-model understands (LIGGGHTS "Settings": on/off switches after the model names).
 class ModelSettings {
@@ -74,15 +87,20 @@ concept SubModel = requires(M m, ModelSettings& s, std::vector<HistorySlot>& h) 
   M::history_slots(h);
   m.settings(s);
 };
+// A normal model whose LIGGGHTS dashpot is its own (LiggghtsDamping::own).
 template <class M>
-concept NormalSubModel = SubModel<M> && requires(const M& m, M& mm, const Contact& c, NormalForce& n, double* h,
-                                                 const StepContext& x, const ContactTimeInput& t, PropertyRequest& p) {
-  { m.force(c, h, x) } -> std::same_as<NormalForce>;
+concept OwnDashpot = requires(const M& m, M& mm, const Contact& c, NormalForce& n, PropertyRequest& p) {
   m.damping(c, n);
-  m.limit(n);
   mm.connect_damping(p);
-  { m.contact_time(t) } -> std::convertible_to<double>;
 };
+template <class M>
+concept NormalSubModel = SubModel<M> && requires(const M& m, const Contact& c, NormalForce& n, double* h,
+                                                 const StepContext& x, const ContactTimeInput& t) {
+  { m.force(c, h, x) } -> std::same_as<NormalForce>;
+  m.limit(n);
+  { m.contact_time(t) } -> std::convertible_to<double>;  // undamped
+  { M::kLiggghtsDamping } -> std::convertible_to<LiggghtsDamping>;
+} && (M::kLiggghtsDamping != LiggghtsDamping::own || OwnDashpot<M>);
 template <class M>
 concept TangentialSubModel = SubModel<M> && requires(const M& m, const Contact& c, const NormalForce& n, double* h,
                                                      const StepContext& x) {

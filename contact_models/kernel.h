@@ -17,11 +17,12 @@
 //   static constexpr const char* kName;  static constexpr int kHistory;
 //   static void history_slots(std::vector<HistorySlot>&);
 //   void settings(ModelSettings&);  void connect(PropertyRequest&);
-//   normal:     NormalForce force(const Contact&, double* hist, const StepContext&) const;  (kn, kt, Fel)
-//               void damping(const Contact&, NormalForce&) const;  (its LIGGGHTS damping)
+//   normal:     NormalForce force(const Contact&, double* hist, const StepContext&) const;  (kn, kt, Fel, s)
 //               void limit(NormalForce&) const;  (limitForce)
-//               double contact_time(const ContactTimeInput&) const;
+//               double contact_time(const ContactTimeInput&) const;  (undamped)
+//               static constexpr LiggghtsDamping kLiggghtsDamping;  (its LIGGGHTS dashpot's form)
 //   damping:    template <class N> void damp(const N&, const Contact&, NormalForce&) const;  (gamman, gammat)
+//               optional: template <class N> double contact_time(const N&, const ContactTimeInput&) const;
 //   tangential: Vec3 force(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 //   rolling:    Vec3 torque(const Contact&, const NormalForce&, double* hist, const StepContext&) const;
 //   cohesion:   static constexpr bool kActive;
@@ -75,6 +76,16 @@ template <class N, class D, class K>
   nf.Fn = nf.Fel - nf.gamman * c.vn;
   normal.limit(nf);
   return nf;
+}
+
+// The law's contact time (the stability check): the damping model's where it
+// has one (a linear spring with its dashpot), else the normal model's.
+template <class N, class D>
+double law_contact_time(const N& normal, const D& damping, const ContactTimeInput& in) {
+  if constexpr (requires { damping.contact_time(normal, in); })
+    return damping.contact_time(normal, in);
+  else
+    return normal.contact_time(in);
 }
 
 // A cohesive pull f acts on the grains; the Coulomb cap and rolling friction
@@ -154,7 +165,7 @@ class GranKernel final
     cohesion_.connect(p);
   }
   const std::vector<HistorySlot>& history_slots() const override { return slots_; }
-  double contact_time(const ContactTimeInput& in) const override { return normal_.contact_time(in); }
+  double contact_time(const ContactTimeInput& in) const override { return law_contact_time(normal_, damping_, in); }
   void evaluate(PairChunk<kH>& ch, double dt, bool update, Simd simd, Kinematics kin) const override {
     evaluate_columns_any(ch, dt, update, simd, kin);
   }

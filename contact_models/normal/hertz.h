@@ -1,10 +1,9 @@
 #pragma once
 // model hertz — reproduces LIGGGHTS 3.8 NormalModel<HERTZ> (normal_model_hertz.h):
 //   kn = 4/3 Y* sqrt(R* dn),  kt = 8 G* sqrt(R* dn)
-//   gamman = -2 sqrt(5/6) beta sqrt(Sn m*),  Sn = 2 Y* sqrt(R* dn)
-//   gammat = -2 sqrt(5/6) beta sqrt(St m*),  St = kt   (0 with tangential_damping off)
 //   Fn = kn dn - gamman vn   (clipped at 0 with limitForce on)
-// Y*, G*, beta = ln e / sqrt(ln^2 e + pi^2) are LIGGGHTS' Yeff, Geff, betaeff.
+// Y*, G* are LIGGGHTS' Yeff, Geff. Its LIGGGHTS dashpot (gamman, gammat from
+// sqrt(R* dn)) is damping/liggghts.h's `hertz` form.
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -18,6 +17,7 @@ struct NormalHertz {
   static constexpr const char* kName = "hertz";
   static constexpr int kHistory = 0;
   static void history_slots(std::vector<HistorySlot>&) {}
+  static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::hertz;
 
   bool tangential_damping = true, limit_force = false;
   const double* Y = nullptr;
@@ -30,11 +30,7 @@ struct NormalHertz {
     s.off_only("computeDissipatedEnergy");
     s.off_only("computeElasticPotential");
   }
-  // Per type pair, once: everything in the formulas above that does not depend
-  // on the contact, so a contact costs two square roots (sqrt(R* dn) and
-  // sqrt(sqrt(R* dn) m*)) instead of three, and no branch (the loop vectorises):
-  //   sqrt(Sn m*) = sqrt(2 Y*) sqrt(sqrt(R* dn) m*),  sqrt(St m*) = sqrt(8 G*) sqrt(sqrt(R* dn) m*).
-  // Equal to LIGGGHTS' evaluation to round-off (a few ulp).
+  // Per type pair, once: the factors of kn and kt that do not depend on the contact.
   void connect(PropertyRequest& p) {
     Y = p.pair_table("Yeff");
     const double* G = p.pair_table("Geff");
@@ -55,23 +51,6 @@ struct NormalHertz {
     n.Fel = n.kn * c.deltan;
     return n;
   }
-  // LIGGGHTS' damping of this model (damping liggghts, the default).
-  void connect_damping(PropertyRequest& p) {
-    const double* G = p.pair_table("Geff");
-    const double* beta = p.pair_table("betaeff");
-    constexpr double sqrt_five_sixths = 0.91287092917527685576;
-    const int n = p.stride() * p.stride();
-    gn_c.assign(n, 0.0), gt_c.assign(n, 0.0);
-    for (int t = 0; t < n; ++t) {
-      gn_c[t] = -2.0 * sqrt_five_sixths * beta[t] * std::sqrt(2.0 * Y[t]);
-      gt_c[t] = tangential_damping ? -2.0 * sqrt_five_sixths * beta[t] * std::sqrt(8.0 * G[t]) : 0.0;
-    }
-  }
-  void damping(const Contact& c, NormalForce& n) const {
-    const double sm = std::sqrt(n.s * c.meff);
-    n.gamman = gn_c[c.tp] * sm;
-    n.gammat = gt_c[c.tp] * sm;
-  }
   void limit(NormalForce& n) const { n.Fn = n.Fn < fn_floor ? fn_floor : n.Fn; }  // limitForce: no attraction
 
   // LIGGGHTS' Hertz time (fix check/timestep/gran): 2.87 (m*^2 / (R* Y*^2 v))^(1/5).
@@ -81,8 +60,8 @@ struct NormalHertz {
   }
 
  private:
-  std::vector<double> kn_c, kt_c, gn_c, gt_c;  // per type pair: 4/3 Y*, 8 G*, damping prefactors
-  double fn_floor = 0.0;                        // 0 with limitForce on, else -inf
+  std::vector<double> kn_c, kt_c;  // per type pair: 4/3 Y*, 8 G*
+  double fn_floor = 0.0;           // 0 with limitForce on, else -inf
 };
 
 }  // namespace sable

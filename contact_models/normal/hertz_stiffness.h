@@ -1,8 +1,9 @@
 #pragma once
 // model hertz/stiffness — reproduces LIGGGHTS 3.8 NormalModel<HERTZ_STIFFNESS>:
-//   with s = sqrt(R* dn):  kn = s kn[ij],  kt = s kt[ij],
-//   gamman = s m* gamman[ij],  gammat = s m* gammat[ij] (0 with tangential_damping off)
-//   Fn = kn dn - gamman vn (limitForce clips at 0). LIGGGHTS has no absolute_damping here.
+//   with s = sqrt(R* dn):  kn = s kn[ij],  kt = s kt[ij]
+//   Fn = kn dn - gamman vn (limitForce clips at 0)
+// Its LIGGGHTS dashpot (s m* gamman[ij], no absolute_damping) is
+// damping/liggghts.h's `hertz_stiffness` form.
 #include <cmath>
 
 #include "contact_models/contact.h"
@@ -14,9 +15,10 @@ struct NormalHertzStiffness {
   static constexpr const char* kName = "hertz/stiffness";
   static constexpr int kHistory = 0;
   static void history_slots(std::vector<HistorySlot>&) {}
+  static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::hertz_stiffness;
 
   bool tangential_damping = true, limit_force = false;
-  const double *kn_ = nullptr, *kt_ = nullptr, *gn_ = nullptr, *gt_ = nullptr;
+  const double *kn_ = nullptr, *kt_ = nullptr;
 
   void settings(ModelSettings& s) {
     s.on_off("tangential_damping", tangential_damping);
@@ -34,15 +36,6 @@ struct NormalHertzStiffness {
     n.kt = n.s * kt_[c.tp];
     n.Fel = n.kn * c.deltan;
     return n;
-  }
-  // LIGGGHTS' damping of this model (damping liggghts, the default).
-  void connect_damping(PropertyRequest& p) {
-    gn_ = p.pair_table("gamman");
-    gt_ = p.pair_table("gammat");
-  }
-  void damping(const Contact& c, NormalForce& n) const {
-    n.gamman = n.s * c.meff * gn_[c.tp];
-    n.gammat = tangential_damping ? n.s * c.meff * gt_[c.tp] : 0.0;
   }
   void limit(NormalForce& n) const {
     if (limit_force && n.Fn < 0.0) n.Fn = 0.0;

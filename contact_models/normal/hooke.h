@@ -2,9 +2,9 @@
 // model hooke — reproduces LIGGGHTS 3.8 NormalModel<HOOKE> (normal_model_hooke.h):
 //   kn = 16/15 sqrt(R*) Y* (15 m* V^2 / (16 sqrt(R*) Y*))^(1/5),  V = characteristicVelocity
 //   kt = kn  (ktToKnUser on: kt = 0.285714286 kn, LIGGGHTS' literal for 2/7)
-//   gamman = sqrt(4 m* kn / (1 + (pi / ln e)^2)),  gammat = gamman (0 with tangential_damping off)
 //   Fn = kn dn - gamman vn   (clipped at 0 with limitForce on)
-// The damping gives exactly restitution e for the linear spring.
+// Its LIGGGHTS dashpot (restitution e exactly for this linear spring) is
+// damping/liggghts.h's `hooke` form.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -18,9 +18,10 @@ struct NormalHooke {
   static constexpr const char* kName = "hooke";
   static constexpr int kHistory = 0;
   static void history_slots(std::vector<HistorySlot>&) {}
+  static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::hooke;
 
   bool tangential_damping = true, limit_force = false, kt_to_kn = false, viscous = false;
-  const double *Y = nullptr, *logE = nullptr;
+  const double* Y = nullptr;
   double char_vel = 0;
 
   void settings(ModelSettings& s) {
@@ -39,15 +40,11 @@ struct NormalHooke {
     char_vel = p.scalar("characteristicVelocity");
   }
 
-  double stiffness(const Contact& c) const { return kn_of(c.meff, c.reff, c.tp); }
   double kn_of(double meff, double reff, int tp) const {
     const double sq = std::sqrt(reff);
     return 16.0 / 15.0 * sq * Y[tp] * std::pow(15.0 * meff * char_vel * char_vel / (16.0 * sq * Y[tp]), 0.2);
   }
-  double gamman_of(double meff, double kn, int tp) const {
-    const double q = std::numbers::pi / logE[tp];  // e = 1: ln e = 0, q = inf, gamman = 0 (undamped)
-    return std::sqrt(4.0 * meff * kn / (1.0 + q * q));
-  }
+  double linear_kn(const ContactTimeInput& in) const { return kn_of(in.meff, in.reff, in.tp); }
 
   NormalForce force(const Contact& c, double*, const StepContext&) const {
     NormalForce n;
@@ -56,23 +53,11 @@ struct NormalHooke {
     n.Fel = n.kn * c.deltan;
     return n;
   }
-  // LIGGGHTS' damping of this model (damping liggghts, the default).
-  void connect_damping(PropertyRequest& p) { logE = p.pair_table("coeffRestLog"); }
-  void damping(const Contact& c, NormalForce& n) const {
-    n.gamman = gamman_of(c.meff, n.kn, c.tp);
-    n.gammat = tangential_damping ? n.gamman : 0.0;
-  }
   void limit(NormalForce& n) const {
     if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
   }
 
-  // Damped linear oscillator: pi / sqrt(kn/m* - (gamman / 2m*)^2).
-  double contact_time(const ContactTimeInput& in) const {
-    const double kn = kn_of(in.meff, in.reff, in.tp);
-    const double g = logE ? gamman_of(in.meff, kn, in.tp) : 0.0;  // another damping model: the undamped time
-    const double w2 = kn / in.meff - g * g / (4.0 * in.meff * in.meff);
-    return std::numbers::pi / std::sqrt(std::max(w2, 1e-300));
-  }
+  double contact_time(const ContactTimeInput& in) const { return linear_contact_time(linear_kn(in), in.meff); }
 };
 
 }  // namespace sable

@@ -68,7 +68,8 @@ struct NormalHookeHysteresis : NormalHooke {
   }
   void limit(NormalForce&) const {}
 
-  // The stiffest branch (k2Max) sets the shortest contact time.
+  // The stiffest branch (k2Max) sets the shortest contact time, undamped (not hooke's damped one).
+  double linear_kn(const ContactTimeInput&) const = delete;
   double contact_time(const ContactTimeInput& in) const {
     const double kn = kn_of(in.meff, in.reff, in.tp);
     return std::numbers::pi / std::sqrt(kn * k2_ratio[in.tp] / in.meff);

@@ -1,12 +1,9 @@
 #pragma once
 // model hooke/stiffness — reproduces LIGGGHTS 3.8 NormalModel<HOOKE_STIFFNESS>:
 //   kn, kt from property/global kn, kt (peratomtypepair)
-//   gamman = m* gamman[ij], gammat = m* gammat[ij]; with absolute_damping on
-//   gamman = gamman_abs[ij], gammat = gammat_abs[ij] (no m*)
-//   gammat = 0 with tangential_damping off;  Fn = kn dn - gamman vn (limitForce clips at 0)
-#include <algorithm>
-#include <cmath>
-#include <numbers>
+//   Fn = kn dn - gamman vn (limitForce clips at 0)
+// Its LIGGGHTS dashpot (gamman, gammat tables; absolute_damping) is
+// damping/liggghts.h's `stiffness` form.
 
 #include "contact_models/contact.h"
 #include "contact_models/materials.h"
@@ -17,9 +14,10 @@ struct NormalHookeStiffness {
   static constexpr const char* kName = "hooke/stiffness";
   static constexpr int kHistory = 0;
   static void history_slots(std::vector<HistorySlot>&) {}
+  static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::stiffness;
 
   bool tangential_damping = true, limit_force = false, absolute_damping = false;
-  const double *kn_ = nullptr, *kt_ = nullptr, *gn_ = nullptr, *gt_ = nullptr;
+  const double *kn_ = nullptr, *kt_ = nullptr;
 
   void settings(ModelSettings& s) {
     s.on_off("tangential_damping", tangential_damping);
@@ -41,27 +39,12 @@ struct NormalHookeStiffness {
     n.Fel = n.kn * c.deltan;
     return n;
   }
-  // LIGGGHTS' damping of this model (damping liggghts, the default).
-  void connect_damping(PropertyRequest& p) {
-    gn_ = p.pair_table(absolute_damping ? "gamman_abs" : "gamman");
-    gt_ = p.pair_table(absolute_damping ? "gammat_abs" : "gammat");
-  }
-  void damping(const Contact& c, NormalForce& n) const {
-    const double scale = absolute_damping ? 1.0 : c.meff;
-    n.gamman = scale * gn_[c.tp];
-    n.gammat = tangential_damping ? scale * gt_[c.tp] : 0.0;
-  }
   void limit(NormalForce& n) const {
     if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
   }
 
-  // Damped linear oscillator: pi / sqrt(kn/m* - (gamman / 2m*)^2).
-  double contact_time(const ContactTimeInput& in) const {
-    const double kn = kn_[in.tp];
-    const double g = gn_ ? (absolute_damping ? 1.0 : in.meff) * gn_[in.tp] : 0.0;  // another damping model: undamped
-    const double w2 = kn / in.meff - g * g / (4.0 * in.meff * in.meff);
-    return std::numbers::pi / std::sqrt(std::max(w2, 1e-300));
-  }
+  double linear_kn(const ContactTimeInput& in) const { return kn_[in.tp]; }
+  double contact_time(const ContactTimeInput& in) const { return linear_contact_time(linear_kn(in), in.meff); }
 };
 
 }  // namespace sable

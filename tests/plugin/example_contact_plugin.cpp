@@ -35,6 +35,7 @@ struct NormalHertzPetit {
   static constexpr const char* kName = "hertz/petit";
   static constexpr int kHistory = 0;
   static void history_slots(std::vector<HistorySlot>&) {}
+  static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::own;  // damping() below
 
   const double *Y = nullptr, *G = nullptr, *gamma = nullptr;
 

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "tests/unit/deck_runner.h"
 
@@ -91,5 +92,76 @@ pair_style gran model hertz damping viscoelastic tangential history)";
     const double r = restitution(deck, v, 1e-7, static_cast<long>((0.0003 / v + 0.0003) / 1e-7));
     std::printf("damping viscoelastic v %g: restitution %.7f, Schwager-Poschel %.7f\n", v, r, e);
     EXPECT_NEAR(r, e, 1e-4) << "v = " << v;
+  }
+}
+
+namespace {
+
+// The pair's contact time (what the stability check uses) for two grains of radius kR.
+double pair_contact_time(const std::string& materials_and_pair) {
+  Deck d;
+  d(R"(units si
+atom_style granular
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 1 box
+create_atoms 1 single 0 0 0 units box
+)" + materials_and_pair + R"(
+pair_coeff * *
+timestep 1e-7
+timestep_check accept)");
+  d->atoms.set_radius_density(0, kR, 2500);
+  d("run 0");
+  return d->pair->contact_time(0, 0, 2.0);
+}
+
+double beta_of(double e) { return std::log(e) / std::sqrt(std::log(e) * std::log(e) + kPi * kPi); }
+double damped_time(double kn, double meff, double gamman) {
+  return kPi / std::sqrt(kn / meff - gamman * gamman / (4 * meff * meff));
+}
+
+const std::string kElastic = R"(fix m1 all property/global youngsModulus peratomtype 5e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+fix m5 all property/global characteristicVelocity scalar 2
+)";
+
+}  // namespace
+
+// Linear springs: the damped oscillator's half period pi / sqrt(kn/m* - (gamman/2m*)^2)
+// with LIGGGHTS' own dashpot (damping liggghts), the undamped pi / sqrt(kn/m*) with
+// another damping model; hooke/hysteresis: the stiffest branch k2Max, undamped.
+TEST(Damping, ContactTimeOfLinearSpringsWithTheirDashpot) {
+  const double meff = kM / 2, reff = kR / 2, e = 0.5, Ystar = 5e7 / (2 * (1 - 0.09));
+  const double kn_hooke = 16.0 / 15.0 * std::sqrt(reff) * Ystar *
+                          std::pow(15.0 * meff * 4.0 / (16.0 * std::sqrt(reff) * Ystar), 0.2);
+  const double gn_hooke = std::sqrt(4 * meff * kn_hooke / (1 + std::pow(kPi / std::log(e), 2)));
+  struct Case {
+    std::string name, deck;
+    double expected;
+  };
+  const std::vector<Case> cases = {
+      {"hooke", kElastic + "pair_style gran model hooke tangential history", damped_time(kn_hooke, meff, gn_hooke)},
+      {"hooke, damping restitution", kElastic + "pair_style gran model hooke damping restitution tangential history",
+       damped_time(kn_hooke, meff, 0)},
+      {"hooke/stiffness", R"(fix m1 all property/global kn peratomtypepair 1 2000
+fix m2 all property/global kt peratomtypepair 1 1500
+fix m3 all property/global gamman peratomtypepair 1 30
+fix m4 all property/global gammat peratomtypepair 1 10
+fix m5 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hooke/stiffness tangential history)",
+       damped_time(2000, meff, 30 * meff)},
+      {"linear/kneib", kElastic + "pair_style gran model linear/kneib tangential history",
+       kPi / std::sqrt(5e7 * kR / meff * (1 - beta_of(e) * beta_of(e)))},
+      {"hooke/hysteresis", kElastic + R"(fix m6 all property/global coefficientMaxElasticStiffness peratomtypepair 1 1.5
+fix m7 all property/global coefficientAdhesionStiffness peratomtypepair 1 0.1
+fix m8 all property/global coefficientPlasticityDepth peratomtypepair 1 0.5
+pair_style gran model hooke/hysteresis tangential history)",
+       kPi / std::sqrt(1.5 * kn_hooke / meff)},
+  };
+  for (const Case& c : cases) {
+    const double t = pair_contact_time(c.deck);
+    std::printf("%s: contact time %.9g s (expected %.9g s)\n", c.name.c_str(), t, c.expected);
+    EXPECT_NEAR(t, c.expected, 1e-12 * c.expected) << c.name;
   }
 }
