@@ -125,6 +125,13 @@ fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
 fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
 fix m5 all property/global characteristicVelocity scalar 2
 )";
+const std::string kStiffness = R"(fix m1 all property/global kn peratomtypepair 1 2000
+fix m2 all property/global kt peratomtypepair 1 1500
+fix m3 all property/global gamman peratomtypepair 1 20000
+fix m4 all property/global gammat peratomtypepair 1 10000
+fix m5 all property/global coefficientFriction peratomtypepair 1 0.5
+fix m6 all property/global coefficientRestitution peratomtypepair 1 0.5
+)";
 
 }  // namespace
 
@@ -142,15 +149,11 @@ TEST(Damping, ContactTimeOfLinearSpringsWithTheirDashpot) {
   };
   const std::vector<Case> cases = {
       {"hooke", kElastic + "pair_style gran model hooke tangential history", damped_time(kn_hooke, meff, gn_hooke)},
-      {"hooke, damping restitution", kElastic + "pair_style gran model hooke damping restitution tangential history",
-       damped_time(kn_hooke, meff, 0)},
-      {"hooke/stiffness", R"(fix m1 all property/global kn peratomtypepair 1 2000
-fix m2 all property/global kt peratomtypepair 1 1500
-fix m3 all property/global gamman peratomtypepair 1 30
-fix m4 all property/global gammat peratomtypepair 1 10
-fix m5 all property/global coefficientFriction peratomtypepair 1 0.5
-pair_style gran model hooke/stiffness tangential history)",
-       damped_time(2000, meff, 30 * meff)},
+      {"hooke/stiffness", kStiffness + "pair_style gran model hooke/stiffness tangential history",
+       damped_time(2000, meff, 20000 * meff)},
+      {"hooke/stiffness, damping restitution",
+       kStiffness + "pair_style gran model hooke/stiffness damping restitution tangential history",
+       damped_time(2000, meff, 0)},
       {"linear/kneib", kElastic + "pair_style gran model linear/kneib tangential history",
        kPi / std::sqrt(5e7 * kR / meff * (1 - beta_of(e) * beta_of(e)))},
       {"hooke/hysteresis", kElastic + R"(fix m6 all property/global coefficientMaxElasticStiffness peratomtypepair 1 1.5
