@@ -1,0 +1,41 @@
+"""Running sable, LIGGGHTS and YADE: where their binaries are, and one command's screen text."""
+import os
+import shutil
+import subprocess
+
+from sable_tools.paths import REPO
+
+
+def find_sable(path=None):
+    """The sable binary: PATH as given (or relative to the repository), else build/ or build-bench/."""
+    cands = [path] if path else [os.path.join(REPO, "build", "sable"), os.path.join(REPO, "build-bench", "sable")]
+    for c in cands:
+        for p in (c, os.path.join(REPO, c)):
+            if os.path.isfile(p) and os.access(p, os.X_OK):
+                return os.path.abspath(p)
+    return None
+
+
+def unbuffered(cmd):
+    """cmd under stdbuf where there is one: LIGGGHTS loses its ERROR text when stdout is not a terminal."""
+    return (['stdbuf', '-o0', '-e0'] if shutil.which('stdbuf') else []) + list(cmd)
+
+
+def code_command(code, sable):
+    """The command that starts a code on a deck: sable the binary given, LIGGGHTS from PATH."""
+    if code == 'sable':
+        return [sable]
+    return unbuffered([shutil.which(code)])
+
+
+def execute(cmd, cwd, timeout, env=None):
+    """(screen text, exit status) of one command run in cwd; -1 when it timed out or did not start."""
+    try:
+        p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           text=True, errors='replace', timeout=timeout, env=env)
+        return p.stdout, p.returncode
+    except subprocess.TimeoutExpired as e:
+        out = e.stdout.decode(errors='replace') if isinstance(e.stdout, bytes) else e.stdout or ''
+        return out + f'\n(timed out after {timeout} s)', -1
+    except OSError as e:
+        return str(e), -1
