@@ -22,10 +22,11 @@ def unbuffered(cmd):
 
 
 def code_command(code, sable):
-    """The command that starts a code on a deck: sable the binary given, LIGGGHTS from PATH."""
+    """The command that starts a code on a deck: sable the binary given, LIGGGHTS from PATH
+    (its bare name when absent: execute then reports that it could not start)."""
     if code == 'sable':
         return [sable]
-    return unbuffered([shutil.which(code)])
+    return unbuffered([shutil.which(code) or code])
 
 
 def execute(cmd, cwd, timeout, env=None):
