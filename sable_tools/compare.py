@@ -123,15 +123,14 @@ def deck_vars(code, deck, variables):
 
 def run_yade(deck, rundir, variables, args):
     """sable --export-yade writes script.py from the deck; YADE runs it (one thread, no GUI)."""
-    cmd = [args.sable, '--export-yade', os.path.abspath(deck)] + deck_vars('yade', deck, variables) + ['-o', 'script.py']
+    cmd = runner.export_yade(args.sable, os.path.abspath(deck), deck_vars('yade', deck, variables), 'script.py')
     print('[yade] ' + ' '.join(cmd) + f'   (in {show(rundir)})', flush=True)
     text, rc = runner.execute(cmd, rundir, args.timeout)
     if rc != 0:
         return 'sable --export-yade failed:\n' + text, rc
-    cmd = [shutil.which('yade'), '-j1', '-n', '-x', 'script.py']
+    cmd = runner.yade('script.py', shutil.which('yade'))
     print('[yade] ' + ' '.join(cmd), flush=True)
-    env = {**os.environ, 'OMP_NUM_THREADS': '1'}
-    return runner.execute(cmd, rundir, args.timeout, env)
+    return runner.execute(cmd, rundir, args.timeout, runner.one_thread())
 
 
 def run_once(code, deck, rundir, variables, h, args):

@@ -40,3 +40,27 @@ def execute(cmd, cwd, timeout, env=None):
         return out + f'\n(timed out after {timeout} s)', -1
     except OSError as e:
         return str(e), -1
+
+
+def run_logged(cmd, cwd, log, env=None, timeout=None):
+    """Runs cmd in cwd with its stdout and stderr into the file log; its exit status (None: timed out)."""
+    with open(log, 'w') as f:
+        try:
+            return subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT, env=env, timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            return None
+
+
+def one_thread():
+    """The environment for a run on one core (OpenMP's threads: sable's, YADE's)."""
+    return dict(os.environ, OMP_NUM_THREADS='1')
+
+
+def export_yade(sable, deck, args, script):
+    """The command that writes YADE's script of a deck (sable --export-yade)."""
+    return [sable, '--export-yade', deck] + list(args) + ['-o', script]
+
+
+def yade(script, exe='yade'):
+    """The command that runs a YADE script: one thread, no GUI, exit at its end."""
+    return [exe, '-j1', '-n', '-x', script]

@@ -18,11 +18,11 @@ exported by `sable --export-yade`); its error is against sable's finest dtfrac. 
 in DIR (default /tmp/cavity_speed); per-run RESULT values, the report and the figure in
 reference_runs/cavity/speed_error/.
 """
-import argparse, json, os, subprocess, sys, time
+import argparse, json, os, sys, time
 
 import numpy as np
 
-from sable_tools import seedstats  # statistics over seeds
+from sable_tools import runner, seedstats  # YADE runs into their logs; statistics over seeds
 from sable_tools.cavity import sweep  # the deck, the binaries, key_values, csv_table
 from sable_tools.readers import h5  # the series files
 
@@ -74,14 +74,11 @@ def run_yade(work, knob, value, seed):
     dep = os.path.join(work, name('dtfrac', 0.1, seed), 'dep.restart')
     v = dict(variables(knob, value, {}), seed=seed, fields=0, contacts=0, out='cav', phase='shear', restart=dep)
     script = os.path.join(d, 'shear.py')
-    with open(os.path.join(d, 'export.screen'), 'w') as scr:
-        if subprocess.run([sweep.SABLE, '--export-yade', sweep.DECK] + args_of(v) + ['-o', script], cwd=d,
-                          stdout=scr, stderr=subprocess.STDOUT).returncode:
-            sys.exit(f'speed_error: export failed, see {d}/export.screen')
-    with open(os.path.join(d, 'log.yade'), 'w') as log:
-        if subprocess.run(['yade', '-j1', '-n', '-x', script], cwd=d, stdout=log, stderr=subprocess.STDOUT,
-                          env=dict(os.environ, OMP_NUM_THREADS='1')).returncode:
-            sys.exit(f'speed_error: YADE failed, see {d}/log.yade')
+    if runner.run_logged(runner.export_yade(sweep.SABLE, sweep.DECK, args_of(v), script), d,
+                         os.path.join(d, 'export.screen')):
+        sys.exit(f'speed_error: export failed, see {d}/export.screen')
+    if runner.run_logged(runner.yade(script), d, os.path.join(d, 'log.yade'), runner.one_thread()):
+        sys.exit(f'speed_error: YADE failed, see {d}/log.yade')
     return d
 
 

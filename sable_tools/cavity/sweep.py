@@ -19,6 +19,7 @@ import argparse, fcntl, json, os, subprocess, sys, time
 import h5py
 import numpy as np
 
+from sable_tools import runner  # sable and YADE runs into their logs
 from sable_tools.paths import REPO as ROOT
 from sable_tools.readers import h5  # the series files
 
@@ -58,9 +59,7 @@ def key_values(path, prefix):
 
 def sable(args, log, cwd):
     cmd = [SABLE, '-in', DECK, '-log', log, '-echo', 'none'] + args
-    env = dict(os.environ, OMP_NUM_THREADS='1')
-    with open(log + '.screen', 'w') as scr:
-        rc = subprocess.run(cmd, cwd=cwd, stdout=scr, stderr=subprocess.STDOUT, env=env).returncode
+    rc = runner.run_logged(cmd, cwd, log + '.screen', runner.one_thread())
     if rc != 0:
         sys.exit(f'sweep: {" ".join(cmd)} failed (exit {rc}); see {log}.screen')
 
@@ -118,15 +117,11 @@ def shear(work, nu, np_, seed, code='sable', cmp=False):
         sable(vs, os.path.join(raw, 'log.sable'), raw)
         return raw, time.time() - t0
     script = os.path.join(raw, 'shear.py')
-    with open(os.path.join(raw, 'export.screen'), 'w') as scr:
-        rc = subprocess.run([SABLE, '--export-yade', DECK] + vs + ['-o', script], cwd=raw, stdout=scr,
-                            stderr=subprocess.STDOUT).returncode
+    rc = runner.run_logged(runner.export_yade(SABLE, DECK, vs, script), raw, os.path.join(raw, 'export.screen'))
     if rc != 0:
         sys.exit(f'sweep: the export of {raw} failed (exit {rc}); see {raw}/export.screen')
     t0 = time.time()
-    with open(os.path.join(raw, 'log.yade'), 'w') as log:
-        rc = subprocess.run(['yade', '-j1', '-n', '-x', script], cwd=raw, stdout=log, stderr=subprocess.STDOUT,
-                            env=dict(os.environ, OMP_NUM_THREADS='1')).returncode
+    rc = runner.run_logged(runner.yade(script), raw, os.path.join(raw, 'log.yade'), runner.one_thread())
     if rc != 0:
         sys.exit(f'sweep: YADE on {script} failed (exit {rc}); see {raw}/log.yade')
     return raw, time.time() - t0

@@ -27,6 +27,7 @@ if any run failed.
 """
 import argparse, concurrent.futures, datetime, hashlib, json, math, os, re, shutil, subprocess, sys, threading, time
 
+from sable_tools import runner  # LIGGGHTS unbuffered
 from sable_tools.drag import make_cylinder_stl
 from sable_tools.paths import REPO
 
@@ -297,7 +298,7 @@ def run_one(case, code, seed, folder, exe, threads=1, chunk=0, version=None, out
     s = scene(v)
     if not os.path.exists(os.path.join(folder, 'cylinder.stl')) or not chunk:
         make_cylinder_stl.write(os.path.join(folder, 'cylinder.stl'), s['D'], s['L'])
-    cmd = (['stdbuf', '-o0', '-e0'] if code == 'liggghts' else []) + [exe, '-in', DECK]
+    cmd = runner.unbuffered([exe, '-in', DECK]) if code == 'liggghts' else [exe, '-in', DECK]
     cmd += (['-echo', 'none'] if code == 'liggghts' else []) + [w for k, x in v.items() for w in ('-var', k, x)]
     rec = {'case': case['name'], 'code': code, 'seed': seed, 'vars': v, 'series': case.get('series'),
            'command': ' '.join(cmd), 'started': datetime.datetime.now().isoformat(timespec='seconds'),

@@ -30,6 +30,7 @@ the one YADE started from.
 import argparse, csv, datetime, hashlib, json, math, os, shutil, subprocess, sys
 
 from sable_tools.mohr import mohr_report  # the states files' one reader; mean_se: seedstats.summary
+from sable_tools import runner  # the runs into their logs
 from sable_tools.paths import REPO
 from sable_tools.readers import yade  # the states files of both codes
 
@@ -110,12 +111,10 @@ def trim_log(src, dst):
 
 
 def run(cmd, cwd, log, timeout):
-    with open(log, 'w') as f:
-        try:
-            r = subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT, timeout=timeout)
-        except subprocess.TimeoutExpired:
-            return f'timed out after {timeout} s'
-    return None if r.returncode == 0 else f'exit status {r.returncode}'
+    rc = runner.run_logged(cmd, cwd, log, timeout=timeout)
+    if rc is None:
+        return f'timed out after {timeout} s'
+    return None if rc == 0 else f'exit status {rc}'
 
 
 def figure(path, seeds, states, envs):

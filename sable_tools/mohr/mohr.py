@@ -25,6 +25,7 @@ import sys
 import time
 
 from sable_tools.readers.yade import read_states  # the states files' one reader
+from sable_tools import runner  # sable's run into its log
 from sable_tools.paths import REPO as ROOT
 
 HERE = os.path.join(ROOT, "input_scripts", "mohr")  # mohr.in
@@ -227,10 +228,9 @@ def run_case(d, var, sable=None, quiet=False):
     for k, v in var.items():
         cmd += ["-var", str(k), str(v)]
     t0 = time.time()
-    with open(os.path.join(d, "log.txt"), "w") as log:
-        r = subprocess.run(cmd, cwd=d, stdout=log, stderr=subprocess.STDOUT)
-    if r.returncode:
-        raise RuntimeError(f"{d}: sable exited {r.returncode} (see log.txt)")
+    rc = runner.run_logged(cmd, d, os.path.join(d, "log.txt"))
+    if rc:
+        raise RuntimeError(f"{d}: sable exited {rc} (see log.txt)")
     red = reduce_run(d)
     red["wall_s"] = time.time() - t0
     with open(os.path.join(d, "result.json"), "w") as f:

@@ -13,9 +13,11 @@ tutorial runs of run.py (OUT of --tutorials, the post/multi_200.vtk dumps), each
 own insertion heights predict its mean final zcm through the scanned zcm(h).
 Prints one row per height and the prediction; writes DIR/scan.json.
 """
-import argparse, concurrent.futures, glob, json, os, re, shutil, subprocess
+import argparse, concurrent.futures, glob, json, os, re, shutil
 
 import numpy as np
+
+from sable_tools import runner  # the codes' commands and their screen
 
 SOURCE = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/multisphere_stone_restitution'
 
@@ -37,9 +39,7 @@ def run(code, h, args):
     os.makedirs(d, exist_ok=True)
     shutil.copytree(os.path.join(SOURCE, 'data'), os.path.join(d, 'data'), dirs_exist_ok=True)
     open(os.path.join(d, 'in.scan'), 'w').write(deck(h))
-    cmd = [args.sable, '-in', 'in.scan'] if code == 'sable' else ['stdbuf', '-o0', 'liggghts', '-in', 'in.scan']
-    out = subprocess.run(cmd, cwd=d, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                         env={**os.environ, 'OMP_NUM_THREADS': '1'}).stdout
+    out, _ = runner.execute(runner.code_command(code, args.sable) + ['-in', 'in.scan'], d, None, runner.one_thread())
     rows = [l.split() for l in out.splitlines() if re.match(r'^\s*40000\s+50\s', l)]
     return float(rows[-1][3]) if rows else float('nan')
 
