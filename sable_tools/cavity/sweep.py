@@ -21,7 +21,7 @@ import numpy as np
 
 from sable_tools import runner  # sable and YADE runs into their logs
 from sable_tools.paths import REPO as ROOT
-from sable_tools.readers import h5  # the series files
+from sable_tools.readers import h5, screen  # the series files; KEY k=v lines
 
 DECK = os.path.join(ROOT, 'input_scripts', 'cavity', 'cavity.in')
 SABLE = os.path.join(ROOT, 'build', 'sable')
@@ -46,14 +46,12 @@ def tag(nu, np_, seed):
 def key_values(path, prefix):
     """key=value pairs of the lines starting with prefix (numbers only; the last wins)."""
     out = {}
-    for line in open(path, errors='replace'):
-        if line.startswith(prefix + ' '):
-            for w in line.split()[1:]:
-                k, _, v = w.partition('=')
-                try:
-                    out[k] = float(v)
-                except ValueError:
-                    pass
+    for words in screen.key_lines(open(path, errors='replace').read(), prefix):
+        for k, v in words.items():
+            try:
+                out[k] = float(v)
+            except ValueError:
+                pass
     return out
 
 

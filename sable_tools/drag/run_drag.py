@@ -30,6 +30,7 @@ import argparse, concurrent.futures, datetime, hashlib, json, math, os, re, shut
 from sable_tools import runner  # LIGGGHTS unbuffered
 from sable_tools.drag import make_cylinder_stl
 from sable_tools.paths import REPO
+from sable_tools.readers import screen  # KEY k=v lines
 
 HERE = os.path.join(REPO, 'reference_runs', 'drag')  # the stored runs
 DECK = os.path.join(REPO, 'input_scripts', 'drag', 'drag.in')
@@ -259,9 +260,9 @@ def parse_stdout(text):
     rec = {'blocks': [float(m) for m in re.findall(r'^BLOCK \d+ F=(\S+)', text, re.M)],
            'loop_time_s': sum(float(t) for t in re.findall(r'^Loop time of (\S+)', text, re.M))}
     for key in ('SCENE', 'SETTLED', 'RESULT', 'PIECE'):
-        lines = [l for l in text.splitlines() if l.startswith(key + ' ')]
+        lines = screen.key_lines(text, key)
         if lines:
-            rec[key.lower()] = {k: float(v) for k, v in re.findall(r'(\w+)=(\S+)', lines[-1])}
+            rec[key.lower()] = {k: float(v) for k, v in lines[-1].items()}
     return rec
 
 

@@ -27,6 +27,7 @@ import time
 from sable_tools.readers.yade import read_states  # the states files' one reader
 from sable_tools import runner  # sable's run into its log
 from sable_tools.paths import REPO as ROOT
+from sable_tools.readers import screen  # the RESULT line
 
 HERE = os.path.join(ROOT, "input_scripts", "mohr")  # mohr.in
 DECK = os.path.join(HERE, "mohr.in")
@@ -84,15 +85,12 @@ def tool(name):
 
 
 def read_result(log):
-    res = None
     with open(log) as f:
-        for line in f:
-            if line.startswith("RESULT "):
-                res = dict(kv.split("=", 1) for kv in line.split()[1:])
-    if res is None:
+        lines = screen.key_lines(f.read(), "RESULT")
+    if not lines:
         raise RuntimeError(f"{log}: no RESULT line (the run did not finish)")
     return {k: (float(v) if k not in ("cycles", "states", "capped", "steps") else int(float(v)))
-            for k, v in res.items()}
+            for k, v in lines[-1].items()}
 
 
 def read_csv(path):

@@ -1,5 +1,5 @@
 """The screen and log text of sable and LIGGGHTS (same layout): OBSERVABLE lines, thermo
-tables, and the timing block after each run."""
+tables, KEY k=v lines (RESULT, SCENE, ...), and the timing block after each run."""
 import math
 import re
 
@@ -39,6 +39,12 @@ def parse_screen(text):
                 if abs(float(v)) < 1e19:  # LAMMPS' +-1e20 = empty group
                     series.setdefault(c, {})[step] = float(v)
     return obs, {c: [sorted(s), [s[k] for k in sorted(s)]] for c, s in series.items()}
+
+
+def key_lines(text, key):
+    """The k=v words of each line that starts with KEY, one dict of strings a line, in order."""
+    return [dict(w.split('=', 1) for w in line.split()[1:] if '=' in w)
+            for line in text.splitlines() if line.startswith(key + ' ')]
 
 
 def sable_loop(text):

@@ -157,3 +157,16 @@ def test_ave_time_text_and_hdf5_agree(run):
     assert values[:, 0].tolist() == pytest.approx(series["at_k"][1], rel=1e-6)
     assert values[:, 1].tolist() == pytest.approx(series["at_x1"][1], rel=1e-6)
     assert values[-1, 1] == pytest.approx(obs["at_x1"], rel=1e-6)
+
+
+def test_key_lines_of_a_stored_run():
+    # "SCENE d=0.0015 E=3.68e7 Wd=20 Ld=8 Dd=2 zc=0.012 h=0.012 dt=5.22056904202558e-06 ... Ntot=5731"
+    scene = screen.key_lines(open(LIGGGHTS_LOG).read(), "SCENE")
+    assert len(scene) == 1
+    assert (scene[0]["d"], scene[0]["E"], scene[0]["dt"], scene[0]["Ntot"]) == ("0.0015", "3.68e7",
+                                                                               "5.22056904202558e-06", "5731")
+
+
+def test_key_lines_order_and_odd_words():
+    text = "RESULT a=1 b=x=2\nRESULTS c=3\nnote RESULT d=4\nRESULT e=5 loose\n"
+    assert screen.key_lines(text, "RESULT") == [{"a": "1", "b": "x=2"}, {"e": "5"}]
