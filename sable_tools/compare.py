@@ -410,7 +410,7 @@ def main():
                    help='comma-separated: sable, liggghts, liggghts-stored, yade, yade-stored; the last is the reference')
     p.add_argument('--out', default=os.path.join(REPO, 'build-compare'), help='output folder')
     p.add_argument('--var', nargs=2, action='append', default=[], metavar=('NAME', 'VALUE'))
-    p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'), help='sable binary')
+    p.add_argument('--sable', default=runner.built('sable'), help='sable binary')
     p.add_argument('--timeout', type=float, default=1800, help='seconds per run')
     p.add_argument('--update-reference', action='store_true',
                    help='store the LIGGGHTS and YADE results under reference_runs/reference/')

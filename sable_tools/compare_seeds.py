@@ -38,7 +38,7 @@ a line that decides no observable fails the comparison, as in compare.py.
 """
 import argparse, datetime, json, math, os, shutil, sys
 
-from sable_tools import compare, seedstats  # the deck conventions and the runner; statistics over seeds
+from sable_tools import compare, runner, seedstats  # the deck conventions; the binaries; statistics over seeds
 
 
 def stats(values):
@@ -88,7 +88,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('deck')
     p.add_argument('--out', default=os.path.join(compare.REPO, 'build-compare'))
-    p.add_argument('--sable', default=os.path.join(compare.REPO, 'build', 'sable'))
+    p.add_argument('--sable', default=runner.built('sable'))
     p.add_argument('--var', nargs=2, action='append', default=[], metavar=('NAME', 'VALUE'))
     p.add_argument('--seeds', type=int, default=0, help='use only the first N seeds')
     p.add_argument('--seed-values', nargs='+', default=None, metavar='V',

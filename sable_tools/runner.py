@@ -6,13 +6,24 @@ import subprocess
 from sable_tools.paths import REPO
 
 
+BUILDS = ('build', 'build-release', 'build-bench')  # the build folders the READMEs name, build/ first
+
+
+def built(name):
+    """A program of this checkout's build (sable, sable-analyze): the first build folder that has
+    it, else its place in build/ (whose absence the caller then reports)."""
+    for d in BUILDS:
+        p = os.path.join(REPO, d, name)
+        if os.path.isfile(p) and os.access(p, os.X_OK):
+            return p
+    return os.path.join(REPO, BUILDS[0], name)
+
+
 def find_sable(path=None):
-    """The sable binary: PATH as given (or relative to the repository), else build/ or build-bench/."""
-    cands = [path] if path else [os.path.join(REPO, "build", "sable"), os.path.join(REPO, "build-bench", "sable")]
-    for c in cands:
-        for p in (c, os.path.join(REPO, c)):
-            if os.path.isfile(p) and os.access(p, os.X_OK):
-                return os.path.abspath(p)
+    """The sable binary: path as given (or relative to the repository), else built('sable'); None if absent."""
+    for p in ((path, os.path.join(REPO, path)) if path else (built('sable'),)):
+        if os.path.isfile(p) and os.access(p, os.X_OK):
+            return os.path.abspath(p)
     return None
 
 

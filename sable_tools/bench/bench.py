@@ -700,7 +700,7 @@ def main():
     ap.add_argument("--liggghts-repeats", type=int, default=None,
                     help="runs of LIGGGHTS (default: --repeats)")
     ap.add_argument("--threads", default="1,2", help="sable OMP_NUM_THREADS values (default 1,2)")
-    ap.add_argument("--sable", default=None, help="sable binary (default build/sable, else build-bench/sable)")
+    ap.add_argument("--sable", default=None, help="sable binary (default: the first of build/, build-release/, build-bench/ that has one)")
     ap.add_argument("--liggghts", default="liggghts", help="LIGGGHTS binary (default liggghts)")
     ap.add_argument("--no-liggghts", action="store_true", help="do not run LIGGGHTS")
     ap.add_argument("--no-sable", action="store_true", help="do not run sable (LIGGGHTS baseline only)")
@@ -739,7 +739,7 @@ def main():
     sable = None if args.no_sable else runner.find_sable(args.sable)
     if not args.no_sable and not sable:
         sys.exit("sable binary not found (%s); build it: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && "
-                 "cmake --build build -j" % (args.sable or "build/sable, build-bench/sable"))
+                 "cmake --build build -j" % (args.sable or "build/, build-release/, build-bench/"))
     liggghts = None
     if args.scaling and not args.no_liggghts and not shutil.which("mpirun"):
         sys.exit("--scaling runs LIGGGHTS under mpirun, which is missing (apt-get install openmpi-bin), "

@@ -24,8 +24,8 @@ from sable_tools.paths import REPO as ROOT
 from sable_tools.readers import h5, screen  # the series files; KEY k=v lines
 
 DECK = os.path.join(ROOT, 'input_scripts', 'cavity', 'cavity.in')
-SABLE = os.path.join(ROOT, 'build', 'sable')
-ANALYZE = os.path.join(ROOT, 'build', 'sable-analyze')
+SABLE = runner.built('sable')
+ANALYZE = runner.built('sable-analyze')
 OUT = os.path.join(ROOT, 'reference_runs', 'cavity', 'sweep', 'runs')
 
 HD, TSHEAR, TREC = 12, 6, 1

@@ -17,11 +17,11 @@ import argparse, glob, json, os, subprocess, sys, tempfile, time
 import numpy as np
 from scipy import stats
 
-from sable_tools import figstyle, seedstats  # figures' style; statistics over seeds
+from sable_tools import figstyle, runner, seedstats  # figures' style; sable-analyze; statistics over seeds
 from sable_tools.cavity import sweep  # the plan's points, seeds and run names live there once
 from sable_tools.paths import REPO as ROOT
 
-ANALYZE = os.path.join(ROOT, 'build', 'sable-analyze')
+ANALYZE = runner.built('sable-analyze')
 PAPER_EQ4 = {'r1': 0.53, 'r2': 0.86, 'I0': 0.02}
 PAPER_EQ5 = {'c1': 0.88, 'c2': 0.5}
 PAPER_EQ20 = {'mu1': 0.12, 'mu2': 0.40, 'I0': 0.13}

@@ -233,7 +233,7 @@ def freeze_sable(folder):
     the full HEAD hash; refuses when the sources (SOURCES) have uncommitted changes or build/sable
     is older than the newest commit touching them (and than their files: built_from_head).
     Returns the copy's path."""
-    src = os.path.join(REPO, 'build', 'sable')
+    src = runner.built('sable')
     if not os.path.exists(src):
         sys.exit(f'{src} not found: build sable first')
     changed, new = porcelain(REPO, SOURCES)
@@ -472,7 +472,7 @@ def main():
                    'prints the path for --sable')
     p.add_argument('--out', default=os.path.join(REPO, 'build', 'drag_runs'))
     p.add_argument('-j', type=int, default=1, help='runs at once (default 1: wall times measured alone)')
-    p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
+    p.add_argument('--sable', default=runner.built('sable'))
     p.add_argument('--sable-commit', metavar='HASH', help='the commit the sable binary was built from (default: '
                    'the file BINARY.commit, else the HEAD of the checkout whose build folder holds it)')
     p.add_argument('--liggghts', default=shutil.which('liggghts') or 'liggghts')

@@ -38,7 +38,7 @@ HERE = os.path.join(REPO, 'input_scripts', 'mohr')  # mohr.in and mohr_yade.py
 DECK = os.path.join(HERE, 'mohr.in')
 YSCRIPT = os.path.join(HERE, 'mohr_yade.py')
 STORED = os.path.join(REPO, 'reference_runs', 'reference', 'mohr', 'yade')
-ANALYZE = os.path.join(REPO, 'build', 'sable-analyze')
+ANALYZE = runner.built('sable-analyze')
 SEEDS = ['32452843', '15485867', '49979687', '67867967', '86028121']
 DEFAULTS = {'N': '500', 'cycles': '3'}
 # judged quantities (name, text); the others are listed, not judged
@@ -171,7 +171,7 @@ def main():
     p.add_argument('--ref', choices=['yade', 'yade-stored'], default='yade')
     p.add_argument('--store', action='store_true', help='store the YADE reductions (with --ref yade)')
     p.add_argument('--out', default=os.path.join(REPO, 'reference_runs', 'mohr', 'compare'))
-    p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
+    p.add_argument('--sable', default=runner.built('sable'))
     p.add_argument('--yade', default='yade')
     p.add_argument('--timeout', type=float, default=1800)
     p.add_argument('--figure-seeds', type=int, default=3, help='seeds drawn in mohr_circles.png (the first K)')

@@ -77,11 +77,10 @@ def sweep_runs(only=None):
 
 
 def tool(name):
-    for d in ("build", "build-release"):
-        p = os.path.join(ROOT, d, name)
-        if os.path.exists(p):
-            return p
-    sys.exit(f"mohr.py: {name} not found under {ROOT}/build (build the project first)")
+    p = runner.built(name)
+    if not os.path.exists(p):
+        sys.exit(f"mohr.py: {name} not found under {ROOT}/build (build the project first)")
+    return p
 
 
 def read_result(log):

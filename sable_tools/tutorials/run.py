@@ -286,7 +286,7 @@ def main():
     p.add_argument('--threads', type=int, default=1, help='OMP_NUM_THREADS for sable')
     p.add_argument('--timeout', type=float, default=3600)
     p.add_argument('--sigma', type=float, default=2.0, help='K in |difference| <= K SE')
-    p.add_argument('--sable', default=os.path.join(REPO, 'build', 'sable'))
+    p.add_argument('--sable', default=runner.built('sable'))
     p.add_argument('--list', action='store_true', help='list the tutorials and stop')
     args = p.parse_args()
     if args.list:

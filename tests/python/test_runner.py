@@ -1,5 +1,6 @@
 """sable_tools.runner: screen text and exit status of a command, timeouts, logs, the commands it builds."""
 from sable_tools import runner
+from sable_tools.paths import repo_path
 
 
 def test_execute_text_and_status(tmp_path):
@@ -38,3 +39,7 @@ def test_find_sable(tmp_path):
     exe.chmod(0o755)
     assert runner.find_sable(str(exe)) == str(exe)
     assert runner.find_sable(str(tmp_path / "missing")) is None
+
+
+def test_built_falls_back_to_build():
+    assert runner.built("no_such_program") == repo_path("build", "no_such_program")
