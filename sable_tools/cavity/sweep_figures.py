@@ -508,7 +508,7 @@ def yade_section(C, S, Y, EY, ES, gs):
     L = ['## sable against YADE (issue 43 item 5)', '',
          f'The same sable deposits (H/d {hd}) sheared by sable (runs `{gs}/`) and by YADE (sweep.py `yade`: the deck '
          'exported by `sable --export-yade`, fields off), seed by seed. Criterion, the harness\'s tolerance '
-         f'(reference_runs/compare_seeds.py: |mean_s − mean_ref| ≤ K SE) with K = {YADE_TOL:g}: '
+         f'(sable_tools/compare_seeds.py: |mean_s − mean_ref| ≤ K SE) with K = {YADE_TOL:g}: '
          '|F̄_sable − F̄_YADE| ≤ 2 sqrt(SE_s² + SE_y²), the seed SEs.', '',
          '| N_U | N_P | code | seeds | F̄/(PLd) | F_cv | F_zero | Φ* | difference | combined SE | |d|/SE | verdict |',
          '|' + '---|' * 12]
@@ -862,7 +862,7 @@ def report(R):
     miss, extra = missing(R.runs)
     n = {g: sum(len(v) for v in R.runs[g].values()) for g in GROUPS}
     L = ['# Cavity sweep (kneib2017, issue 43 items 4 and 5): report', '',
-         f'Written by `input_scripts/cavity/sweep_figures.py` ({time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}) '
+         f'Written by `python3 -m sable_tools.cavity.sweep_figures` ({time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}) '
          'from the runs under `runs/` (' + ', '.join(f'{g}: {k}' for g, k in n.items() if k) + '), following '
          '`PLAN.md` (points, seeds, tests and margins fixed before the runs). Figures: `figures/`.', '']
     L += summary_section(R.e4, R.e5, R.e20, R.P, R.C, R.S) + runs_section(R.runs, miss, extra) + point_table(R.S)

@@ -225,7 +225,7 @@ def write_markdown(cases, path, margin, figures, clock='wall'):
     lines = [f'# Drag: sable against LIGGGHTS ({datetime.date.today().isoformat()})', '',
              'F* = F / (ρ g D L²), F = 4|M_z|/L. F_first: over turns 0-0.5; F_stat: over the last half of '
              'the turns in half-turn blocks. Mean over seeds ± the seed-to-seed SE, sd/√n (none for one seed; '
-             'reference_runs/analysis/seedstats.py). block/sd: the runs\' rms block error (F_stat_err; for '
+             'sable_tools/seedstats.py). block/sd: the runs\' rms block error (F_stat_err; for '
              'F_first, one half-turn, F_stat_err √turns) over the seed sd, a check that should be below 1 '
              '(n/a for one seed); it is not added to the SE. sable − LIGGGHTS: Welch\'s difference with its '
              f'90 % interval; equivalent (TOST, α 0.05) when that interval lies within ± {100 * margin:g} % of the '

@@ -88,7 +88,7 @@ print "OBSERVABLE zmax ${tut_zmax}"
 print "OBSERVABLE ke_end ${tut_ke}"
 """
 OBSERVE = """
-# --- appended by reference_runs/tutorials/run.py: observables only ---
+# --- appended by sable_tools/tutorials/run.py: observables only ---
 variable tut_atoms equal count(all)
 variable tut_xcm equal xcm(all,x)
 variable tut_ycm equal xcm(all,y)
@@ -100,7 +100,7 @@ variable tut_ke equal ke
 # variable command 'group' may not be used together with fix multisphere"): there the
 # centre is the plain mean of the sphere centres, from compute reduce, in both codes.
 MS_OBSERVE = """
-# --- appended by reference_runs/tutorials/run.py: observables only (multisphere deck) ---
+# --- appended by sable_tools/tutorials/run.py: observables only (multisphere deck) ---
 compute tut_p all property/atom x y z
 compute tut_m all reduce ave c_tut_p[1] c_tut_p[2] c_tut_p[3]
 compute tut_zmax all reduce max c_tut_p[3]
