@@ -31,6 +31,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from sable_tools import seedstats  # noqa: E402  (statistics over seeds)
 from sable_tools.drag import run_drag  # noqa: E402  (the deck's numbers)
+from sable_tools.readers import ave_time  # noqa: E402  (the torque files)
 
 NAMES = {'sable': 'sable', 'liggghts': 'LIGGGHTS'}
 COLORS = {'sable': 'tab:blue', 'liggghts': 'tab:red'}
@@ -49,7 +50,7 @@ def torque_curve(folder, rec):
         return None
     pieces = sorted(glob.glob(os.path.join(folder, 'drag_torque_*.txt')),
                     key=lambda p: int(re.search(r'_(\d+)\.txt$', p).group(1)))
-    a = np.concatenate([np.loadtxt(p, comments='#', ndmin=2) for p in [path] + pieces])
+    a = np.concatenate([ave_time.read_rows(p)[1] for p in [path] + pieces])
     s = run_drag.scene(rec['vars'])
     turns = (a[:, 0] - rec['settled']['step0']) / (100 * s['Nrec']) - 0.005
     return turns, 4 * np.abs(a[:, 1]) / s['L'] / s['Fscale']

@@ -170,3 +170,12 @@ def test_key_lines_of_a_stored_run():
 def test_key_lines_order_and_odd_words():
     text = "RESULT a=1 b=x=2\nRESULTS c=3\nnote RESULT d=4\nRESULT e=5 loose\n"
     assert screen.key_lines(text, "RESULT") == [{"a": "1", "b": "x=2"}, {"e": "5"}]
+
+
+def test_ave_time_rows_of_a_stored_torque_file():
+    # "# TimeStep f_cyl[6]" then "195381 -0.000955777", "199212 -0.0013807", ...
+    path = os.path.join(os.path.dirname(SABLE_LOG), "drag_torque.txt")
+    cols, rows = ave_time.read_rows(path)
+    lines = [l for l in open(path).read().splitlines() if l.strip()]
+    assert cols == ["f_cyl[6]"] and rows.shape == (len(lines) - 2, 2)
+    assert rows[:2].tolist() == [[195381.0, -0.000955777], [199212.0, -0.0013807]]
