@@ -23,8 +23,8 @@ import argparse, json, os, sys, time
 import numpy as np
 
 from sable_tools import runner, seedstats  # YADE runs into their logs; statistics over seeds
-from sable_tools.cavity import sweep  # the deck, the binaries, key_values, csv_table
-from sable_tools.readers import h5  # the series files
+from sable_tools.cavity import sweep  # the deck, the binaries, key_values
+from sable_tools.readers import analyze as analyze_csv, h5  # sable-analyze's CSV; the series files
 
 OUT = os.path.join(sweep.ROOT, 'reference_runs', 'cavity', 'speed_error')
 BASE = {'Hd': 8, 'NU': 1, 'NP': 1, 'tshear': 2, 'trec': 0.5, 'dtfrac': 0.1, 'N0': 1.5e4, 'rate': 10}
@@ -153,7 +153,7 @@ def ks(work, a, b, tag):
         files.append(f)
     out = os.path.join(work, f'ks_{tag}.csv')
     sweep.analyze(['ks', files[0], files[1], '--column', 'x', '--out', out])
-    t = sweep.csv_table(out)
+    t = analyze_csv.columns(out)
     return float(t['d'][0]), float(t['critical'][0])
 
 

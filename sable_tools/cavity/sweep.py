@@ -21,7 +21,7 @@ import numpy as np
 
 from sable_tools import runner  # sable and YADE runs into their logs
 from sable_tools.paths import REPO as ROOT
-from sable_tools.readers import h5, screen  # the series files; KEY k=v lines
+from sable_tools.readers import analyze as analyze_csv, h5, screen  # sable-analyze's CSV; series; KEY k=v lines
 
 DECK = os.path.join(ROOT, 'input_scripts', 'cavity', 'cavity.in')
 SABLE = runner.built('sable')
@@ -67,14 +67,6 @@ def analyze(args):
     if r.returncode != 0:
         sys.exit(f'sweep: sable-analyze {" ".join(args)} failed: {r.stderr.strip()}')
     return r.stdout
-
-
-def csv_table(path):
-    """A sable-analyze CSV (# lines are metadata, then a header) as {column: array}."""
-    lines = [l.strip() for l in open(path) if l.strip() and not l.startswith('#')]
-    names = lines[0].split(',')
-    rows = np.array([[float(v) for v in l.split(',')] for l in lines[1:]]).reshape(-1, len(names))
-    return {n: rows[:, k] for k, n in enumerate(names)}
 
 
 def deposit(work, np_, seed, hd=None):
@@ -138,7 +130,7 @@ def acf_time(path, column, dt, skip=0):
         if l.startswith('# ') and ':' in l:
             k, _, v = l[2:].partition(':')
             meta[k.strip()] = v.strip()
-    meta['c'] = [round(float(x), 4) for x in csv_table(out)['c'][:ACF_LAGS]]
+    meta['c'] = [round(float(x), 4) for x in analyze_csv.columns(out)['c'][:ACF_LAGS]]
     os.remove(out)
     return meta
 
@@ -202,12 +194,12 @@ def fields(raw, cav, L):
     fld = os.path.join(raw, 'cav_fields.h5')
     vc = os.path.join(raw, 'vortex.csv')
     analyze(['vortex-centre', fld, '--skip', str(skip), '--xlo', '0', '--xhi', repr(L), '--out', vc])
-    red['vortex'] = {k: float(v[0]) for k, v in csv_table(vc).items()}
+    red['vortex'] = {k: float(v[0]) for k, v in analyze_csv.columns(vc).items()}
     pts = os.path.join(raw, 'rheology_points.csv')
     # 2D stresses are N/m: rho_p d (kg/m^2) in Eq. 18 gives I with the 3D stress sigma_2D / d
     analyze(['local-rheology', fld, '--skip', str(skip), '--d', repr(D), '--rho-p', repr(RHO_P * D),
              '--region', 'paper', '--xlo', '0', '--xhi', repr(L), '--out', pts])
-    a = csv_table(pts)
+    a = analyze_csv.columns(pts)
     red['rheology'] = {'I': a['I'].tolist(), 'mu_loc': a['mu_loc'].tolist(), 'align': a['align'].tolist()}
     return red
 

@@ -32,7 +32,7 @@ import argparse, csv, datetime, hashlib, json, math, os, shutil, subprocess, sys
 from sable_tools.mohr import mohr_report  # the states files' one reader; mean_se: seedstats.summary
 from sable_tools import runner  # the runs into their logs
 from sable_tools.paths import REPO
-from sable_tools.readers import yade  # the states files of both codes
+from sable_tools.readers import analyze as analyze_csv, yade  # sable-analyze's CSV; the states files
 
 HERE = os.path.join(REPO, 'input_scripts', 'mohr')  # mohr.in and mohr_yade.py
 DECK = os.path.join(HERE, 'mohr.in')
@@ -65,12 +65,6 @@ def analyze(args, *cmd):
         sys.exit(f'sable-analyze {" ".join(cmd)} failed:\n{r.stdout}{r.stderr}')
 
 
-def read_envelopes(path):
-    """sable-analyze mohr-cycles --out: one dict per cycle (cycle, n, mu_M, mu_M_err, C, C_err, rms)."""
-    rows = [r for r in csv.reader(x for x in open(path) if not x.startswith('#'))]
-    return [dict(zip(rows[0], r)) for r in rows[1:]]
-
-
 def reduce(states_path, workdir):
     """The per-run quantities of one states file (sable's or YADE's)."""
     rows = read_states(states_path)
@@ -79,7 +73,7 @@ def reduce(states_path, workdir):
             '--loading', 'loading', '--out', mc)
     analyze(None, 'bulk-modulus', states_path, '--syy', 'syy', '--sxx', 'sxx', '--eyy', 'eps', '--cycle', 'cycle',
             '--loading', 'loading', '--out', bk)
-    env = read_envelopes(mc)
+    env = analyze_csv.rows(mc)
     kr = [l.split(',') for l in open(bk) if l.strip() and not l.startswith('#')]
     kr = [r for r in kr if r[0].strip().isdigit()]
     last = int(max(r['cycle'] for r in rows))
@@ -187,7 +181,7 @@ def main():
                 yp = os.path.join(STORED, f'seed_{s}_yade_states.txt')
                 states[c][s] = read_states(os.path.join(d, f) if os.path.exists(os.path.join(d, f)) else yp)
                 if os.path.exists(os.path.join(d, 'mohr_cycles.csv')):
-                    envs[c][s] = read_envelopes(os.path.join(d, 'mohr_cycles.csv'))
+                    envs[c][s] = analyze_csv.rows(os.path.join(d, 'mohr_cycles.csv'))
                 else:
                     envs[c][s] = json.load(open(os.path.join(STORED, 'results.json')))['envelopes'][s]
         figure(os.path.join(a.out, 'mohr_circles.png'), a.seeds[:a.figure_seeds], states, envs)

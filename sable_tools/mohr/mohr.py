@@ -16,7 +16,6 @@ last cycle's loading states and fit-offset-power (Eq. 7: K0, a, alpha; sigma0 = 
 smallest sigma_yy of those increments); Z, porosity, S and the overlaps at the last peak.
 """
 import argparse
-import csv
 import json
 import os
 import shutil
@@ -27,7 +26,7 @@ import time
 from sable_tools.readers.yade import read_states  # the states files' one reader
 from sable_tools import runner  # sable's run into its log
 from sable_tools.paths import REPO as ROOT
-from sable_tools.readers import screen  # the RESULT line
+from sable_tools.readers import analyze as analyze_csv, screen  # sable-analyze's CSV; the RESULT line
 
 HERE = os.path.join(ROOT, "input_scripts", "mohr")  # mohr.in
 DECK = os.path.join(HERE, "mohr.in")
@@ -92,12 +91,6 @@ def read_result(log):
             for k, v in lines[-1].items()}
 
 
-def read_csv(path):
-    with open(path) as f:
-        lines = [l for l in f if not l.startswith("#")]
-    return list(csv.DictReader(lines))
-
-
 def analyze(args, cwd):
     r = subprocess.run([tool("sable-analyze")] + args, cwd=cwd, capture_output=True, text=True)
     if r.returncode:
@@ -150,12 +143,12 @@ def reduce_run(d, out="mohr"):
     st = f"{out}_states.txt"
     analyze(["mohr-cycles", st, "--sxx", "sxx", "--syy", "syy", "--cycle", "cycle", "--loading", "loading",
              "--out", "cycles.csv"], d)
-    cyc = read_csv(os.path.join(d, "cycles.csv"))
+    cyc = analyze_csv.rows(os.path.join(d, "cycles.csv"))
     with open(os.path.join(d, "cycles.csv")) as f:
         lim = [l.split(":", 1)[1].strip() for l in f if l.startswith("# limit_cycle:")]
     analyze(["bulk-modulus", st, "--syy", "syy", "--sxx", "sxx", "--eyy", "eps", "--cycle", "cycle",
              "--loading", "loading", "--out", "bulk.csv"], d)
-    bulk = read_csv(os.path.join(d, "bulk.csv"))
+    bulk = analyze_csv.rows(os.path.join(d, "bulk.csv"))
     last = max(int(float(r["cycle"])) for r in rows)
     kl = [r for r in bulk if int(float(r["cycle"])) == last]
     with open(os.path.join(d, "bulk_last.csv"), "w") as f:
@@ -163,7 +156,7 @@ def reduce_run(d, out="mohr"):
     fit = {}
     try:
         analyze(["fit-offset-power", "bulk_last.csv", "--x", "syy", "--y", "K", "--out", "eq7.csv"], d)
-        fit = {k: float(v) for k, v in read_csv(os.path.join(d, "eq7.csv"))[0].items()}
+        fit = {k: float(v) for k, v in analyze_csv.rows(os.path.join(d, "eq7.csv"))[0].items()}
     except RuntimeError as e:  # too few increments or no convergence: reported, not hidden
         fit = {"error": str(e)}
     phimin = {}
@@ -210,7 +203,7 @@ def phi_min_eq9(d, peak, mu, mu_m):
         f.write("phi\n" + "".join(l.split()[2] + "\n" for l in lines[i:] if len(l.split()) >= 5))
     try:
         analyze(["phi-min-eq9", "--mu", repr(mu), "--mu-m", repr(mu_m), "phi.csv", "--phi", "phi", "--out", "phimin.csv"], d)
-        v = float(read_csv(os.path.join(d, "phimin.csv"))[0]["phi_min_deg"])
+        v = float(analyze_csv.rows(os.path.join(d, "phimin.csv"))[0]["phi_min_deg"])
     except RuntimeError:
         v = float("nan")
     for n in ("phi.csv", "phimin.csv"):

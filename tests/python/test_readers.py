@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from sable_tools.paths import repo_path
-from sable_tools.readers import ave_time, dump, h5, screen, yade
+from sable_tools.readers import analyze, ave_time, dump, h5, screen, yade
 
 DRAG = repo_path("reference_runs", "drag")
 SABLE_LOG = os.path.join(DRAG, "effect_L12", "runs", "L12_E1e6_h1.5", "sable_s49979687", "log.txt")
@@ -179,3 +179,14 @@ def test_ave_time_rows_of_a_stored_torque_file():
     lines = [l for l in open(path).read().splitlines() if l.strip()]
     assert cols == ["f_cyl[6]"] and rows.shape == (len(lines) - 2, 2)
     assert rows[:2].tolist() == [[195381.0, -0.000955777], [199212.0, -0.0013807]]
+
+
+def test_sable_analyze_csv_rows_and_columns():
+    # sable-analyze mohr-cycles' output: '#' metadata lines, then cycle,n,mu_M,... rows
+    path = os.path.join(os.path.dirname(SABLE_STATES), "mohr_cycles.csv")
+    rows, cols = analyze.rows(path), analyze.columns(path)
+    body = [l for l in open(path).read().splitlines() if l and not l.startswith("#")]
+    assert list(rows[0]) == list(cols) == body[0].split(",")
+    assert len(rows) == len(body) - 1
+    for name, values in cols.items():
+        assert [float(r[name]) for r in rows] == values.tolist()
