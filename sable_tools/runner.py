@@ -75,3 +75,10 @@ def export_yade(sable, deck, args, script):
 def yade(script, exe='yade'):
     """The command that runs a YADE script: one thread, no GUI, exit at its end."""
     return [exe, '-j1', '-n', '-x', script]
+
+
+def analyze(args, cwd=None, nice=False):
+    """sable-analyze with these arguments (niced where a sweep shares the CPUs): the completed
+    process, text output captured; the caller decides what a failure means for it."""
+    cmd = (['nice', '-n', '10'] if nice else []) + [built('sable-analyze')] + [str(a) for a in args]
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)

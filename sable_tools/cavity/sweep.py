@@ -25,7 +25,6 @@ from sable_tools.readers import analyze as analyze_csv, h5, screen  # sable-anal
 
 DECK = os.path.join(ROOT, 'input_scripts', 'cavity', 'cavity.in')
 SABLE = runner.built('sable')
-ANALYZE = runner.built('sable-analyze')
 OUT = os.path.join(ROOT, 'reference_runs', 'cavity', 'sweep', 'runs')
 
 HD, TSHEAR, TREC = 12, 6, 1
@@ -63,7 +62,7 @@ def sable(args, log, cwd):
 
 
 def analyze(args):
-    r = subprocess.run([ANALYZE] + args, capture_output=True, text=True)
+    r = runner.analyze(args)
     if r.returncode != 0:
         sys.exit(f'sweep: sable-analyze {" ".join(args)} failed: {r.stderr.strip()}')
     return r.stdout

@@ -12,7 +12,7 @@ it (fit-sigmoid, fit-linear, fit-lognormal, ks, pdf); Python adds only the seed 
 Welch and TOST tests (scipy) and the paper's curves drawn for comparison. The Eq. 7 fits are
 cached under --work/sweep_figures_cache (reused while newer than their samples).
 """
-import argparse, glob, json, os, subprocess, sys, tempfile, time
+import argparse, glob, json, os, sys, tempfile, time
 
 import numpy as np
 from scipy import stats
@@ -21,7 +21,6 @@ from sable_tools import figstyle, runner, seedstats  # figures' style; sable-ana
 from sable_tools.cavity import sweep  # the plan's points, seeds and run names live there once
 from sable_tools.paths import REPO as ROOT
 
-ANALYZE = runner.built('sable-analyze')
 PAPER_EQ4 = {'r1': 0.53, 'r2': 0.86, 'I0': 0.02}
 PAPER_EQ5 = {'c1': 0.88, 'c2': 0.5}
 PAPER_EQ20 = {'mu1': 0.12, 'mu2': 0.40, 'I0': 0.13}
@@ -45,7 +44,7 @@ GS, GY = 'compare/sable', 'compare/yade'
 
 def analyze(*args):
     """Run sable-analyze (niced: the sweep shares the CPUs); stdout, or stop with its message."""
-    r = subprocess.run(['nice', '-n', '10', ANALYZE] + [str(a) for a in args], capture_output=True, text=True)
+    r = runner.analyze(args, nice=True)
     if r.returncode != 0:
         sys.exit(f'sweep_figures: sable-analyze {" ".join(map(str, args))} failed: {r.stderr.strip()}')
     return r.stdout

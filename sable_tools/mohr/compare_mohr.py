@@ -38,7 +38,6 @@ HERE = os.path.join(REPO, 'input_scripts', 'mohr')  # mohr.in and mohr_yade.py
 DECK = os.path.join(HERE, 'mohr.in')
 YSCRIPT = os.path.join(HERE, 'mohr_yade.py')
 STORED = os.path.join(REPO, 'reference_runs', 'reference', 'mohr', 'yade')
-ANALYZE = runner.built('sable-analyze')
 SEEDS = ['32452843', '15485867', '49979687', '67867967', '86028121']
 DEFAULTS = {'N': '500', 'cycles': '3'}
 # judged quantities (name, text); the others are listed, not judged
@@ -60,7 +59,7 @@ def read_states(path):
 
 
 def analyze(args, *cmd):
-    r = subprocess.run([ANALYZE, *cmd], capture_output=True, text=True)
+    r = runner.analyze(cmd)
     if r.returncode:
         sys.exit(f'sable-analyze {" ".join(cmd)} failed:\n{r.stdout}{r.stderr}')
 

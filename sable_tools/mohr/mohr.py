@@ -19,7 +19,6 @@ import argparse
 import json
 import os
 import shutil
-import subprocess
 import sys
 import time
 
@@ -92,7 +91,8 @@ def read_result(log):
 
 
 def analyze(args, cwd):
-    r = subprocess.run([tool("sable-analyze")] + args, cwd=cwd, capture_output=True, text=True)
+    tool("sable-analyze")  # stops with the build hint when absent
+    r = runner.analyze(args, cwd)
     if r.returncode:
         raise RuntimeError(f"sable-analyze {' '.join(args)}: {r.stderr.strip()}")
     return r.stdout

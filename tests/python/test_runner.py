@@ -1,4 +1,8 @@
 """sable_tools.runner: screen text and exit status of a command, timeouts, logs, the commands it builds."""
+import os
+
+import pytest
+
 from sable_tools import runner
 from sable_tools.paths import repo_path
 
@@ -43,3 +47,12 @@ def test_find_sable(tmp_path):
 
 def test_built_falls_back_to_build():
     assert runner.built("no_such_program") == repo_path("build", "no_such_program")
+
+
+def test_analyze_reports_its_failure():
+    analyze = runner.built("sable-analyze")
+    if not os.access(analyze, os.X_OK):
+        pytest.skip("no build/sable-analyze")
+    assert runner.analyze(["--help"]).returncode == 0
+    r = runner.analyze(["no-such-subcommand"])
+    assert r.returncode != 0 and r.stderr
