@@ -85,7 +85,7 @@ ThreadBalance& thread_balance(PassKind k);
 
 // Per-pass timing of the threaded pair pass, for diagnosing the threads'
 // waiting: one line per pass in the file named by SABLE_PAIR_TRACE (absent:
-// nothing is recorded). input_scripts/bench/pair_trace.py summarises it.
+// nothing is recorded). sable_tools/bench/pair_trace.py summarises it.
 class PairTrace {
  public:
   static PairTrace* get();  // nullptr unless SABLE_PAIR_TRACE is set

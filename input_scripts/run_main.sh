@@ -25,7 +25,7 @@ for deck in collisions_hertz collisions_hooke incline poured_bed mesh_ramp mesh_
   ref=$live
   [ "$deck" = poured_bed ] && ref=liggghts-stored  # 10 LIGGGHTS seeds take minutes: use the stored ones
   echo "== compare $deck (sable vs $ref)"
-  /usr/bin/python3 reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
+  /usr/bin/python3 -m sable_tools.compare "input_scripts/compare/$deck.in" --codes "sable,$ref" \
     --sable "$root/build/sable" --out "$out/compare" > "$out/compare_$deck.txt" 2>&1 || status=1
   grep -E '^\| |^\*\*' "$out/compare/$deck/comparison.md" || cat "$out/compare_$deck.txt"
 done
@@ -35,9 +35,9 @@ done
 # two turns, is shown but does not judge the job.
 echo "== drag smoke (sable vs $live; one seed, 2 turns: shown, not judged)"
 rm -rf "$out/drag"  # fresh runs of this build, not the last job's
-/usr/bin/python3 reference_runs/drag/run_drag.py --preset smoke --sable "$root/build/sable" --out "$out/drag" \
+/usr/bin/python3 -m sable_tools.drag.run_drag --preset smoke --sable "$root/build/sable" --out "$out/drag" \
   > "$out/drag_runs.txt" 2>&1 || { status=1; tail -n 30 "$out/drag_runs.txt"; }
-/usr/bin/python3 reference_runs/drag/report_drag.py --out "$out/drag" > "$out/drag_report.txt" 2>&1 || true
+/usr/bin/python3 -m sable_tools.drag.report_drag --out "$out/drag" > "$out/drag_report.txt" 2>&1 || true
 grep -E '^\| |^###' "$out/drag/results.md" || cat "$out/drag_report.txt"
 
 # The cavity study's smoke scene (input_scripts/cavity/README.md, "YADE export"): sable
@@ -48,7 +48,7 @@ grep -E '^\| |^###' "$out/drag/results.md" || cat "$out/drag_report.txt"
 # standard errors (input_scripts/cavity/compare_smoke.tol); a failed comparison fails the job.
 echo "== cavity smoke (sable vs YADE stored; 3 seeds, H/d 8, 0.2 s recorded)"
 rm -rf "$out/cavity"
-/usr/bin/python3 reference_runs/compare_seeds.py input_scripts/cavity/cavity.in --ref yade-stored \
+/usr/bin/python3 -m sable_tools.compare_seeds input_scripts/cavity/cavity.in --ref yade-stored \
   --tolerances input_scripts/cavity/compare_smoke.tol --prepare phase deposit --results \
   --seed-var seed --seed-values 7 8 9 --var Hd 8 --var NU 1 --var NP 1 --var tshear 0.3 --var trec 0.1 \
   --var phase shear --var fields 0 --sable "$root/build/sable" --out "$out" > "$out/cavity_smoke.txt" 2>&1 || status=1
@@ -60,7 +60,7 @@ grep -E '^\| |^\*\*|^- ' "$out/cavity/seeds.md" || tail -n 5 "$out/cavity_smoke.
 # mohr_yade.py changed since. Judged at 2 combined standard errors; a failure fails the job.
 echo "== mohr small (sable vs YADE stored; 5 seeds, N 500, 3 cycles)"
 rm -rf "$out/mohr"
-/usr/bin/python3 input_scripts/mohr/compare_mohr.py --ref yade-stored --sable "$root/build/sable" \
+/usr/bin/python3 -m sable_tools.mohr.compare_mohr --ref yade-stored --sable "$root/build/sable" \
   --out "$out/mohr" > "$out/mohr_compare.txt" 2>&1 || status=1
 grep -E '^\| |^- ' "$out/mohr/compare.md" || tail -n 5 "$out/mohr_compare.txt"
 echo "logs, tables (comparison.md, drag/results.md, cavity/seeds.md, mohr/compare.md) and figures (comparison.png, drag/*.png, mohr/mohr_circles.png) in $out"

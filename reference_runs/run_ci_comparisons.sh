@@ -16,7 +16,7 @@ if command -v liggghts >/dev/null; then ref=liggghts; else
 fi
 status=0
 for deck in collisions_hertz collisions_hooke incline mesh_ramp mesh_box mesh_rotating_plate mesh_moving_plate mesh_fold mesh_conveyor move_wiggle aveforce_lid rigid_tumble rigid_lid cohesion_sjkr cohesion_sjkr2 hooke_hysteresis multisphere_pour; do
-  "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$ref" \
+  "$py" -m sable_tools.compare "input_scripts/compare/$deck.in" --codes "sable,$ref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
   echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) ($(grep -h 'observables judged' "/tmp/compare_$deck.$$.txt"); build-compare/$deck/comparison.md)"
@@ -29,7 +29,7 @@ if command -v yade >/dev/null; then yref=yade; else
   echo "yade not found (apt-get install yade); comparing against the stored YADE results"
 fi
 for deck in yade_collisions_hertz yade_linear_2d yade_wall yade_wall_avetime yade_lid_2d yade_aveforce_lid yade_lid_rigid_2d yade_rigid_tumble yade_mesh_ramp yade_mesh_paddle yade_mesh_pusher yade_periodic yade_periodic_rigid; do
-  "$py" reference_runs/compare.py "input_scripts/compare/$deck.in" --codes "sable,$yref" \
+  "$py" -m sable_tools.compare "input_scripts/compare/$deck.in" --codes "sable,$yref" \
     --sable "$sable" --out build-compare > "/tmp/compare_$deck.$$.txt" 2>&1
   rc=$?
   echo "$deck: $([ $rc = 0 ] && echo pass || echo FAIL) ($(grep -h 'observables judged' "/tmp/compare_$deck.$$.txt"); build-compare/$deck/comparison.md)"

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""cg_fields.py --layers on a synthetic fix ave/cg file whose answer is known: a bed of
+"""sable_tools/drag/cg_fields.py --layers on a synthetic fix ave/cg file whose answer is known: a bed of
 uniform density rho under a vertical stress k * g rho (level - z) (k = 1 hydrostatic,
 k < 1 a wall carrying part of the weight), isotropic but on the axis, where P is halved.
 Away from the surface the layer means over the N inner nodes must give sigma_zz / weight
 = k (N - 1/2) / N and P_axis / P = (1/2) N / (N - 1/2); nodes outside the inner radius
 (stress 1e9 there) must not count.
-Exit 77 (skipped) without h5py."""
+Exit 77 (skipped) without h5py.
+
+    PYTHONPATH=. /usr/bin/python3 tests/cg_layers.py    (from the repository root)"""
 import os
 import sys
 import tempfile
@@ -17,8 +19,7 @@ except ImportError:
     print("h5py or numpy not installed: skipped")
     sys.exit(77)
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "input_scripts", "drag"))
-import cg_fields  # noqa: E402
+from sable_tools.drag import cg_fields  # noqa: E402  (after the skip above)
 
 G, RHO, LEVEL, SUPPORT, K = 9.81, 1500.0, 0.05, 0.003, 0.7
 

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""reference_runs/compare_seeds.py's stored references (--store, --ref *-stored) and
+"""sable_tools/compare_seeds.py's stored references (--store, --ref *-stored) and
 --tolerances, through compare.py's parse_header / deck_hashes / load_stored / store.
 
-    /usr/bin/python3 tests/compare_seeds_stored.py SABLE
+    PYTHONPATH=. /usr/bin/python3 tests/compare_seeds_stored.py SABLE    (from the repository root)
 
 1. Round trip on a tiny seeded deck: the reference is stored from a live run (a
    stand-in `liggghts` on PATH that runs sable, so no LIGGGHTS is needed), then read
@@ -18,10 +18,8 @@
 """
 import contextlib, io, json, os, shutil, stat, sys, tempfile
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(REPO, 'reference_runs'))
-import compare  # noqa: E402
-import compare_seeds  # noqa: E402
+from sable_tools import compare, compare_seeds
+from sable_tools.paths import REPO
 
 TINY = '''#@ seeds seed 1 2 3
 variable seed index 1

@@ -56,9 +56,8 @@ import os
 import re
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mohr_small import (Checks, run_deck, start_runs, wait_runs, read_states, read_dump, check_balance,  # noqa: E402
-                        check_strain_path, check_pack, finite)
+from mohr_small import (Checks, run_deck, start_runs, wait_runs, read_states, read_dump, check_balance,
+                        check_strain_path, check_pack, finite)  # the script's folder is on the path
 
 sable, deck, work, case = sys.argv[1:5]
 BASE = {"N": 300, "piston": 8, "out": "m"}

@@ -1,7 +1,7 @@
 // sable --export-yade (tools/export_yade.h): what cannot be translated is an
 // error naming the deck file, line and command; what can appears in the
 // script. The physics of the script is checked by running it in YADE through
-// reference_runs/compare.py (decks input_scripts/compare/yade_*.in, stored
+// sable_tools/compare.py (decks input_scripts/compare/yade_*.in, stored
 // YADE results in reference_runs/reference/yade_*/yade/).
 #include <gtest/gtest.h>
 

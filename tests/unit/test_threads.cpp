@@ -430,7 +430,7 @@ TEST(Threads, PairTraceWritesOnePassPerLine) {
       break;
     }
   if (!py.empty()) {
-    const std::string sum = py + " " + SABLE_SOURCE_DIR + "/input_scripts/bench/pair_trace.py " + trace;
+    const std::string sum = std::string("PYTHONPATH=") + SABLE_SOURCE_DIR + " " + py + " -m sable_tools.bench.pair_trace " + trace;
     std::FILE* p = popen(sum.c_str(), "r");
     ASSERT_TRUE(p);
     std::string out;

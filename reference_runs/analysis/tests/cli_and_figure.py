@@ -14,7 +14,6 @@ import random
 import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 SUBS = ["pdf", "fit-lognormal", "fit-forms", "ks", "acf", "block-error", "mohr-envelope", "power-law", "quad-eq9",
         "bulk-modulus", "fit-offset-power", "mohr-cycles", "phi-min-eq9", "entropy"]
 
@@ -182,7 +181,7 @@ def figure(exe, work):
     curve = os.path.join(work, "forms.csv")
     run(exe, "fit-forms", data, "--column", "2", "--curve", curve)
     png = os.path.join(work, "pdf.png")
-    p = subprocess.run([sys.executable, os.path.join(HERE, "..", "fig_pdf.py"), curve, "-o", png, "--log"],
+    p = subprocess.run([sys.executable, "-m", "sable_tools.fig_pdf", curve, "-o", png, "--log"],
                        capture_output=True, text=True)
     if p.returncode != 0:
         sys.exit(f"FAIL: fig_pdf.py: {p.stderr}")
@@ -198,7 +197,7 @@ def figure(exe, work):
     lines[head] = ",".join("qdf" if c == "pdf" else c for c in lines[head].split(","))
     with open(bad, "w") as g:
         g.write("\n".join(lines) + "\n")
-    p = subprocess.run([sys.executable, os.path.join(HERE, "..", "fig_pdf.py"), bad, "-o", png + ".bad.png"],
+    p = subprocess.run([sys.executable, "-m", "sable_tools.fig_pdf", bad, "-o", png + ".bad.png"],
                        capture_output=True, text=True)
     if p.returncode == 0 or "no_pdf.csv" not in p.stderr + p.stdout or "pdf" not in p.stderr + p.stdout:
         sys.exit(f"FAIL: a curve without 'pdf' should be refused naming the file and the column: {p.stderr}")
@@ -208,9 +207,7 @@ def figure(exe, work):
 def check_drawn(curve):
     """What fig_pdf draws is the curve file: the data points where pdf > 0 and one line per fit form,
     each with its label, on a log y axis."""
-    sys.path.insert(0, os.path.join(HERE, ".."))
-    import fig_pdf
-    import figstyle
+    from sable_tools import fig_pdf, figstyle
     figstyle.use()
     t = figstyle.read(curve)
     fig, ax = fig_pdf.draw(t, log=True)
@@ -236,7 +233,7 @@ def check_drawn(curve):
 def check_png(png):
     """The PNG is a real picture of that size with ink in the fit colours, not an empty canvas."""
     import matplotlib.image as mpimg
-    import figstyle
+    from sable_tools import figstyle
     img = mpimg.imread(png)
     h, w = img.shape[:2]
     if w < 300 or h < 200:

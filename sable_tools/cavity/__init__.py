@@ -1,0 +1,1 @@
+"""cavity scripts."""

@@ -1,0 +1,1 @@
+"""campaign3 scripts."""

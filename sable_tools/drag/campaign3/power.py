@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+"""Campaign 3's design numbers, from runs already made (PLAN.md quotes this output).
+
+    /usr/bin/python3 -m sable_tools.drag.campaign3.power
+
+Reads the intermediate bed's runs (muprep 0.2, E* 1e6, 3 turns; dense_prep/runs/mid0.2_*):
+the seed-to-seed scatter of F_stat and F_first per depth and code, and each code's speed
+(CPU seconds per particle-step). Prints (1) the scatter, (2) the core-hours of every
+planned case from run_drag.scene's particle-step count, (3) the power of each
+pre-registered test for the planned seeds.
+"""
+import glob, json, math, os
+
+from sable_tools import seedstats as S
+from sable_tools.drag import run_drag
+from sable_tools.paths import repo_path
+
+HERE = repo_path('reference_runs', 'drag', 'campaign3')
+
+PAST = os.path.join(HERE, '..', 'dense_prep', 'runs')
+L = 0.012  # the cylinder's length in these runs (8 d)
+
+
+def past_runs():
+    out = {}
+    for f in sorted(glob.glob(os.path.join(PAST, 'mid0.2_E3.68e7_hL*', '*', 'run.json'))):
+        r = json.load(open(f))
+        if r.get('status') != 'ok':
+            continue
+        h = r['vars']['hL']
+        out.setdefault((r['code'], h), []).append(r)
+    return out
+
+
+def scatter(runs):
+    print('1. Seed scatter of the intermediate bed (E* 1e6, 3 turns; F_stat over turns 1.5-3)')
+    print('| code | h/L nominal (measured) | seeds | F_stat mean | sd | sd/mean | F_first mean | sd | sd/mean |')
+    print('|---|---|---|---|---|---|---|---|---|')
+    deep = {'F_stat': [], 'F_first': []}
+    for (code, h), rs in sorted(runs.items(), key=lambda k: (k[0][0], float(k[0][1]))):
+        hm = sum(r['result']['h_meas'] for r in rs) / len(rs) / L
+        fs = S.summary([r['result']['F_stat'] for r in rs])
+        ff = S.summary([r['result']['F_first'] for r in rs])
+        print(f'| {code} | {h} ({hm:.2f}) | {fs.n} | {fs.mean:.2f} | {fs.sd:.2f} | {fs.sd / fs.mean:.3f} | '
+              f'{ff.mean:.1f} | {ff.sd:.1f} | {ff.sd / ff.mean:.3f} |')
+        if float(h) >= 4:  # pooled relative variance at the deep depths, both codes
+            for key, s in (('F_stat', fs), ('F_first', ff)):
+                deep[key].append(((s.sd / s.mean) ** 2, s.n - 1))
+    cv = {k: math.sqrt(sum(v * d for v, d in x) / sum(d for _, d in x)) for k, x in deep.items()}
+    print(f"pooled sd/mean at h >= 4 L (both codes): F_stat {cv['F_stat']:.3f}, F_first {cv['F_first']:.3f}")
+    return cv
+
+
+def speeds(runs):
+    rate = {}
+    for code in ('sable', 'liggghts'):
+        ps = [(r['estimate']['particle_steps'], r['cpu_s']) for (c, _), rs in runs.items() if c == code for r in rs]
+        rate[code] = sum(p for p, _ in ps) / sum(t for _, t in ps)
+    print(f"speeds (CPU): sable {rate['sable']:.3g}, LIGGGHTS {rate['liggghts']:.3g} particle-steps/s; "
+          f'ratio {rate["sable"] / rate["liggghts"]:.2f}')
+    return rate
+
+
+def ledger(rate):
+    from sable_tools.drag.campaign3 import cases as C  # the campaign's case files, built from one table
+    print('\n2. Core-hours (CPU), every planned run, cheapest first within each code')
+    print('| case | E* | h/L | grains | steps/turn | sable seeds | sable core-h | LIGGGHTS seeds | LIGGGHTS core-h |')
+    print('|---|---|---|---|---|---|---|---|---|')
+    tot = {'sable': 0.0, 'liggghts': 0.0}
+    for c in C.all_cases():
+        s = run_drag.scene(c['vars'])
+        ns, nl = len(c['seeds'].get('sable', [])), len(c['seeds'].get('liggghts', []))
+        hs = ns * s['particle_steps'] / rate['sable'] / 3600
+        hl = nl * s['particle_steps'] / rate['liggghts'] / 3600
+        tot['sable'] += hs
+        tot['liggghts'] += hl
+        print(f"| {c['name']} | {s['Estar']:.3g} | {c['vars']['hL']} | {s['grains']} | {100 * s['Nrec']} | "
+              f'{ns} | {hs:.2f} | {nl} | {hl:.2f} |')
+    print(f"total: sable {tot['sable']:.1f} core-h (budget 30), LIGGGHTS {tot['liggghts']:.1f} core-h (budget 20)")
+
+
+def power(cv, runs):
+    """The tests' standard errors under the scatter measured, and their power."""
+    print('\n3. Power of the pre-registered tests (alpha 0.05; the estimate normal, its estimated error'
+          ' sampled as chi^2 over the Satterthwaite df: seedstats.tost_power)')
+    m = {float(h): S.summary([r['result']['F_stat'] for r in rs]).mean for (c, h), rs in runs.items() if c == 'sable'}
+    hm = {1: 1.16, 2: 2.17, 3.7: 3.9, 5: 5.22}  # measured depth of each nominal one, in L
+    F = {1: m[1], 2: m[2], 3.7: m[4] + (m[4] - m[3]) * (3.9 - 4.22) / (4.22 - 3.19), 5: m[5]}
+    cv_shallow = 0.03  # measured 0.014-0.031 at 1-2 L: the larger, rounded up
+
+    def group(h, n, c):
+        sd = c * F[h]
+        return S.Summary(F[h], sd, n, sd / math.sqrt(n), n - 1)
+
+    def r_se(n, c):
+        b = S.slope([hm[h] for h in (2, 3.7, 5)], [group(h, n, c) for h in (2, 3.7, 5)])
+        g1 = group(1, n, cv_shallow)
+        b0 = S.interval(g1.mean / hm[1], g1.se / hm[1], g1.df)
+        r = S.ratio(S.interval(0.0, b.se, b.df), b0)  # the ratio's error at a true slope of 0
+        return r.se, r.df, b0.est
+
+    print('| test | seeds | se | df | margin | power |')
+    print('|---|---|---|---|---|---|')
+    for n in (4, 5):
+        se, df, b0 = r_se(n, cv['F_stat'])
+        for true in (0.0, 0.05):
+            print(f'| T1 stiff: r inside +-0.15, true r {true} | {n} | {se:.3f} | {df:.1f} | 0.15 | '
+                  f'{S.tost_power(se, df, 0.15, true):.2f} |')
+    se, df, _ = r_se(4, cv['F_stat'])
+    print(f'| T2 soft: r > 0.15, true r 0.4 | 4 | {se:.3f} | {df:.1f} | - | {S.one_sided_power(se, df, 0.25):.2f} |')
+    se3, df3, _ = r_se(4, cv['F_stat'])
+    print(f'| T4 wall: r inside +-0.15, true r 0 | 4 | {se3:.3f} | {df3:.1f} | 0.15 | '
+          f'{S.tost_power(se3, df3, 0.15):.2f} |')
+    for key, marg in (('F_stat', 0.15), ('F_first', 0.20)):
+        for ns, nl in ((5, 3), (4, 2)):
+            se = cv[key] * math.sqrt(1 / ns + 1 / nl)
+            df = S.satterthwaite([(cv[key] ** 2 / ns, ns - 1), (cv[key] ** 2 / nl, nl - 1)])
+            print(f'| T6 sable - LIGGGHTS {key} (fraction of the mean), true 0 | {ns} vs {nl} | {se:.3f} | '
+                  f'{df:.1f} | {marg} | {S.tost_power(se, df, marg):.2f} |')
+    # Fig. 3: F_first slope against log10 E* over 1.36e5, 4e5, 1e6, 3e6, 1e7 (4, 2, 5, 2, 3 seeds)
+    x = [math.log10(e) for e in (1.36e5, 4e5, 1e6, 3e6, 1e7)]
+    gs = [S.Summary(1.0, cv['F_first'], n, cv['F_first'] / math.sqrt(n), n - 1) for n in (4, 2, 5, 2, 3)]
+    b = S.slope(x, gs)
+    print(f"| T7a F_first per decade of E* (fraction of the mean), true 0 | 4,2,5,2,3 | {b.se:.3f} | {b.df:.1f} | "
+          f"0.10 | {S.tost_power(b.se, b.df, 0.10):.2f} |")
+    for n in (2, 3):
+        se = cv['F_stat'] * math.sqrt(1 / 5 + 1 / n)
+        df = S.satterthwaite([(cv['F_stat'] ** 2 / 5, 4), (cv['F_stat'] ** 2 / n, n - 1)])
+        print(f"| T7c F_stat(1e7) - F_stat(1e6) (fraction), true 0 | 5 vs {n} | {se:.3f} | {df:.1f} | 0.15 | "
+              f"{S.tost_power(se, df, 0.15):.2f} |")
+    se = cv['F_stat'] * math.sqrt(1 / 4 + 1 / 5)
+    df = S.satterthwaite([(cv['F_stat'] ** 2 / 4, 3), (cv['F_stat'] ** 2 / 5, 4)])
+    print(f"| T7b F_stat(1.4e5) - F_stat(1e6) > 0 (fraction), true 0.15 | 4 vs 5 | {se:.3f} | {df:.1f} | - | "
+          f"{S.one_sided_power(se, df, 0.15):.2f} |")
+
+
+def main():
+    runs = past_runs()
+    cv = scatter(runs)
+    rate = speeds(runs)
+    ledger(rate)
+    power(cv, runs)
+
+
+if __name__ == '__main__':
+    main()

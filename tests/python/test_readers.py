@@ -1,0 +1,192 @@
+"""The readers (sable_tools.readers) on real outputs: stored runs of sable, LIGGGHTS and YADE,
+and the dump, fix ave/time text and HDF5 files of a short sable run made here."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+from sable_tools.paths import repo_path
+from sable_tools.readers import analyze, ave_time, dump, h5, screen, yade
+
+DRAG = repo_path("reference_runs", "drag")
+SABLE_LOG = os.path.join(DRAG, "effect_L12", "runs", "L12_E1e6_h1.5", "sable_s49979687", "log.txt")
+LIGGGHTS_LOG = os.path.join(DRAG, "dense_prep", "runs", "dense_E3.68e7_hL1", "liggghts_s49979687", "stdout.txt")
+YADE_STATES = repo_path("reference_runs", "reference", "mohr", "yade", "seed_15485867_yade_states.txt")
+SABLE_STATES = repo_path("reference_runs", "mohr", "compare", "sable", "seed_15485867", "m_states.txt")
+
+
+def test_sable_timing_block_is_the_last_runs():
+    # the log's last run: "Loop time of 422.333 s on 1 process for 191550 steps with 20315 atoms: 9.21e+06 ..."
+    d = screen.sable_loop(open(SABLE_LOG).read())
+    assert (d["loop_s"], d["steps"], d["atoms"], d["builds"]) == (422.333, 191550, 20315, 386)
+    assert d["psps_printed"] == 9.21e6
+    assert d["psps"] == pytest.approx(20315 * 191550 / 422.333)
+    assert d["split"] == {"pair": 74.2, "neigh": 2.6, "integrate": 8.6, "fixes": 14.6, "output": 0.0}
+
+
+def test_liggghts_timing_block_and_version():
+    text = open(LIGGGHTS_LOG).read()
+    d = screen.liggghts_loop(text)
+    last = [l for l in text.splitlines() if l.startswith("Loop time of")][-1].split()
+    assert (d["loop_s"], d["procs"], d["steps"], d["atoms"]) == (float(last[3]), int(last[5]), int(last[8]),
+                                                                 int(last[11].rstrip(",")))
+    assert d["version"].startswith("LIGGGHTS-PUBLIC 3.8.0")
+    assert set(d["split"]) == {"Pair", "Neigh", "Comm", "Outpt", "Other"}
+    assert sum(d["split"].values()) == pytest.approx(100.0, abs=0.01)
+
+
+def test_no_timing_block():
+    assert screen.sable_loop("ERROR: deck.in:3: unknown command") == {"psps": None}
+    assert screen.liggghts_loop("") == {"psps": None}
+
+
+def stored_yade_screens():
+    """Stored YADE references whose screen tail holds every OBSERVABLE line (the decks without avetime files)."""
+    root = repo_path("reference_runs", "reference")
+    for deck in sorted(os.listdir(root)):
+        folder = os.path.join(root, deck, "yade")
+        if os.path.exists(os.path.join(folder, "log_tail.txt")):
+            rec = json.load(open(os.path.join(folder, "results.json")))
+            tail = open(os.path.join(folder, "log_tail.txt")).read()
+            if tail.count("OBSERVABLE") == len(rec["observables"]):
+                yield pytest.param(tail, rec["observables"], id=deck)
+
+
+STORED_YADE = list(stored_yade_screens())
+
+
+def test_stored_yade_screens_found():
+    assert len(STORED_YADE) >= 10
+
+
+@pytest.mark.parametrize("tail,stored", STORED_YADE)
+def test_parse_screen_gives_the_stored_observables(tail, stored):
+    obs, _ = screen.parse_screen(tail)
+    assert obs.keys() == stored.keys()
+    for k, v in obs.items():
+        assert v == stored[k] or (math.isnan(v) and math.isnan(stored[k]))
+
+
+def test_parse_screen_tables_and_odd_values():
+    text = ("Step Atoms v_ke c_f[1]\n0 2 1.5 1e20\n10 2 0.5 -3\nLoop time of 0.1 s\n"
+            "5 5 5\nOBSERVABLE e 0.25\nOBSERVABLE bad -nan(ind)\nOBSERVABLE too many words\n")
+    obs, series = screen.parse_screen(text)
+    assert obs.keys() == {"e", "bad"} and obs["e"] == 0.25 and math.isnan(obs["bad"])
+    assert series == {"atoms": [[0.0, 10.0], [2.0, 2.0]], "ke": [[0.0, 10.0], [1.5, 0.5]], "f[1]": [[10.0], [-3.0]]}
+
+
+@pytest.mark.parametrize("path,code", [(YADE_STATES, "yade"), (SABLE_STATES, "sable")])
+def test_states_files_of_both_codes(path, code):
+    meta, rows = yade.read_states(path)
+    lines = [l for l in open(path).read().splitlines() if l.strip()]
+    assert len(rows) == len(lines) - 2
+    assert list(rows[0]) == lines[1].split()
+    assert [float(x) for x in lines[-1].split()] == list(rows[-1].values())
+    assert int(meta["N"]) > 0
+
+
+DECK = """units si
+atom_style granular
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 1 box
+neighbor 0.0005 bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e8
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-7
+create_atoms 1 single -0.0011 0 0 units box
+create_atoms 1 single 0.0011 0 0 units box
+set atom 1 diameter 0.002 density 2500 vx 1.0
+set atom 2 diameter 0.0016 density 2500 vx -1.0
+fix integr all nve/sphere
+compute k all ke
+variable x1 equal x[1]
+fix at all ave/time 500 1 500 c_k v_x1 file ave.txt hdf5 ave.h5
+dump d all custom 1000 out.dump id type radius x y z
+thermo_style custom step atoms ke
+thermo 1000
+run 3000
+print "OBSERVABLE x1 ${x1}"
+"""
+
+
+@pytest.fixture(scope="module")
+def run(sable, tmp_path_factory):
+    """A head-on collision of two spheres (3000 steps), run once for the tests below."""
+    work = tmp_path_factory.mktemp("readers")
+    (work / "deck.in").write_text(DECK)
+    p = subprocess.run([sable, "-in", "deck.in", "-log", "none"], cwd=work, capture_output=True, text=True,
+                       env={**os.environ, "OMP_NUM_THREADS": "1"}, timeout=120)
+    assert p.returncode == 0, p.stdout + p.stderr
+    return work, p.stdout
+
+
+def test_dump_last_snapshot(run):
+    work, text = run
+    atoms, box, periodic = dump.read_last_dump(str(work / "out.dump"))
+    order = np.argsort(atoms["id"])
+    assert atoms["id"][order].tolist() == [1.0, 2.0]
+    assert atoms["radius"][order].tolist() == [0.001, 0.0008]
+    assert box.tolist() == [[-0.01, 0.01]] * 3 and periodic == [False] * 3
+    obs, _ = screen.parse_screen(text)
+    assert atoms["x"][order][0] == pytest.approx(obs["x1"], rel=1e-5)  # step 3000 in both
+
+
+def test_screen_thermo_of_the_run(run):
+    _, text = run
+    _, series = screen.parse_screen(text)
+    assert series["atoms"] == [[0.0, 1000.0, 2000.0, 3000.0], [2.0] * 4]
+    assert screen.sable_loop(text)["steps"] == 3000
+
+
+def test_ave_time_text_and_hdf5_agree(run):
+    work, _ = run
+    obs, series = ave_time.ave_time_file(str(work / "ave.txt"), "at")
+    assert (obs["at_rows"], obs["at_first_step"], obs["at_last_step"]) == (7.0, 0.0, 3000.0)  # steps 0, 500, ...
+    cols, values, steps = h5.read_series(str(work / "ave.h5"))
+    assert cols == ["c_k", "v_x1"]
+    assert steps.tolist() == series["at_k"][0]
+    assert values[:, 0].tolist() == pytest.approx(series["at_k"][1], rel=1e-6)
+    assert values[:, 1].tolist() == pytest.approx(series["at_x1"][1], rel=1e-6)
+    assert values[-1, 1] == pytest.approx(obs["at_x1"], rel=1e-6)
+
+
+def test_key_lines_of_a_stored_run():
+    # "SCENE d=0.0015 E=3.68e7 Wd=20 Ld=8 Dd=2 zc=0.012 h=0.012 dt=5.22056904202558e-06 ... Ntot=5731"
+    scene = screen.key_lines(open(LIGGGHTS_LOG).read(), "SCENE")
+    assert len(scene) == 1
+    assert (scene[0]["d"], scene[0]["E"], scene[0]["dt"], scene[0]["Ntot"]) == ("0.0015", "3.68e7",
+                                                                               "5.22056904202558e-06", "5731")
+
+
+def test_key_lines_order_and_odd_words():
+    text = "RESULT a=1 b=x=2\nRESULTS c=3\nnote RESULT d=4\nRESULT e=5 loose\n"
+    assert screen.key_lines(text, "RESULT") == [{"a": "1", "b": "x=2"}, {"e": "5"}]
+
+
+def test_ave_time_rows_of_a_stored_torque_file():
+    # "# TimeStep f_cyl[6]" then "195381 -0.000955777", "199212 -0.0013807", ...
+    path = os.path.join(os.path.dirname(SABLE_LOG), "drag_torque.txt")
+    cols, rows = ave_time.read_rows(path)
+    lines = [l for l in open(path).read().splitlines() if l.strip()]
+    assert cols == ["f_cyl[6]"] and rows.shape == (len(lines) - 2, 2)
+    assert rows[:2].tolist() == [[195381.0, -0.000955777], [199212.0, -0.0013807]]
+
+
+def test_sable_analyze_csv_rows_and_columns():
+    # sable-analyze mohr-cycles' output: '#' metadata lines, then cycle,n,mu_M,... rows
+    path = os.path.join(os.path.dirname(SABLE_STATES), "mohr_cycles.csv")
+    rows, cols = analyze.rows(path), analyze.columns(path)
+    body = [l for l in open(path).read().splitlines() if l and not l.startswith("#")]
+    assert list(rows[0]) == list(cols) == body[0].split(",")
+    assert len(rows) == len(body) - 1
+    for name, values in cols.items():
+        assert [float(r[name]) for r in rows] == values.tolist()
