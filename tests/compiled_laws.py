@@ -23,7 +23,7 @@ import sys
 AXES = ['normal', 'damping', 'tangential', 'rolling', 'cohesion']
 KEYWORD = {'damping': 1, 'tangential': 2, 'rolling_friction': 3, 'cohesion': 4}
 DEFAULT = ['', 'liggghts', 'off', 'off', 'off']  # LIGGGHTS' defaults (registry.h ModelSelection)
-TUTORIALS = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public'  # as reference_runs/tutorials/run.py
+TUTORIALS = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public'  # as sable_tools/tutorials/run.py
 SELECTION = re.compile(r'(?:pair_style\s+gran|wall/gran)\s+model\s+(.*)')
 WORD = re.compile(r'[^\s"\'`(),;\\]+')
 
