@@ -1,28 +1,10 @@
 // compute ID group erotate/multisphere: the rotational kinetic energy 1/2 sum I_k w_k^2 (principal frame)
 // summed over the bodies of fix multisphere (LIGGGHTS 3.8: the group is ignored), a global scalar.
-#include "core/simulation.h"
+#include "computes/kinetic_energy.h"
 #include "core/style_registry.h"
-#include "fixes/fix_multisphere.h"
 
 namespace sable {
 
-class ComputeErotateMultisphere : public Compute {
- public:
-  ComputeErotateMultisphere(Simulation& s, const Args& a) : Compute(s, a) {
-    scalar_flag = true;
-    if (a.size() > 4) a.fail(4, "nothing more (compute erotate/multisphere takes no keywords)");
-  }
-  void init() override {
-    invoked_step = -1;
-    fix_ = sim.find_fix_style<FixMultisphere>();
-    if (!fix_) args.fail_line("compute erotate/multisphere needs a fix multisphere");
-  }
-  double compute_scalar() override { return fix_->rotational_energy(); }
-
- private:
-  FixMultisphere* fix_ = nullptr;
-};
-
-SABLE_COMPUTE("erotate/multisphere", ComputeErotateMultisphere);
+SABLE_COMPUTE("erotate/multisphere", BodyEnergyCompute<&FixMultisphere::rotational_energy>);
 
 }  // namespace sable

@@ -1,44 +1,28 @@
 // compute ID group erotate/sphere [update_on_run_end yes|no] [halfstep]:
 // rotational kinetic energy sum 1/2 I w^2 with I = Atoms::inertia (2/5 m r^2,
 // also in 2D as LIGGGHTS; 1/2 m r^2 for disks), a global scalar.
-#include "core/simulation.h"
+#include "computes/kinetic_energy.h"
 #include "core/style_registry.h"
 
 namespace sable {
 
-class ComputeErotateSphere : public Compute {
+class ComputeErotateSphere : public GrainEnergyCompute {
  public:
-  ComputeErotateSphere(Simulation& s, const Args& a) : Compute(s, a) {
-    scalar_flag = true;
-    for (std::size_t i = 4; i < a.size(); ++i) {
-      if (a[i] == "halfstep") halfstep_ = true;
-      else if (a[i] == "update_on_run_end") a.yes_no(++i, "yes or no");  // lazy evaluation makes it moot
-      else a.fail(i, "halfstep or update_on_run_end yes|no");
-    }
-  }
-  // Atoms may have been changed (set, velocity) since a run ended on this same step.
-  void init() override { invoked_step = -1; }
-
+  using GrainEnergyCompute::GrainEnergyCompute;
   double compute_scalar() override {
-    const Atoms& a = sim.atoms;
-    double e = 0.0;
-    for (std::size_t i = 0; i < a.n; ++i) {
-      if (!(a.mask[i] & groupbit)) continue;
+    const double dt = halfstep_ ? sim.dt : 0.0;
+    return half_sum([dt](const Atoms& a, std::size_t i) {
       const double inertia = a.inertia(i);
-      if (inertia <= 0.0) continue;  // point particles carry no rotational energy
-      const double h = halfstep_ ? 0.5 * sim.dt / inertia : 0.0;  // w(t + dt/2) = w + dt/2 T/I
+      if (inertia <= 0.0) return 0.0;  // point particles carry no rotational energy
+      const double h = 0.5 * dt / inertia;  // w(t + dt/2) = w + dt/2 T/I
       double w2 = 0.0;
       for (int k = 0; k < 3; ++k) {
         const double w = a.omega[3 * i + k] + h * a.torque[3 * i + k];
         w2 += w * w;
       }
-      e += inertia * w2;
-    }
-    return 0.5 * e;
+      return inertia * w2;
+    });
   }
-
- private:
-  bool halfstep_ = false;
 };
 
 SABLE_COMPUTE("erotate/sphere", ComputeErotateSphere);
