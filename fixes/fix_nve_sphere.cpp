@@ -14,7 +14,8 @@ namespace sable {
 
 class FixNveSphere : public Fix {
  public:
-  FixNveSphere(Simulation& s, const Args& a) : Fix(s, a), spin_(style == "nve/sphere") {
+  FixNveSphere(Simulation& s, const Args& a) : FixNveSphere(s, a, true) {}
+  FixNveSphere(Simulation& s, const Args& a, bool spin) : Fix(s, a), spin_(spin) {
     hooks = atom_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
     if (!spin_ && a.size() > 4) a.fail(4, "nothing after 'nve'");
     for (std::size_t i = 4; i < a.size(); ++i)
@@ -138,7 +139,12 @@ class FixNveSphere : public Fix {
   }
 };
 
+// fix nve: translation only.
+struct FixNve : FixNveSphere {
+  FixNve(Simulation& s, const Args& a) : FixNveSphere(s, a, false) {}
+};
+
 SABLE_FIX("nve/sphere", FixNveSphere);
-SABLE_FIX("nve", FixNveSphere);
+SABLE_FIX("nve", FixNve);
 
 }  // namespace sable

@@ -35,10 +35,10 @@ using namespace rigid;
 
 class FixRigid : public Fix {
  public:
-  FixRigid(Simulation& s, const Args& a) : Fix(s, a) {
+  FixRigid(Simulation& s, const Args& a) : FixRigid(s, a, false) {}
+  FixRigid(Simulation& s, const Args& a, bool small) : Fix(s, a), small_(small) {
     hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
     atom_tasks = two_phase_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
-    small_ = style == "rigid/small";
     parse(a);
     const auto st = sim.restart.fix_states.find(id);
     if (st == sim.restart.fix_states.end() || st->second.style != style) define_bodies();  // else read_state
@@ -416,13 +416,18 @@ class FixRigid : public Fix {
     int k = 0;
     for (auto& f : sim.fixes) {
       if (f.get() == this) return k;
-      k += f->style == "rigid" || f->style == "rigid/small";
+      k += dynamic_cast<const FixRigid*>(f.get()) != nullptr;
     }
     return k;
   }
 };
 
+// fix rigid/small: the same integrator, bodies from a custom per-atom ID only.
+struct FixRigidSmall : FixRigid {
+  FixRigidSmall(Simulation& s, const Args& a) : FixRigid(s, a, true) {}
+};
+
 SABLE_FIX("rigid", FixRigid);
-SABLE_FIX("rigid/small", FixRigid);
+SABLE_FIX("rigid/small", FixRigidSmall);
 
 }  // namespace sable
