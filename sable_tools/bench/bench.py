@@ -27,7 +27,6 @@ import subprocess
 import sys
 import tempfile
 import threading
-import time
 
 from sable_tools import runner  # where sable is; LIGGGHTS unbuffered
 from sable_tools.paths import REPO
@@ -101,36 +100,21 @@ def run_engine(engine, exe, case, size_vars, threads, workdir, timeout, dumpname
     os.makedirs(workdir, exist_ok=True)
     out_path = os.path.join(workdir, "out.txt")
     load0 = os.getloadavg()[0]
-    t0 = time.time()
-    with open(out_path, "w") as out:
-        p = subprocess.Popen(cmd, cwd=workdir, env=env, stdout=out, stderr=subprocess.STDOUT)
-        timed_out = False
-        hwm_kb = 0
-        comm = os.path.basename(exe)[:15]
-        while True:
-            hwm_kb = max(hwm_kb, peak_rss_kb(p.pid, comm))
-            pid, status, ru = os.wait4(p.pid, os.WNOHANG)
-            if pid:
-                break
-            if timeout and time.time() - t0 > timeout:
-                p.kill()
-                pid, status, ru = os.wait4(p.pid, 0)
-                timed_out = True
-                break
-            time.sleep(0.02)
-    wall = time.time() - t0
-    p.returncode = os.waitstatus_to_exitcode(status) if hasattr(os, "waitstatus_to_exitcode") else status
-    text = open(out_path, errors="replace").read()
-    r = dict(engine=engine, threads=threads, rc=p.returncode, timed_out=timed_out, wall_s=round(wall, 3),
+    hwm = [0]  # the peak resident set read while it runs (peak_rss_kb)
+    comm = os.path.basename(exe)[:15]
+    m = runner.measured(cmd, workdir, out_path, env=env, timeout=timeout,
+                        watch=lambda pid: hwm.__setitem__(0, max(hwm[0], peak_rss_kb(pid, comm))))
+    hwm_kb, ru, text = hwm[0], m.rusage, m.text
+    r = dict(engine=engine, threads=threads, rc=m.rc, timed_out=m.timed_out, wall_s=round(m.wall, 3),
              # run too short to be caught by the /proc polling: ru_maxrss, an upper bound
              maxrss_mb=round((hwm_kb or ru.ru_maxrss) / 1024.0, 1), maxrss_from="VmHWM" if hwm_kb else "ru_maxrss",
              ru_maxrss_mb=round(ru.ru_maxrss / 1024.0, 1),
              load_before=round(load0, 2),
              load_after=round(os.getloadavg()[0], 2), cmd=" ".join(args))
     r.update(screen.sable_loop(text) if engine == "sable" else screen.liggghts_loop(text))
-    m = re.findall(r"^BENCH (.*)$", text, re.M)
-    r["bench_line"] = m[-1] if m else None
-    r["ok"] = r["rc"] == 0 and not timed_out and r.get("psps") is not None
+    b = screen.tagged(text, "BENCH")  # the deck's last line: "BENCH natoms N ke ... "
+    r["bench_line"] = b[-1] if b else None
+    r["ok"] = r["rc"] == 0 and not m.timed_out and r.get("psps") is not None
     if not r["ok"]:
         r["tail"] = "\n".join(text.strip().splitlines()[-15:])
     r["dump"] = os.path.join(workdir, dumpname)

@@ -190,3 +190,22 @@ def test_sable_analyze_csv_rows_and_columns():
     assert len(rows) == len(body) - 1
     for name, values in cols.items():
         assert [float(r[name]) for r in rows] == values.tolist()
+
+
+def test_tagged_numbered_and_loop_times():
+    text = ("BENCH natoms 300 ke 4.5e-06 ztop 0.0094\nBENCHMARK x\nBLOCK 1 F=2.5\nBLOCK 2 F=3.0 n=4\n"
+            "BLOCK x F=9\nHALF 3 F=-1e-3\nLoop time of 1.5 s on 1 process for 10 steps with 2 atoms: 13 "
+            "particle-steps/s, 0 neighbor builds\nLoop time of 0.25 on 1 procs for 5 steps with 2 atoms\n"
+            "BENCH natoms 2\n")
+    assert screen.tagged(text, "BENCH") == ["natoms 300 ke 4.5e-06 ztop 0.0094", "natoms 2"]
+    assert screen.numbered(text, "BLOCK") == [(1, {"F": "2.5"}), (2, {"F": "3.0", "n": "4"})]
+    assert screen.numbered(text, "HALF") == [(3, {"F": "-1e-3"})]
+    assert screen.loop_times(text) == [1.5, 0.25]
+    assert screen.loop_times("no run") == []
+
+
+def test_loop_times_of_a_stored_log():
+    # the drag log's runs: settling, fill, the rotation; the last is the timing block's
+    text = open(SABLE_LOG).read()
+    times = screen.loop_times(text)
+    assert len(times) == text.count("\nLoop time of") and times[-1] == 422.333

@@ -1,0 +1,58 @@
+"""The studies' scripts over the one runner and the one set of readers: bench's run_engine and
+run_drag's launch on a stand-in program (a shell script printing what sable prints)."""
+import os
+
+from sable_tools.bench import bench
+from sable_tools.drag import run_drag
+
+FAKE_SABLE = """#!/bin/sh
+echo "threads $OMP_NUM_THREADS args $*"
+echo "Loop time of 0.5 s on 1 process for 100 steps with 20 atoms: 4000 particle-steps/s, 3 neighbor builds"
+echo "BENCH natoms 20 ke 0.5"
+[ -n "$SLEEP" ] && sleep "$SLEEP"
+exit ${RC:-0}
+"""
+
+
+def fake(tmp_path):
+    exe = tmp_path / "sable"
+    exe.write_text(FAKE_SABLE)
+    exe.chmod(0o755)
+    return str(exe)
+
+
+def test_bench_run_engine(tmp_path, monkeypatch):
+    exe = fake(tmp_path)
+    r = bench.run_engine("sable", exe, bench.CASES[0], {"nxy": 5}, 2, str(tmp_path / "w"), 0, "final.dump")
+    assert (r["rc"], r["timed_out"], r["ok"]) == (0, False, True)
+    assert (r["steps"], r["atoms"], r["builds"], r["psps"]) == (100, 20, 3, 4000.0)
+    assert r["bench_line"] == "natoms 20 ke 0.5"
+    screen = open(tmp_path / "w" / "out.txt").read()
+    assert screen.startswith("threads 2 args -in ") and "-var nxy 5 -var dumpfile final.dump -var sable 1" in screen
+    assert r["wall_s"] >= 0 and r["maxrss_mb"] > 0
+    monkeypatch.setenv("RC", "4")
+    r = bench.run_engine("sable", exe, bench.CASES[0], {}, 1, str(tmp_path / "w"), 0, "final.dump")
+    assert (r["rc"], r["ok"]) == (4, False) and "BENCH natoms 20" in r["tail"]
+
+
+def test_bench_run_engine_timeout(tmp_path, monkeypatch):
+    monkeypatch.setenv("SLEEP", "5")
+    r = bench.run_engine("sable", fake(tmp_path), bench.CASES[0], {}, 1, str(tmp_path / "w"), 0.5, "final.dump")
+    assert r["timed_out"] and r["rc"] == -9 and not r["ok"] and r["wall_s"] < 4
+
+
+def test_run_drag_launch(tmp_path, monkeypatch):
+    monkeypatch.setenv("RC", "2")
+    rc, wall, cpu, text = run_drag.launch([fake(tmp_path), "-in", "drag.in"], str(tmp_path), "stdout.txt", 3)
+    assert rc == 2 and text.startswith("threads 3 args -in drag.in\n")
+    assert open(tmp_path / "stdout.txt").read() == text
+    assert wall >= 0 and cpu >= 0
+
+
+def test_run_drag_parse_stdout():
+    text = ("SCENE d=0.0015 Ntot=5731\nBLOCK 1 F=2.5\nBLOCK 2 F=3.5\nLoop time of 1.5 s on 1 process\n"
+            "Loop time of 2 s on 1 process\nRESULT F_first=1 F_stat=3\nRESULT F_first=2 F_stat=4\n")
+    rec = run_drag.parse_stdout(text)
+    assert rec == {"blocks": [2.5, 3.5], "loop_time_s": 3.5, "scene": {"d": 0.0015, "Ntot": 5731.0},
+                   "result": {"F_first": 2.0, "F_stat": 4.0}}
+    assert os.path.basename(run_drag.DECK) == "drag.in"
