@@ -39,6 +39,7 @@ a line that decides no observable fails the comparison, as in compare.py.
 import argparse, datetime, json, math, os, shutil, sys
 
 from sable_tools import compare, runner, seedstats  # the deck conventions; the binaries; statistics over seeds
+from sable_tools.readers import screen  # the RESULT lines of a run's screen
 
 
 def stats(values):
@@ -47,21 +48,12 @@ def stats(values):
     return s.mean, s.sd, s.n
 
 
-def result_values(screen):
+def result_values(screen_file):
     """key=value pairs of the RESULT lines of a run's screen (numbers only; the last wins)."""
-    out = {}
-    if not os.path.exists(screen):
-        return out
-    for line in open(screen, errors='replace'):
-        if not line.startswith('RESULT '):
-            continue
-        for w in line.split()[1:]:
-            k, _, v = w.partition('=')
-            try:
-                out[k] = float(v)
-            except ValueError:
-                pass
-    return out
+    if not os.path.exists(screen_file):
+        return {}
+    with open(screen_file, errors='replace') as f:
+        return screen.numeric_keys(f.read(), 'RESULT')
 
 
 def judge(spec, ms, mlig, se):

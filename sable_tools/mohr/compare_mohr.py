@@ -73,17 +73,16 @@ def reduce(states_path, workdir):
     analyze(None, 'bulk-modulus', states_path, '--syy', 'syy', '--sxx', 'sxx', '--eyy', 'eps', '--cycle', 'cycle',
             '--loading', 'loading', '--out', bk)
     env = analyze_csv.rows(mc)
-    kr = [l.split(',') for l in open(bk) if l.strip() and not l.startswith('#')]
-    kr = [r for r in kr if r[0].strip().isdigit()]
+    kr = analyze_csv.rows(bk)  # row,cycle,syy,syy_mid,eyy,K: one row per Eq. 6 increment
     last = int(max(r['cycle'] for r in rows))
     peaks = {}
     for c in (1, last):
         ld = [r for r in rows if int(r['cycle']) == c and r['loading'] == 1]
         peaks[c] = ld[-1]
-    if int(kr[-1][1]) != last:
-        sys.exit(f'{states_path}: the last Eq. 6 increment is of cycle {kr[-1][1]}, not {last}')
+    if int(kr[-1]['cycle']) != last:
+        sys.exit(f'{states_path}: the last Eq. 6 increment is of cycle {kr[-1]["cycle"]}, not {last}')
     out = {'muM_c1': float(env[0]['mu_M']), 'muM_last': float(env[-1]['mu_M']),
-           'C_c1': float(env[0]['C']), 'C_last': float(env[-1]['C']), 'K_last': float(kr[-1][-1])}
+           'C_c1': float(env[0]['C']), 'C_last': float(env[-1]['C']), 'K_last': float(kr[-1]['K'])}
     for tag, c in (('c1', 1), ('last', last)):
         out[f'Z_peak_{tag}'] = peaks[c]['Z']
         out[f'porosity_peak_{tag}'] = peaks[c]['porosity']

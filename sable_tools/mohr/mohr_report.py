@@ -3,13 +3,13 @@ points.csv and the figures (called by `mohr.py reduce`)."""
 import csv
 import datetime
 import glob
-import gzip
 import json
 import math
 import os
 
 from sable_tools import seedstats  # statistics over seeds, one module for every study
 from sable_tools.readers.yade import read_states  # the states files of both codes
+from sable_tools.readers import dump  # the peaks' contact rows (dump local)
 
 SE_DIFF = 2.0      # "different": |d| > 2 combined SE
 Z_EQ = 1.645       # one-sided 5 % for the equivalence and "consistent" tests
@@ -176,16 +176,8 @@ def save(fig, path, dpi=110):
 
 
 def read_peak(path):
-    op = gzip.open if path.endswith(".gz") else open
-    rows = []
-    with op(path, "rt") as f:
-        lines = f.read().splitlines()
-    i = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ENTRIES")) + 1
-    for l in lines[i:]:
-        p = l.split()
-        if len(p) >= 5:
-            rows.append((float(p[2]), float(p[3]), float(p[4])))
-    return rows
+    """(phi, and the next two values) of each contact row of a peak's dump local (plain or .gz)."""
+    return [(float(p[2]), float(p[3]), float(p[4])) for _, _, rows in dump.local_snapshots(path) for p in rows]
 
 
 def figures(root, pts, base, point_name):

@@ -51,6 +51,18 @@ def key_lines(text, key):
     return [dict(w.split('=', 1) for w in rest.split() if '=' in w) for rest in tagged(text, key)]
 
 
+def numeric_keys(text, key):
+    """The k=v words of all lines that start with KEY whose values are numbers, as floats (a key
+    given twice: the last line's value), e.g. the RESULT lines of a deck."""
+    out = {}
+    for kv in key_lines(text, key):
+        for k, v in kv.items():
+            x = to_float(v)
+            if x is not None:
+                out[k] = x
+    return out
+
+
 def numbered(text, key):
     """Lines "KEY i k=v ...", i an integer (the drag deck's BLOCK and HALF lines): [(i, {k: v strings})]."""
     out = []
