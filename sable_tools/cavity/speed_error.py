@@ -187,7 +187,7 @@ def report(a):
         if not rs or not ref:
             continue
         m, se = mean_se(rs, 'F_PLd')
-        mr = np.mean([r['F_PLd'] for r in ref])
+        mr = seedstats.summary([r['F_PLd'] for r in ref]).mean  # the finest setting's seed mean
         same = code == 'sable' and value == finest[knob]
         dm, dse, npair = (0.0, 0.0, len(rs)) if same else paired(rs, ref)
         D, Dc = (0.0, float('nan')) if same else ks(a.work, rs, ref, f'{code}_{knob}{value:g}')

@@ -9,13 +9,12 @@ normalised force samples sweep.py keeps under --work (F_norm.npy, Fi_norm.npy, f
 works on whatever runs exist (the plan's points and seeds that are missing are listed), and
 writes --out/REPORT.md and --out/figures/*.png. Every statistic sable-analyze offers comes from
 it (fit-sigmoid, fit-linear, fit-lognormal, ks, pdf); Python adds only the seed means, the
-Welch and TOST tests (scipy) and the paper's curves drawn for comparison. The Eq. 7 fits are
+Welch and TOST tests (seedstats) and the paper's curves drawn for comparison. The Eq. 7 fits are
 cached under --work/sweep_figures_cache (reused while newer than their samples).
 """
 import argparse, glob, json, os, sys, tempfile, time
 
 import numpy as np
-from scipy import stats
 
 from sable_tools import figstyle, runner, seedstats  # figures' style; sable-analyze; statistics over seeds
 from sable_tools.cavity import sweep  # the plan's points, seeds and run names live there once
@@ -202,7 +201,7 @@ def welch_tost(a, b):
     d = seedstats.welch_diff(a, b, level=1 - 2 * ALPHA)
     e = seedstats.tost(d, MARGIN, alpha=ALPHA)
     t = d.est / d.se
-    return {'d': d.est, 'se': d.se, 'df': d.df, 't': t, 'p_diff': float(2 * stats.t.sf(abs(t), d.df)),
+    return {'d': d.est, 'se': d.se, 'df': d.df, 't': t, 'p_diff': seedstats.two_sided_p(d),
             'p_tost': e.p, 'ci90': (e.lo, e.hi)}
 
 
@@ -302,9 +301,9 @@ def yade_compare(tmp, work, runs, gs, gy, S, Y):
         if pt not in S:
             continue
         (ms, es), (my, ey) = S[pt]['F'], Y[pt]['F']
-        comb = np.hypot(es, ey)
+        comb = seedstats.combined_se(es, ey)
         c = {'diff': ms - my, 'comb': comb, 'ks': {}}
-        c['pass'] = bool(abs(ms - my) <= YADE_TOL * comb) if np.isfinite(comb) else None
+        c['pass'] = seedstats.agrees(ms - my, comb, YADE_TOL)  # None without an SE
         fy = {r['seed']: r['result']['F_PLd'] for r in runs[gy][pt]}
         c['paired'] = mean_se([r['result']['F_PLd'] - fy[r['seed']] for r in runs[gs][pt] if r['seed'] in fy])
         for scale, _, fname, _ in SCALES:

@@ -27,10 +27,10 @@ them without running YADE; refused before anything runs when mohr.in or mohr_yad
 since, or the parameters or seeds differ, and after sable's runs when a packing differs from
 the one YADE started from.
 """
-import argparse, csv, datetime, hashlib, json, math, os, shutil, subprocess, sys
+import argparse, csv, datetime, hashlib, json, os, shutil, subprocess, sys
 
 from sable_tools.mohr import mohr_report  # the states files' one reader; mean_se: seedstats.summary
-from sable_tools import runner  # the runs into their logs
+from sable_tools import runner, seedstats  # the runs into their logs; the agreement test
 from sable_tools.paths import REPO
 from sable_tools.readers import analyze as analyze_csv, yade  # sable-analyze's CSV; the states files
 
@@ -150,6 +150,34 @@ def figure(path, seeds, states, envs):
     fig.tight_layout()
     fig.savefig(path, dpi=72)
     plt.close(fig)
+
+
+def judge(values, seeds):
+    """The table's rows (per quantity: each code's mean and seed-to-seed SE, the difference and its
+    tolerance 2 sqrt(SE_s^2 + SE_y^2), the paired difference) and whether every JUDGED quantity
+    agrees within its tolerance. values: {code: {seed: {quantity: value}}}."""
+    ok = True
+    rows = []
+    for q in JUDGED + INFO:
+        vs = [values['sable'][s][q] for s in seeds if s in values['sable']]
+        vy = [values['yade'][s][q] for s in seeds if s in values['yade']]
+        ms, ses, ns = mohr_report.mean_se(vs)
+        my, sey, ny = mohr_report.mean_se(vy)
+        se = seedstats.combined_se(ses, sey)
+        diff = ms - my
+        pd = [values['sable'][s][q] - values['yade'][s][q] for s in seeds
+              if s in values['sable'] and s in values['yade']]
+        pm, pse, _ = mohr_report.mean_se(pd)
+        if q in JUDGED:
+            passed = bool(seedstats.agrees(diff, se, 2.0))  # |diff| <= 2 combined SE; False without an SE
+            res = 'PASS' if passed else 'FAIL'
+            ok = ok and passed
+        else:
+            res = 'not judged'
+        rows.append({'quantity': q, 'sable_mean': ms, 'sable_se': ses, 'yade_mean': my, 'yade_se': sey,
+                     'n': min(ns, ny), 'diff': diff, 'tolerance': 2 * se, 'paired_diff': pm, 'paired_se': pse,
+                     'result': res})
+    return rows, ok
 
 
 def main():
@@ -277,27 +305,8 @@ def main():
                        'envelopes': envs['yade']}, open(os.path.join(STORED, 'results.json'), 'w'), indent=1)
             print(f'stored the YADE reference in {show(STORED)}')
     # ---- the table
-    ok = not errors
-    rows = []
-    for q in JUDGED + INFO:
-        vs = [values['sable'][s][q] for s in a.seeds if s in values['sable']]
-        vy = [values['yade'][s][q] for s in a.seeds if s in values['yade']]
-        ms, ses, ns = mohr_report.mean_se(vs)
-        my, sey, ny = mohr_report.mean_se(vy)
-        se = math.sqrt(ses ** 2 + sey ** 2)
-        diff = ms - my
-        pd = [values['sable'][s][q] - values['yade'][s][q] for s in a.seeds
-              if s in values['sable'] and s in values['yade']]
-        pm, pse, _ = mohr_report.mean_se(pd)
-        if q in JUDGED:
-            passed = abs(diff) <= 2 * se if not math.isnan(se) else False
-            res = 'PASS' if passed else 'FAIL'
-            ok = ok and passed
-        else:
-            res = 'not judged'
-        rows.append({'quantity': q, 'sable_mean': ms, 'sable_se': ses, 'yade_mean': my, 'yade_se': sey,
-                     'n': min(ns, ny), 'diff': diff, 'tolerance': 2 * se, 'paired_diff': pm, 'paired_se': pse,
-                     'result': res})
+    rows, passed = judge(values, a.seeds)
+    ok = not errors and passed
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, 'compare.csv'), 'w', newline='') as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))

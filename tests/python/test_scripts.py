@@ -56,3 +56,20 @@ def test_run_drag_parse_stdout():
     assert rec == {"blocks": [2.5, 3.5], "loop_time_s": 3.5, "scene": {"d": 0.0015, "Ntot": 5731.0},
                    "result": {"F_first": 2.0, "F_stat": 4.0}}
     assert os.path.basename(run_drag.DECK) == "drag.in"
+
+
+def test_compare_mohr_judge_gives_the_stored_table():
+    # reference_runs/mohr/compare/compare.json: the values of each code and seed and the rows judged from them
+    import json
+    import math
+    from sable_tools.mohr import compare_mohr
+    from sable_tools.paths import repo_path
+    rec = json.load(open(repo_path("reference_runs", "mohr", "compare", "compare.json")))
+    rows, ok = compare_mohr.judge(rec["values"], rec["seeds"])
+    assert [r["quantity"] for r in rows] == [r["quantity"] for r in rec["rows"]]
+    for got, want in zip(rows, rec["rows"]):
+        assert got["result"] == want["result"] and got["n"] == want["n"]
+        for k in ("sable_mean", "sable_se", "yade_mean", "yade_se", "diff", "tolerance", "paired_diff", "paired_se"):
+            assert got[k] == want[k] or (math.isnan(got[k]) and math.isnan(want[k])) or \
+                abs(got[k] - want[k]) <= 1e-12 * abs(want[k]), (got["quantity"], k)
+    assert ok == all(r["result"] != "FAIL" for r in rec["rows"])
