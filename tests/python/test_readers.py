@@ -323,3 +323,50 @@ def test_numeric_keys_last_wins_numbers_only():
     got = screen.numeric_keys(text, "RESULT")
     assert set(got) == {"F", "n", "e"} and (got["F"], got["n"]) == (2.5, 3.0) and math.isnan(got["e"])
     assert screen.numeric_keys(text, "CAVITY") == {}
+
+
+VTK_POINTS = """# vtk DataFile Version 2.0
+LIGGGHTS mesh/VTK export
+ASCII
+DATASET POLYDATA
+POINTS 4 float
+0 0 0.5 1 0 0.25
+0 1 0 1
+1 -2e-3
+POLYGONS 1 5
+4 0 1 2 3
+CELL_DATA 3
+FIELD FieldData 2
+wear 1 3 float
+0.5 0.25 1e-3
+area 1 3 float
+1 1 1
+"""
+
+SABLE_SCALARS = """CELL_DATA 2
+SCALARS wear float 1
+LOOKUP_TABLE default
+2.5 -1
+SCALARS wearx float 1
+LOOKUP_TABLE default
+7 7
+"""
+
+
+def test_vtk_points_and_fields(tmp_path):
+    from sable_tools.readers import vtk
+    p = tmp_path / "m.vtk"
+    p.write_text(VTK_POINTS)
+    assert vtk.points(str(p)).tolist() == [[0, 0, 0.5], [1, 0, 0.25], [0, 1, 0], [1, 1, -2e-3]]
+    assert vtk.field(VTK_POINTS, "wear") == [0.5, 0.25, 1e-3]   # LIGGGHTS' FIELD array
+    assert vtk.field(SABLE_SCALARS, "wear") == [2.5, -1.0]      # sable's SCALARS, not wearx
+    assert vtk.field(VTK_POINTS, "missing") is None
+
+
+def test_multisphere_scan_final_zcm():
+    from sable_tools.tutorials.multisphere_scan import final_zcm
+    liggghts = ("Step Atoms KinEng c_tut_z \n       0        0            0            0 \n"
+                "   40000       50 1.2e-06 0.0123 \nLoop time of 1 on 1 procs for 40000 steps with 50 atoms\n")
+    assert final_zcm(liggghts) == 0.0123
+    assert math.isnan(final_zcm(liggghts.replace("      50 ", "      49 ")))  # not all inserted
+    assert math.isnan(final_zcm("ERROR: no deck"))
