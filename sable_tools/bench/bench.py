@@ -262,10 +262,8 @@ def core_probe(sable):
     exe = os.path.join(os.path.dirname(sable), "sable_core_probe") if sable else None
     if not exe or not os.access(exe, os.X_OK):
         return None
-    try:
-        out = subprocess.run([exe], capture_output=True, text=True, timeout=120,
-                             env=dict(os.environ, OMP_NUM_THREADS="2")).stdout
-    except (OSError, subprocess.TimeoutExpired):
+    out, rc = runner.execute([exe], None, 120, env=dict(os.environ, OMP_NUM_THREADS="2"))
+    if rc == -1:  # timed out or did not start
         return None
     m = re.search(r"round_trip_us ([\d.]+) barrier_us ([\d.]+) region_us ([\d.]+)", out)
     if not m:

@@ -73,3 +73,13 @@ def test_compare_mohr_judge_gives_the_stored_table():
             assert got[k] == want[k] or (math.isnan(got[k]) and math.isnan(want[k])) or \
                 abs(got[k] - want[k]) <= 1e-12 * abs(want[k]), (got["quantity"], k)
     assert ok == all(r["result"] != "FAIL" for r in rec["rows"])
+
+
+def test_bench_core_probe(tmp_path):
+    probe = tmp_path / "sable_core_probe"
+    probe.write_text("#!/bin/sh\necho \"threads $OMP_NUM_THREADS\"\necho round_trip_us 0.09 barrier_us 0.5 region_us 1.25\n")
+    assert bench.core_probe(str(tmp_path / "sable")) is None  # not executable yet
+    probe.chmod(0o755)
+    assert bench.core_probe(str(tmp_path / "sable")) == dict(round_trip_us=0.09, barrier_us=0.5, region_us=1.25)
+    probe.write_text("#!/bin/sh\necho nothing\n")
+    assert bench.core_probe(str(tmp_path / "sable")) is None
