@@ -14,7 +14,7 @@ reduced.json (the RESULT and CAVITY values, l/L, the ACF times, the paper-region
 I and mu_loc). `reduce` redoes the reductions from DIR. The seeds' normalised force
 samples are kept in DIR for sweep_figures.py (pooled PDFs and Eq. 7 fits).
 """
-import argparse, fcntl, json, os, subprocess, sys, time
+import argparse, fcntl, json, os, shutil, sys, time
 
 import numpy as np
 
@@ -168,7 +168,7 @@ def reduce_run(work, nu, np_, seed, wall=None, code='sable', cmp=False):
     dst = out_dir(nu, np_, seed, code, cmp)
     os.makedirs(dst, exist_ok=True)
     for f in ('log.' + code, 'cav_blocks.txt'):
-        subprocess.run(['cp', os.path.join(raw, f), dst], check=True)
+        shutil.copy(os.path.join(raw, f), dst)
     if code == 'sable':
         red.update(fields(raw, cav, L))
     json.dump(red, open(os.path.join(dst, 'reduced.json'), 'w'), indent=1)
