@@ -41,6 +41,13 @@ def parse_screen(text):
     return obs, {c: [sorted(s), [s[k] for k in sorted(s)]] for c, s in series.items()}
 
 
+def error_lines(text):
+    """The error messages of a screen, in order: sable's and LIGGGHTS' lines starting with ERROR
+    (with more than the bare word) and YADE's (Python's) RuntimeError lines, stripped."""
+    return [l.strip() for l in text.splitlines()
+            if (l.startswith('ERROR') and len(l.strip()) > 6) or l.startswith('RuntimeError')]
+
+
 def tagged(text, key):
     """The rest of each line that starts with the word KEY (a deck's print "KEY ..."), in order."""
     return [line[len(key) + 1:] for line in text.splitlines() if line.startswith(key + ' ')]

@@ -33,7 +33,7 @@ import argparse, concurrent.futures, json, math, os, re, shutil, sys, time
 import numpy as np
 
 from sable_tools import runner, seedstats  # running the codes; statistics over seeds
-from sable_tools.readers.screen import parse_screen  # OBSERVABLE lines and thermo tables
+from sable_tools.readers.screen import error_lines, parse_screen  # ERROR lines; OBSERVABLE lines and thermo tables
 from sable_tools.readers import vtk  # the mesh snapshots' wear
 from sable_tools.paths import REPO
 
@@ -217,7 +217,7 @@ def run_one(name, code, seed, args):
         text += out
         if rc != 0 or 'ERROR' in out:
             rec['ok'] = False
-            errs = [l for l in out.splitlines() if 'ERROR' in l]
+            errs = error_lines(out)
             last = out.strip().splitlines()[-1] if out.strip() else ''
             rec['error'] = (errs[0] if errs else f'{deck}: exit status {rc}: {last}')[:300]
             break

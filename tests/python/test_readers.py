@@ -370,3 +370,13 @@ def test_multisphere_scan_final_zcm():
     assert final_zcm(liggghts) == 0.0123
     assert math.isnan(final_zcm(liggghts.replace("      50 ", "      49 ")))  # not all inserted
     assert math.isnan(final_zcm("ERROR: no deck"))
+
+
+def test_error_lines():
+    text = ("ERROR\nERROR: deck.in:3: unknown command 'foo'\nWARNING: ERROR in a warning\n"
+            "Traceback (most recent call last):\nRuntimeError: compute sl: hi is not above lo\n"
+            "ERROR on proc 0: Cannot open file x (../input.cpp:12)\n")
+    assert screen.error_lines(text) == ["ERROR: deck.in:3: unknown command 'foo'",
+                                        "RuntimeError: compute sl: hi is not above lo",
+                                        "ERROR on proc 0: Cannot open file x (../input.cpp:12)"]
+    assert screen.error_lines("all fine\n") == []
