@@ -76,6 +76,31 @@ def judge(spec, ms, mlig, se):
     return d <= allowed, ' + '.join(parts).replace(', + ', ', ') + f' = {allowed:.3g}'
 
 
+def table(values, ref, h):
+    """The rows of the comparison (per observable: each code's seed mean and sd, n, the Welch SE of
+    the difference, diff / SE, the tolerance's text and result) and whether none failed.
+    values: {code: {observable: [one value per seed]}}; h: compare.parse_header's."""
+    names = list(dict.fromkeys(list(values['sable']) + list(values[ref])))
+    rows, ok = [], True
+    for n in names:
+        ms, ss, ns = stats(values['sable'].get(n, []))
+        ml, sl, nl = stats(values[ref].get(n, []))
+        se = seedstats.welch_diff(values['sable'].get(n, []), values[ref].get(n, [])).se  # nan below two seeds each
+        k = compare.rule(h, n)
+        if k is None:  # compare.py's rule: every observable is judged or explicitly unjudged
+            passed, text = False, 'no #@ tolerance or #@ unjudged line matches'
+        elif h['rules'][k][1] is None:
+            passed, text = None, 'unjudged: ' + h['rules'][k][2]
+        else:
+            passed, text = judge(h['rules'][k][1], ms, ml, se)
+        ok = ok and passed is not False
+        z = abs(ms - ml) / se if se > 0 else (0.0 if ms == ml else math.inf)
+        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, f'{ref}_mean': ml, f'{ref}_sd': sl,
+                     'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
+                     'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
+    return rows, ok
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('deck')
@@ -160,23 +185,8 @@ def main():
                 sys.exit(f'{ref} failed, reference not stored: ' + '; '.join(rec['errors']))
             compare.store(rec, args.deck, name, ref, hashes)
     names = list(dict.fromkeys(list(values['sable']) + list(values[ref])))
-    rows, ok = [], not errors
-    for n in names:
-        ms, ss, ns = stats(values['sable'].get(n, []))
-        ml, sl, nl = stats(values[ref].get(n, []))
-        se = math.sqrt(ss ** 2 / ns + sl ** 2 / nl) if ns > 1 and nl > 1 else math.nan
-        k = compare.rule(h, n)
-        if k is None:  # compare.py's rule: every observable is judged or explicitly unjudged
-            passed, text = False, 'no #@ tolerance or #@ unjudged line matches'
-        elif h['rules'][k][1] is None:
-            passed, text = None, 'unjudged: ' + h['rules'][k][2]
-        else:
-            passed, text = judge(h['rules'][k][1], ms, ml, se)
-        ok = ok and passed is not False
-        z = abs(ms - ml) / se if se > 0 else (0.0 if ms == ml else math.inf)
-        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, f'{ref}_mean': ml, f'{ref}_sd': sl,
-                     'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
-                     'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
+    rows, judged_ok = table(values, ref, h)
+    ok = not errors and judged_ok
     dead = [f'{where} `#@ {"unjudged" if spec is None else "tolerance"} {pat}` decides no observable '
             '(its pattern matches none, or later lines override every match)'
             for pat, spec, _, where in compare.dead_rules(h, names)]

@@ -83,3 +83,36 @@ def test_bench_core_probe(tmp_path):
     assert bench.core_probe(str(tmp_path / "sable")) == dict(round_trip_us=0.09, barrier_us=0.5, region_us=1.25)
     probe.write_text("#!/bin/sh\necho nothing\n")
     assert bench.core_probe(str(tmp_path / "sable")) is None
+
+
+def test_compare_seeds_table_gives_the_stored_comparison():
+    # reference_runs/reference/rate_pour/seeds.json: both codes' per-seed values and the rows judged
+    # from them under input_scripts/compare/rate_pour.in's #@ tolerance lines
+    import json
+    import math
+    from sable_tools import compare, compare_seeds
+    from sable_tools.paths import repo_path
+    rec = json.load(open(repo_path("reference_runs", "reference", "rate_pour", "seeds.json")))
+    h = compare.parse_header(repo_path("input_scripts", "compare", "rate_pour.in"))
+    rows, ok = compare_seeds.table(rec["values"], "liggghts", h)
+    assert ok and [r["observable"] for r in rows] == [r["observable"] for r in rec["rows"]]
+    for got, want in zip(rows, rec["rows"]):
+        assert (got["result"], got["tolerance"], got["n"]) == (want["result"], want["tolerance"], want["n"])
+        for k in ("sable_mean", "sable_sd", "liggghts_mean", "liggghts_sd", "se", "diff_over_se"):
+            assert got[k] == want[k] or abs(got[k] - want[k]) <= 1e-13 * abs(want[k]), (got["observable"], k)
+    # the SE of the difference by hand: sqrt(sd_s^2 / n + sd_l^2 / n)
+    r0 = rows[0]
+    assert r0["se"] == __import__("pytest").approx(math.sqrt(r0["sable_sd"] ** 2 / 6 + r0["liggghts_sd"] ** 2 / 6),
+                                                    rel=1e-14)
+
+
+def test_compare_seeds_table_one_seed_and_unmatched(tmp_path):
+    from sable_tools import compare, compare_seeds
+    deck = tmp_path / "d.in"
+    deck.write_text("#@ tolerance a sigma 2\n#@ unjudged b not a physical quantity\n")
+    h = compare.parse_header(str(deck))
+    values = {"sable": {"a": [1.0], "b": [2.0, 3.0], "c": [1.0, 1.0]}, "yade": {"a": [1.5], "b": [2.0, 2.5], "c": [1.0, 1.0]}}
+    rows, ok = compare_seeds.table(values, "yade", h)
+    by = {r["observable"]: r for r in rows}
+    assert by["a"]["result"] == "FAIL" and by["a"]["tolerance"] == "no spread (one seed)"
+    assert by["b"]["result"] == "not judged" and by["c"]["result"] == "FAIL" and not ok
