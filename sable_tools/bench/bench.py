@@ -668,6 +668,17 @@ def write_md_json(prefix, text, data):
         json.dump(data, f, indent=1, default=str)
 
 
+def merge_results(old, results):
+    """--update: the cases of an earlier results JSON that this run did not measure (each marked
+    with the date it was measured), then this run's, in CASES' order (unknown names last)."""
+    merged = {k: v for k, v in old.get("results", {}).items() if k not in results}
+    for v in merged.values():
+        v.setdefault("measured", old.get("info", {}).get("date"))
+    merged.update(results)
+    order = [c["name"] for c in CASES]
+    return {k: merged[k] for k in sorted(merged, key=lambda k: order.index(k) if k in order else 99)}
+
+
 def main():
     ap = argparse.ArgumentParser(
         description="Benchmark sable against LIGGGHTS on the decks of input_scripts/bench/ "
@@ -762,13 +773,7 @@ def main():
         info["loadavg_end"] = os.getloadavg()
         if args.update and os.path.exists(prefix + ".json"):
             with open(prefix + ".json") as f:
-                old = json.load(f)
-            merged = {k: v for k, v in old.get("results", {}).items() if k not in results}
-            for k, v in merged.items():
-                v.setdefault("measured", old.get("info", {}).get("date"))
-            merged.update(results)
-            order = [c["name"] for c in CASES]
-            results = {k: merged[k] for k in sorted(merged, key=lambda k: order.index(k) if k in order else 99)}
+                results = merge_results(json.load(f), results)
             info["merged_from"] = prefix + ".json"
         for res in results.values():
             for r in res["runs"]:

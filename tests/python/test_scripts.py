@@ -116,3 +116,13 @@ def test_compare_seeds_table_one_seed_and_unmatched(tmp_path):
     by = {r["observable"]: r for r in rows}
     assert by["a"]["result"] == "FAIL" and by["a"]["tolerance"] == "no spread (one seed)"
     assert by["b"]["result"] == "not judged" and by["c"]["result"] == "FAIL" and not ok
+
+
+def test_bench_merge_results():
+    old = {"info": {"date": "2026-11-01"}, "results": {"drum": {"runs": [1]}, "bed_30k": {"runs": [2]},
+                                                       "other": {"runs": [3], "measured": "2026-10-01"}}}
+    new = {"bed_30k": {"runs": [4]}, "shear_2d": {"runs": [5]}}
+    m = bench.merge_results(old, new)
+    assert list(m) == ["bed_30k", "shear_2d", "drum", "other"]  # CASES' order a, c, d, then unknown
+    assert m["bed_30k"] == {"runs": [4]} and m["drum"] == {"runs": [1], "measured": "2026-11-01"}
+    assert m["other"]["measured"] == "2026-10-01"
