@@ -86,6 +86,8 @@ def test_states_files_of_both_codes(path, code):
     assert list(rows[0]) == lines[1].split()
     assert [float(x) for x in lines[-1].split()] == list(rows[-1].values())
     assert int(meta["N"]) > 0
+    meta_t, text = yade.read_states(path, text=True)  # as printed: the digits the tests judge
+    assert meta_t == meta and list(text[-1].values()) == lines[-1].split()
 
 
 DECK = """units si
