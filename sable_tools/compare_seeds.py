@@ -39,6 +39,7 @@ a line that decides no observable fails the comparison, as in compare.py.
 import argparse, datetime, json, math, os, shutil, sys
 
 from sable_tools import compare, runner, seedstats  # the deck conventions; the binaries; statistics over seeds
+from sable_tools.readers import screen  # the RESULT lines of a run's screen
 
 
 def stats(values):
@@ -47,21 +48,12 @@ def stats(values):
     return s.mean, s.sd, s.n
 
 
-def result_values(screen):
+def result_values(screen_file):
     """key=value pairs of the RESULT lines of a run's screen (numbers only; the last wins)."""
-    out = {}
-    if not os.path.exists(screen):
-        return out
-    for line in open(screen, errors='replace'):
-        if not line.startswith('RESULT '):
-            continue
-        for w in line.split()[1:]:
-            k, _, v = w.partition('=')
-            try:
-                out[k] = float(v)
-            except ValueError:
-                pass
-    return out
+    if not os.path.exists(screen_file):
+        return {}
+    with open(screen_file, errors='replace') as f:
+        return screen.numeric_keys(f.read(), 'RESULT')
 
 
 def judge(spec, ms, mlig, se):
@@ -82,6 +74,31 @@ def judge(spec, ms, mlig, se):
         allowed += spec['sigma'] * se
         parts.append(f'{spec["sigma"]:g} SE')
     return d <= allowed, ' + '.join(parts).replace(', + ', ', ') + f' = {allowed:.3g}'
+
+
+def table(values, ref, h):
+    """The rows of the comparison (per observable: each code's seed mean and sd, n, the Welch SE of
+    the difference, diff / SE, the tolerance's text and result) and whether none failed.
+    values: {code: {observable: [one value per seed]}}; h: compare.parse_header's."""
+    names = list(dict.fromkeys(list(values['sable']) + list(values[ref])))
+    rows, ok = [], True
+    for n in names:
+        ms, ss, ns = stats(values['sable'].get(n, []))
+        ml, sl, nl = stats(values[ref].get(n, []))
+        se = seedstats.welch_diff(values['sable'].get(n, []), values[ref].get(n, [])).se  # nan below two seeds each
+        k = compare.rule(h, n)
+        if k is None:  # compare.py's rule: every observable is judged or explicitly unjudged
+            passed, text = False, 'no #@ tolerance or #@ unjudged line matches'
+        elif h['rules'][k][1] is None:
+            passed, text = None, 'unjudged: ' + h['rules'][k][2]
+        else:
+            passed, text = judge(h['rules'][k][1], ms, ml, se)
+        ok = ok and passed is not False
+        z = abs(ms - ml) / se if se > 0 else (0.0 if ms == ml else math.inf)
+        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, f'{ref}_mean': ml, f'{ref}_sd': sl,
+                     'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
+                     'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
+    return rows, ok
 
 
 def main():
@@ -168,23 +185,8 @@ def main():
                 sys.exit(f'{ref} failed, reference not stored: ' + '; '.join(rec['errors']))
             compare.store(rec, args.deck, name, ref, hashes)
     names = list(dict.fromkeys(list(values['sable']) + list(values[ref])))
-    rows, ok = [], not errors
-    for n in names:
-        ms, ss, ns = stats(values['sable'].get(n, []))
-        ml, sl, nl = stats(values[ref].get(n, []))
-        se = math.sqrt(ss ** 2 / ns + sl ** 2 / nl) if ns > 1 and nl > 1 else math.nan
-        k = compare.rule(h, n)
-        if k is None:  # compare.py's rule: every observable is judged or explicitly unjudged
-            passed, text = False, 'no #@ tolerance or #@ unjudged line matches'
-        elif h['rules'][k][1] is None:
-            passed, text = None, 'unjudged: ' + h['rules'][k][2]
-        else:
-            passed, text = judge(h['rules'][k][1], ms, ml, se)
-        ok = ok and passed is not False
-        z = abs(ms - ml) / se if se > 0 else (0.0 if ms == ml else math.inf)
-        rows.append({'observable': n, 'sable_mean': ms, 'sable_sd': ss, f'{ref}_mean': ml, f'{ref}_sd': sl,
-                     'n': min(ns, nl), 'se': se, 'diff_over_se': z, 'tolerance': text,
-                     'result': 'not judged' if passed is None else 'pass' if passed else 'FAIL'})
+    rows, judged_ok = table(values, ref, h)
+    ok = not errors and judged_ok
     dead = [f'{where} `#@ {"unjudged" if spec is None else "tolerance"} {pat}` decides no observable '
             '(its pattern matches none, or later lines override every match)'
             for pat, spec, _, where in compare.dead_rules(h, names)]

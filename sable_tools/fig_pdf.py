@@ -7,13 +7,14 @@
 import argparse
 
 from sable_tools import figstyle
+from sable_tools.readers import analyze  # the curve file, CSV or HDF5
 
 LABELS = {"fit": "fit", "eq7": "Eq. 7 truncated log-normal", "normal": "truncated normal",
           "eq8": "Eq. 8", "eq9": "Eq. 9", "eq10": "Eq. 10"}
 
 
 def draw(t, log=False):
-    """The figure of table t (figstyle.read of a --curve output): data markers where the
+    """The figure of table t (readers.analyze.table of a --curve output): data markers where the
     PDF is positive, one line per fit; returns (fig, ax)."""
     fig, ax = figstyle.figure()
     keep = [i for i, p in enumerate(t["pdf"]) if p > 0]
@@ -38,8 +39,8 @@ def main():
     ap.add_argument("--log", action="store_true", help="log y axis (tails)")
     a = ap.parse_args()
     figstyle.use()
-    t = figstyle.read(a.curve)
-    figstyle.need(t, a.curve, "x", "pdf")
+    t = analyze.table(a.curve)
+    analyze.need(t, a.curve, "x", "pdf")
     fig, _ = draw(t, a.log)
     figstyle.save(fig, a.out)
     print("wrote", a.out)

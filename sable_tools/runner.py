@@ -2,6 +2,8 @@
 import os
 import shutil
 import subprocess
+import time
+from dataclasses import dataclass
 
 from sable_tools.paths import REPO
 
@@ -60,6 +62,49 @@ def run_logged(cmd, cwd, log, env=None, timeout=None):
             return subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT, env=env, timeout=timeout).returncode
         except subprocess.TimeoutExpired:
             return None
+
+
+@dataclass(frozen=True)
+class Measured:
+    """One run of measured(): its exit status, times, resource usage and screen text."""
+    rc: int           # exit status; -N: ended by signal N (a timed-out run: -9)
+    wall: float       # s, from its start to its end (monotonic clock)
+    cpu: float        # s, user + system of the process alone (os.wait4), whatever else runs
+    timed_out: bool
+    rusage: object    # os.wait4's resource usage (ru_maxrss, ...)
+    text: str         # the screen, as written to the log
+
+
+def measured(cmd, cwd, log, env=None, timeout=None, watch=None, interval=0.02):
+    """Runs cmd in cwd with its stdout and stderr into the file log and waits for it with os.wait4,
+    so that its CPU time and resource usage are its own (other threads may run other codes meanwhile).
+    timeout (s; None or 0: none): then it is killed (rc -9, timed_out). watch(pid), if given, is
+    called every `interval` s while it runs (the benchmark reads its peak memory from /proc so).
+    A program that cannot start raises OSError, as subprocess does."""
+    t0 = time.monotonic()
+    timed_out = False
+    with open(log, 'w') as f:
+        p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=f, stderr=subprocess.STDOUT)
+        if not timeout and watch is None:
+            _, status, ru = os.wait4(p.pid, 0)
+        else:
+            while True:
+                if watch is not None:
+                    watch(p.pid)
+                pid, status, ru = os.wait4(p.pid, os.WNOHANG)
+                if pid:
+                    break
+                if timeout and time.monotonic() - t0 > timeout:
+                    p.kill()
+                    _, status, ru = os.wait4(p.pid, 0)
+                    timed_out = True
+                    break
+                time.sleep(interval)
+    wall = time.monotonic() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)  # reaped here: Popen must not wait for it again
+    with open(log, errors='replace') as f:
+        text = f.read()
+    return Measured(p.returncode, wall, ru.ru_utime + ru.ru_stime, timed_out, ru, text)
 
 
 def one_thread():

@@ -13,6 +13,10 @@ combinations of independent means carry Welch-Satterthwaite degrees of freedom.
     e = tost(d, margin=0.1 * ref.mean)             # .equivalent, .p
     b = slope([2.2, 3.9, 5.2], [s2, s4, s5])       # OLS slope of the means
     r = ratio(b, b0)                               # delta method
+    p = two_sided_p(d)                             # Welch's two-sided p
+    g = planned(1.0, 0.03, 4)                      # the Summary 4 seeds of sd 0.03 would give (power)
+    m, sd = pointwise(curves)                      # seed mean and sd of curves, point by point
+    within(est, se, 0.05), agrees(d, se), differs(d, se), exceeds(d, se)  # fixed-multiplier rules
 """
 import math
 from dataclasses import dataclass
@@ -72,6 +76,19 @@ def summary(values):
         return Summary(math.nan, math.nan, 0, math.nan, math.nan)
     sd = float(v.std(ddof=1)) if n > 1 else math.nan
     return Summary(float(v.mean()), sd, n, sd / math.sqrt(n) if n > 1 else math.nan, n - 1.0)
+
+
+def planned(mean, sd, n):
+    """The Summary that n seeds of this sd would give (power and design calculations: the sd
+    assumed, e.g. a coefficient of variation times the mean, not measured)."""
+    return Summary(float(mean), float(sd), int(n), sd / math.sqrt(n), n - 1.0)
+
+
+def pointwise(curves):
+    """Seed mean and seed-to-seed sd of equally long curves (one row a seed), point by point
+    (numpy's mean and std(ddof=1), as summary's); sd nan for one seed."""
+    f = _np.asarray(curves, float)
+    return f.mean(0), (f.std(0, ddof=1) if len(f) > 1 else _np.full(f.shape[1:], math.nan))
 
 
 def _as_summary(x):
@@ -148,6 +165,13 @@ def tost(e, margin, alpha=0.05, margin_hi=None):
     return Equivalence(e.est, e.est - t * e.se, e.est + t * e.se, lo_m, hi_m, p, bool(p < alpha))
 
 
+def two_sided_p(e, value=0.0):
+    """p-value of the two-sided t test of est = value (Welch's, for an estimate of welch_diff)."""
+    if not (e.se > 0 and e.df > 0):
+        return math.nan
+    return float(2 * _st.t.sf(abs(e.est - value) / e.se, e.df))
+
+
 def one_sided(e, threshold=0.0, greater=True, alpha=0.05):
     """Difference test: is the true value above (greater) or below the threshold?"""
     if not (e.se > 0 and e.df > 0):
@@ -157,6 +181,36 @@ def one_sided(e, threshold=0.0, greater=True, alpha=0.05):
     if greater:
         return OneSided(e.est, threshold, e.est - t * e.se, _st.t.sf(z, e.df), bool(_st.t.sf(z, e.df) < alpha))
     return OneSided(e.est, threshold, e.est + t * e.se, _st.t.cdf(z, e.df), bool(_st.t.cdf(z, e.df) < alpha))
+
+
+# Rules with a fixed multiplier of the standard error (normal quantiles, no degrees of freedom),
+# as the Mohr and cavity reports state their tests; tost(), one_sided() and welch_diff() are the
+# t-based forms. Each takes an estimate and its standard error (combined_se for a difference).
+
+def combined_se(*ses):
+    """Standard error of a sum or difference of independent estimates: sqrt(sum se^2)."""
+    return math.sqrt(sum(float(x) ** 2 for x in ses))
+
+
+def agrees(est, se, k=2.0):
+    """|est| <= k se: a difference consistent with zero (k = 2: about 95 %); None where se is not finite."""
+    return bool(abs(est) <= k * se) if math.isfinite(se) else None
+
+
+def differs(est, se, k=2.0):
+    """|est| > k se: a difference (two-sided, k standard errors)."""
+    return bool(abs(est) > k * se)
+
+
+def exceeds(est, se, k=2.0):
+    """est > k se: a positive difference (one-sided, k standard errors)."""
+    return bool(est > k * se)
+
+
+def within(est, se, margin, z=1.645):
+    """|est| + z se < margin: equivalence inside (-margin, margin) with a normal quantile (z = 1.645:
+    each side at 5 %, the (1 - 2 alpha) interval inside the margins; tost() uses the t quantile)."""
+    return bool(abs(est) + z * se < margin)
 
 
 def _chi2_mean(g, df, q_hi=math.inf):

@@ -96,15 +96,16 @@ as 1/tshear (rebuilds and neighbour pairs differ between the runs: 3.45x), with 
 push (floor, long run: 7.2 errors); hard_dilute with NU 1 (I_M, lid and wall intermittency,
 lid motion, dilation), with the stronger push (floor: 7.1 errors; the lid's free samples,
 whose net force is then -1.1 Fc).
-usage: cavity_hard.py SABLE DECK WORKDIR np100|nu20|dilute"""
+usage: PYTHONPATH=REPO cavity_hard.py SABLE DECK WORKDIR np100|nu20|dilute"""
 import math
 import os
 import re
 import subprocess
 import sys
 
-import h5py
 import numpy as np
+
+from sable_tools.readers import h5, screen  # the series file; the RESULT and DEPOSIT lines
 
 sable, deck, work, case = sys.argv[1:5]
 deck = os.path.abspath(deck)
@@ -160,11 +161,11 @@ def run(extra, tag, inp=None):
     check(tag + ": exit 0", p.returncode == 0, "rc %d" % p.returncode)
     if p.returncode != 0:
         sys.exit("%s: %s failed (%d):\n%s\n%s" % (name, " ".join(args), p.returncode, p.stdout[-3000:], p.stderr))
-    res = {}
-    for line in p.stdout.splitlines():
-        if line.startswith("RESULT ") or line.startswith("DEPOSIT "):
-            for k, v in re.findall(r"(\S+)=(\S+)", line):
-                res[("DEPOSIT." if line.startswith("DEPOSIT") else "") + k] = v
+    res = {}  # strings, as printed; a key printed again: the later value
+    for kv in screen.key_lines(p.stdout, "DEPOSIT"):
+        res.update({"DEPOSIT." + k: v for k, v in kv.items()})
+    for kv in screen.key_lines(p.stdout, "RESULT"):
+        res.update(kv)
     f = {}
     bad = []
     for k, v in res.items():
@@ -286,9 +287,7 @@ else:  # dilute
     check("dilute: I_M = 0.5", abs(IM - 0.5) <= 1e-5, "%.7f" % IM)
     shear_checks("dilute", f, out)
     hd_within("dilute", f, "DEPOSIT.H/d", 0.05)
-    with h5py.File(os.path.join(work, "dil_series.h5"), "r") as h:
-        cols = [c.decode() if isinstance(c, bytes) else str(c) for c in h.attrs["columns"]]
-        vals = h["values"][:]
+    cols, vals, _ = h5.read_series(os.path.join(work, "dil_series.h5"))
     yl, flid = vals[:, cols.index("v_yl")], vals[:, cols.index("v_flid")]
     free = float(np.mean(np.abs(flid / Fc + 1) < 1e-9))
     check("dilute: lid contacts intermittent", free > 0.2, "lid touches nothing in %.3f of %d samples" % (free, len(flid)))

@@ -22,12 +22,14 @@ tiny size, judged against what is known without the deck:
   to the hexagonal 0.907 that a random packing stays below);
 - a second run from the deposit's restart (phase shear) gives the same RESULT values as
   the run that deposited and sheared in one go (restart continuation, bit for bit).
-usage: cavity_small.py SABLE DECK WORKDIR"""
+usage: PYTHONPATH=REPO cavity_small.py SABLE DECK WORKDIR"""
 import math
 import os
 import re
 import subprocess
 import sys
+
+from sable_tools.readers import screen  # the RESULT and DEPOSIT lines
 
 sable, deck, work = sys.argv[1:4]
 os.makedirs(work, exist_ok=True)
@@ -43,11 +45,11 @@ def run(extra):
     p = subprocess.run(args, cwd=work, capture_output=True, text=True, env=env)
     if p.returncode != 0:
         sys.exit("cavity.small: %s failed (%d):\n%s\n%s" % (" ".join(args), p.returncode, p.stdout[-3000:], p.stderr))
-    res = {}
-    for line in p.stdout.splitlines():
-        if line.startswith("RESULT ") or line.startswith("DEPOSIT "):
-            for k, v in re.findall(r"(\S+)=(\S+)", line):
-                res[("DEPOSIT." if line.startswith("DEPOSIT") else "") + k] = v
+    res = {}  # strings, as printed; a key printed again: the later value
+    for kv in screen.key_lines(p.stdout, "DEPOSIT"):
+        res.update({"DEPOSIT." + k: v for k, v in kv.items()})
+    for kv in screen.key_lines(p.stdout, "RESULT"):
+        res.update(kv)
     return res, p.stdout
 
 

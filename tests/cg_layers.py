@@ -20,6 +20,7 @@ except ImportError:
     sys.exit(77)
 
 from sable_tools.drag import cg_fields  # noqa: E402  (after the skip above)
+from sable_tools.readers.h5 import cg_windows  # noqa: E402
 
 G, RHO, LEVEL, SUPPORT, K = 9.81, 1500.0, 0.05, 0.003, 0.7
 
@@ -52,7 +53,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "cg.h5")
         z, N = synthetic(path)
-        d = cg_fields.load(path)
+        d = cg_windows(path)
     P, szz, phi, weight, p_axis = cg_fields.layers(d, LEVEL, G)
     deep = z < LEVEL - 2 * SUPPORT
     failures = []

@@ -50,12 +50,13 @@ hard_gamma (damp gamma: Table I's viscous gamma = 2e-7 Pa s only, cap 2000, 1 cy
 hard_no_thr (thr 1e-12, cap 500, 1 cycle): no relaxation meets thr; every state capped (steps =
   500, ub >= thr), RESULT capped = states = rows = STATE lines, steps = states x (500 + nramp),
   the run ends (timeout). Control for both: in mohr.small's run (thr 1e-3) no state is capped.
-usage: mohr_hard.py SABLE DECK WORKDIR CASE"""
+usage: PYTHONPATH=REPO mohr_hard.py SABLE DECK WORKDIR CASE"""
 import math
 import os
 import re
 import sys
 
+from sable_tools.readers import screen  # RESULT and STATE lines
 from mohr_small import (Checks, run_deck, start_runs, wait_runs, read_states, read_dump, check_balance,
                         check_strain_path, check_pack, finite)  # the script's folder is on the path
 
@@ -90,7 +91,7 @@ def capped_run(var, cap):
             "%d rows (%d let go: syy < %.3g Pa), ub %.3g..%.3g (thr %g), steps %s" % (
                 len(rows), len(let_go), 0.01 * smin, min(r["ub"] for r in held), max(r["ub"] for r in held), thr,
                 sorted(set(int(r["steps"]) for r in rows))))
-    nstate = len(re.findall(r"^STATE ", out, re.M))
+    nstate = len(screen.tagged(out, "STATE"))
     ncap = sum(int(r["capped"]) for r in rows)
     c.check("RESULT capped = capped rows, states = rows", int(res["capped"]) == ncap == len(held)
             and int(res["states"]) == len(rows) == nstate,
@@ -143,7 +144,7 @@ elif case == "soft_e":
     V = dict(BASE, cycles=2)
     wa, wb = os.path.join(work, "quartz"), os.path.join(work, "soft")
     outs = wait_runs(start_runs(sable, deck, [(wa, V), (wb, dict(V, E=1e8))]))
-    resa, resb = [dict(re.findall(r"(\S+)=(\S+)", re.findall(r"^RESULT .*$", o, re.M)[-1])) for o in outs]
+    resa, resb = [screen.key_lines(o, "RESULT")[-1] for o in outs]
     ha, a, _ = read_states(os.path.join(wa, "m_states.txt"))
     hb, b, _ = read_states(os.path.join(wb, "m_states.txt"))
     Ea, Eb = float(ha["E"]), float(hb["E"])

@@ -52,12 +52,16 @@ control beside it shows that it fails on data that are wrong in one way.
     digits, 5e-6), H and the mobile count from the pistons' cut lines (y = piston R_av, top centre -
     piston R_av). Controls: one grain moved onto its neighbour is found; a radius window of
     0.8 delta is broken.
-usage: mohr_small.py SABLE DECK WORKDIR [SABLE_ANALYZE]"""
+usage: PYTHONPATH=REPO mohr_small.py SABLE DECK WORKDIR [SABLE_ANALYZE]"""
 import math
 import os
 import re
 import subprocess
 import sys
+
+import numpy as np
+
+from sable_tools.readers import dump, screen, yade  # the dumps, the RESULT line, the states file
 
 RAV = 1e-3          # mohr.in: mean radius (m)
 RHO = 2650.0        # quartz (Table I)
@@ -94,10 +98,8 @@ def run_deck(sable, deck, work, var, timeout=120):
         sys.exit("%s did not end within %d s (a hang)" % (" ".join(args), timeout))
     if p.returncode != 0:
         sys.exit("%s failed (%d):\n%s\n%s" % (" ".join(args), p.returncode, p.stdout[-3000:], p.stderr))
-    res = {}
-    for line in p.stdout.splitlines():
-        if line.startswith("RESULT "):
-            res = dict(re.findall(r"(\S+)=(\S+)", line))
+    lines = screen.key_lines(p.stdout, "RESULT")  # strings, as printed
+    res = lines[-1] if lines else {}
     if not res:
         sys.exit("%s: no RESULT line" % " ".join(args))
     return p.stdout, res
@@ -131,34 +133,16 @@ def wait_runs(procs, timeout=120):
 
 
 def read_states(path):
-    """${out}_states.txt: '# mohr.in states: k=v ...', the column names, one row per state."""
-    lines = open(path).read().splitlines()
-    hdr = dict(re.findall(r"(\S+)=(\S+)", lines[0]))
-    cols = lines[1].split()
-    rows, raw = [], []
-    for line in lines[2:]:
-        if line.strip():
-            raw.append(dict(zip(cols, line.split())))
-            rows.append({k: float(v) for k, v in raw[-1].items()})
-    return hdr, rows, raw
+    """${out}_states.txt (sable_tools.readers.yade): the header's k=v, the rows as floats and as printed."""
+    hdr, raw = yade.read_states(path, text=True)
+    return hdr, [{k: float(v) for k, v in r.items()} for r in raw], raw
 
 
 def read_dump(path):
-    """A dump of atoms or local rows: (box [[lo, hi]] x3, column names, rows of floats)."""
-    lines = open(path).read().splitlines()
-    box, cols, rows = [], [], []
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith("ITEM: BOX BOUNDS"):
-            box = [list(map(float, lines[i + k].split()[:2])) for k in (1, 2, 3)]
-            i += 4
-            continue
-        if lines[i].startswith("ITEM: ATOMS") or lines[i].startswith("ITEM: ENTRIES"):
-            cols = lines[i].split()[2:]
-            rows = [list(map(float, l.split())) for l in lines[i + 1:] if l.strip()]
-            break
-        i += 1
-    return box, cols, rows
+    """A one-snapshot dump of atoms or local rows (sable_tools.readers.dump): (box [[lo, hi]] x3,
+    column names, rows of floats)."""
+    cols, box, _ = dump.read_last_dump(path)
+    return box.tolist(), list(cols), np.column_stack([cols[c] for c in cols]).tolist() if cols else []
 
 
 def hulp(s):

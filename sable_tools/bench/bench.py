@@ -27,7 +27,6 @@ import subprocess
 import sys
 import tempfile
 import threading
-import time
 
 from sable_tools import runner  # where sable is; LIGGGHTS unbuffered
 from sable_tools.paths import REPO
@@ -101,36 +100,21 @@ def run_engine(engine, exe, case, size_vars, threads, workdir, timeout, dumpname
     os.makedirs(workdir, exist_ok=True)
     out_path = os.path.join(workdir, "out.txt")
     load0 = os.getloadavg()[0]
-    t0 = time.time()
-    with open(out_path, "w") as out:
-        p = subprocess.Popen(cmd, cwd=workdir, env=env, stdout=out, stderr=subprocess.STDOUT)
-        timed_out = False
-        hwm_kb = 0
-        comm = os.path.basename(exe)[:15]
-        while True:
-            hwm_kb = max(hwm_kb, peak_rss_kb(p.pid, comm))
-            pid, status, ru = os.wait4(p.pid, os.WNOHANG)
-            if pid:
-                break
-            if timeout and time.time() - t0 > timeout:
-                p.kill()
-                pid, status, ru = os.wait4(p.pid, 0)
-                timed_out = True
-                break
-            time.sleep(0.02)
-    wall = time.time() - t0
-    p.returncode = os.waitstatus_to_exitcode(status) if hasattr(os, "waitstatus_to_exitcode") else status
-    text = open(out_path, errors="replace").read()
-    r = dict(engine=engine, threads=threads, rc=p.returncode, timed_out=timed_out, wall_s=round(wall, 3),
+    hwm = [0]  # the peak resident set read while it runs (peak_rss_kb)
+    comm = os.path.basename(exe)[:15]
+    m = runner.measured(cmd, workdir, out_path, env=env, timeout=timeout,
+                        watch=lambda pid: hwm.__setitem__(0, max(hwm[0], peak_rss_kb(pid, comm))))
+    hwm_kb, ru, text = hwm[0], m.rusage, m.text
+    r = dict(engine=engine, threads=threads, rc=m.rc, timed_out=m.timed_out, wall_s=round(m.wall, 3),
              # run too short to be caught by the /proc polling: ru_maxrss, an upper bound
              maxrss_mb=round((hwm_kb or ru.ru_maxrss) / 1024.0, 1), maxrss_from="VmHWM" if hwm_kb else "ru_maxrss",
              ru_maxrss_mb=round(ru.ru_maxrss / 1024.0, 1),
              load_before=round(load0, 2),
              load_after=round(os.getloadavg()[0], 2), cmd=" ".join(args))
     r.update(screen.sable_loop(text) if engine == "sable" else screen.liggghts_loop(text))
-    m = re.findall(r"^BENCH (.*)$", text, re.M)
-    r["bench_line"] = m[-1] if m else None
-    r["ok"] = r["rc"] == 0 and not timed_out and r.get("psps") is not None
+    b = screen.tagged(text, "BENCH")  # the deck's last line: "BENCH natoms N ke ... "
+    r["bench_line"] = b[-1] if b else None
+    r["ok"] = r["rc"] == 0 and not m.timed_out and r.get("psps") is not None
     if not r["ok"]:
         r["tail"] = "\n".join(text.strip().splitlines()[-15:])
     r["dump"] = os.path.join(workdir, dumpname)
@@ -278,10 +262,8 @@ def core_probe(sable):
     exe = os.path.join(os.path.dirname(sable), "sable_core_probe") if sable else None
     if not exe or not os.access(exe, os.X_OK):
         return None
-    try:
-        out = subprocess.run([exe], capture_output=True, text=True, timeout=120,
-                             env=dict(os.environ, OMP_NUM_THREADS="2")).stdout
-    except (OSError, subprocess.TimeoutExpired):
+    out, rc = runner.execute([exe], None, 120, env=dict(os.environ, OMP_NUM_THREADS="2"))
+    if rc == -1:  # timed out or did not start
         return None
     m = re.search(r"round_trip_us ([\d.]+) barrier_us ([\d.]+) region_us ([\d.]+)", out)
     if not m:
@@ -686,6 +668,17 @@ def write_md_json(prefix, text, data):
         json.dump(data, f, indent=1, default=str)
 
 
+def merge_results(old, results):
+    """--update: the cases of an earlier results JSON that this run did not measure (each marked
+    with the date it was measured), then this run's, in CASES' order (unknown names last)."""
+    merged = {k: v for k, v in old.get("results", {}).items() if k not in results}
+    for v in merged.values():
+        v.setdefault("measured", old.get("info", {}).get("date"))
+    merged.update(results)
+    order = [c["name"] for c in CASES]
+    return {k: merged[k] for k in sorted(merged, key=lambda k: order.index(k) if k in order else 99)}
+
+
 def main():
     ap = argparse.ArgumentParser(
         description="Benchmark sable against LIGGGHTS on the decks of input_scripts/bench/ "
@@ -780,13 +773,7 @@ def main():
         info["loadavg_end"] = os.getloadavg()
         if args.update and os.path.exists(prefix + ".json"):
             with open(prefix + ".json") as f:
-                old = json.load(f)
-            merged = {k: v for k, v in old.get("results", {}).items() if k not in results}
-            for k, v in merged.items():
-                v.setdefault("measured", old.get("info", {}).get("date"))
-            merged.update(results)
-            order = [c["name"] for c in CASES]
-            results = {k: merged[k] for k in sorted(merged, key=lambda k: order.index(k) if k in order else 99)}
+                results = merge_results(json.load(f), results)
             info["merged_from"] = prefix + ".json"
         for res in results.values():
             for r in res["runs"]:

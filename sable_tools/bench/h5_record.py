@@ -12,34 +12,28 @@ Usage: h5_record.py [--repeats 3] [--steps 100000] SABLE [SABLE ...]
 """
 import argparse
 import os
-import re
-import resource
 import shutil
 import statistics
-import subprocess
 import tempfile
 
+from sable_tools import runner  # the run and its own CPU time
 from sable_tools.paths import repo_path
+from sable_tools.readers import screen  # the loop times of sable's screen
 
 DECK = repo_path("input_scripts", "bench", "h5_record.in")
-
-
-def cpu_seconds():
-    r = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return r.ru_utime + r.ru_stime
 
 
 def loop_time(sable, rec, steps):
     """The timed run's loop time (wall) and the whole process' CPU time (user + system)."""
     work = tempfile.mkdtemp(prefix="sable_h5rec_")
-    c0 = cpu_seconds()
     try:
-        out = subprocess.run([sable, "-in", DECK, "-log", "none", "-var", "rec", str(rec), "-var", "steps", str(steps)],
-                             cwd=work, env=dict(os.environ, OMP_NUM_THREADS="1"), capture_output=True, text=True,
-                             check=True).stdout
+        m = runner.measured([sable, "-in", DECK, "-log", "none", "-var", "rec", str(rec), "-var", "steps", str(steps)],
+                            work, os.path.join(work, "screen.txt"), env=runner.one_thread())
     finally:
         shutil.rmtree(work)
-    return float(re.findall(r"Loop time of (\S+) s", out)[-1]), cpu_seconds() - c0  # the last run is the timed one
+    if m.rc != 0:
+        raise SystemExit(f"{sable} -var rec {rec}: exit status {m.rc}\n" + "\n".join(m.text.splitlines()[-15:]))
+    return screen.loop_times(m.text)[-1], m.cpu  # the last run is the timed one
 
 
 def main():

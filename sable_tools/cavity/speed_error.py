@@ -25,6 +25,7 @@ import numpy as np
 from sable_tools import runner, seedstats  # YADE runs into their logs; statistics over seeds
 from sable_tools.cavity import sweep  # the deck, the binaries, key_values
 from sable_tools.readers import analyze as analyze_csv, h5  # sable-analyze's CSV; the series files
+from sable_tools.readers import screen as screen_reader  # the ERROR lines of a failed run
 
 OUT = os.path.join(sweep.ROOT, 'reference_runs', 'cavity', 'speed_error')
 BASE = {'Hd': 8, 'NU': 1, 'NP': 1, 'tshear': 2, 'trec': 0.5, 'dtfrac': 0.1, 'N0': 1.5e4, 'rate': 10}
@@ -123,8 +124,8 @@ def last_error(msg):
     """The ERROR line of the screen file a failed run's message names, else the message."""
     screen = msg.rsplit('see ', 1)[-1].strip()
     if os.path.exists(screen):
-        errs = [l.strip() for l in open(screen, errors='replace')
-                if (l.startswith('ERROR') and len(l.strip()) > 6) or l.startswith('RuntimeError')]
+        with open(screen, errors='replace') as f:
+            errs = screen_reader.error_lines(f.read())
         if errs:
             return errs[-1][:400]
     return msg[:400]
@@ -187,7 +188,7 @@ def report(a):
         if not rs or not ref:
             continue
         m, se = mean_se(rs, 'F_PLd')
-        mr = np.mean([r['F_PLd'] for r in ref])
+        mr = seedstats.summary([r['F_PLd'] for r in ref]).mean  # the finest setting's seed mean
         same = code == 'sable' and value == finest[knob]
         dm, dse, npair = (0.0, 0.0, len(rs)) if same else paired(rs, ref)
         D, Dc = (0.0, float('nan')) if same else ks(a.work, rs, ref, f'{code}_{knob}{value:g}')

@@ -14,14 +14,13 @@ reduced.json (the RESULT and CAVITY values, l/L, the ACF times, the paper-region
 I and mu_loc). `reduce` redoes the reductions from DIR. The seeds' normalised force
 samples are kept in DIR for sweep_figures.py (pooled PDFs and Eq. 7 fits).
 """
-import argparse, fcntl, json, os, subprocess, sys, time
+import argparse, fcntl, json, os, shutil, sys, time
 
-import h5py
 import numpy as np
 
 from sable_tools import runner  # sable and YADE runs into their logs
 from sable_tools.paths import REPO as ROOT
-from sable_tools.readers import analyze as analyze_csv, h5, screen  # sable-analyze's CSV; series; KEY k=v lines
+from sable_tools.readers import analyze as analyze_csv, dump, h5, screen  # sable-analyze's CSV; contacts; series; KEY k=v lines
 
 DECK = os.path.join(ROOT, 'input_scripts', 'cavity', 'cavity.in')
 SABLE = runner.built('sable')
@@ -44,14 +43,8 @@ def tag(nu, np_, seed):
 
 def key_values(path, prefix):
     """key=value pairs of the lines starting with prefix (numbers only; the last wins)."""
-    out = {}
-    for words in screen.key_lines(open(path, errors='replace').read(), prefix):
-        for k, v in words.items():
-            try:
-                out[k] = float(v)
-            except ValueError:
-                pass
-    return out
+    with open(path, errors='replace') as f:
+        return screen.numeric_keys(f.read(), prefix)
 
 
 def sable(args, log, cwd):
@@ -124,12 +117,9 @@ def acf_time(path, column, dt, skip=0):
     of one column, threshold C < 0.15 (kneib2017 Sec. IV B)."""
     out = os.path.join(os.path.dirname(path), 'acf_tmp.csv')
     analyze(['acf', path, '--column', column, '--threshold', '0.15', '--dt', repr(dt), '--out', out])
-    meta = {}
-    for l in open(out):
-        if l.startswith('# ') and ':' in l:
-            k, _, v = l[2:].partition(':')
-            meta[k.strip()] = v.strip()
-    meta['c'] = [round(float(x), 4) for x in analyze_csv.columns(out)['c'][:ACF_LAGS]]
+    t = analyze_csv.table(out)
+    meta = dict(t.meta)
+    meta['c'] = [round(float(x), 4) for x in t['c'][:ACF_LAGS]]
     os.remove(out)
     return meta
 
@@ -148,8 +138,7 @@ def reduce_run(work, nu, np_, seed, wall=None, code='sable', cmp=False):
     # time series at 10 kHz: F and its slices, each normalised by its own mean
     cols, ser, steps = h5.read_series(os.path.join(raw, 'cav_series.h5'))
     F = ser[:, cols.index('v_F')]
-    with h5py.File(os.path.join(raw, 'cav_slices.h5'), 'r') as h:
-        sl = np.asarray(h['values'])[:, :, 0]
+    sl = h5.read_series(os.path.join(raw, 'cav_slices.h5'))[1][:, :, 0]  # [sample, slice, the one value]
     dts = float(steps[1] - steps[0]) * dt
     red['samples'] = int(len(F))
     red['sample_dt'] = dts
@@ -179,7 +168,7 @@ def reduce_run(work, nu, np_, seed, wall=None, code='sable', cmp=False):
     dst = out_dir(nu, np_, seed, code, cmp)
     os.makedirs(dst, exist_ok=True)
     for f in ('log.' + code, 'cav_blocks.txt'):
-        subprocess.run(['cp', os.path.join(raw, f), dst], check=True)
+        shutil.copy(os.path.join(raw, f), dst)
     if code == 'sable':
         red.update(fields(raw, cav, L))
     json.dump(red, open(os.path.join(dst, 'reduced.json'), 'w'), indent=1)
@@ -205,25 +194,7 @@ def fields(raw, cav, L):
 
 def contact_forces(path, first):
     """fx of every dump local row whose step is >= first (the recording)."""
-    f, keep, step, want = [], False, None, None
-    with open(path) as fh:
-        for line in fh:
-            if line.startswith('ITEM: TIMESTEP'):
-                want = 'step'
-                continue
-            if want == 'step':
-                step, want = int(line), None
-                keep = step >= first
-                continue
-            if line.startswith('ITEM: ENTRIES'):
-                want = 'rows'
-                continue
-            if line.startswith('ITEM:'):
-                want = None
-                continue
-            if want == 'rows' and keep:
-                f.append(float(line.split()[2]))
-    return np.array(f)
+    return dump.local_column(path, 2, first)
 
 
 def main():

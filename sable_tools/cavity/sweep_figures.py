@@ -9,17 +9,17 @@ normalised force samples sweep.py keeps under --work (F_norm.npy, Fi_norm.npy, f
 works on whatever runs exist (the plan's points and seeds that are missing are listed), and
 writes --out/REPORT.md and --out/figures/*.png. Every statistic sable-analyze offers comes from
 it (fit-sigmoid, fit-linear, fit-lognormal, ks, pdf); Python adds only the seed means, the
-Welch and TOST tests (scipy) and the paper's curves drawn for comparison. The Eq. 7 fits are
+Welch and TOST tests (seedstats) and the paper's curves drawn for comparison. The Eq. 7 fits are
 cached under --work/sweep_figures_cache (reused while newer than their samples).
 """
 import argparse, glob, json, os, sys, tempfile, time
 
 import numpy as np
-from scipy import stats
 
 from sable_tools import figstyle, runner, seedstats  # figures' style; sable-analyze; statistics over seeds
 from sable_tools.cavity import sweep  # the plan's points, seeds and run names live there once
 from sable_tools.paths import REPO as ROOT
+from sable_tools.readers import analyze as analyze_csv  # sable-analyze's outputs: fit rows, curves
 
 PAPER_EQ4 = {'r1': 0.53, 'r2': 0.86, 'I0': 0.02}
 PAPER_EQ5 = {'c1': 0.88, 'c2': 0.5}
@@ -48,15 +48,6 @@ def analyze(*args):
     if r.returncode != 0:
         sys.exit(f'sweep_figures: sable-analyze {" ".join(map(str, args))} failed: {r.stderr.strip()}')
     return r.stdout
-
-
-def one_row(path):
-    """The one-row CSV of a fit: {column: value}; a repeated name gets '_2' on its second occurrence."""
-    lines = [l.strip() for l in open(path) if l.strip() and not l.startswith('#')]
-    out = {}
-    for k, v in zip(lines[0].split(','), lines[1].split(',')):
-        out[k + '_2' if k in out else k] = float(v)
-    return out
 
 
 def write_csv(path, **cols):
@@ -182,7 +173,7 @@ def fit_sigmoid(tmp, x, y, yerr, names, tagname):
     out, cur = os.path.join(tmp, tagname + '_fit.csv'), os.path.join(tmp, tagname + '_curve.csv')
     args = ['fit-sigmoid', src, '--x', 'x', '--y', 'y', '--names', ','.join(names), '--out', out, '--curve', cur]
     analyze(*(args + (['--yerr', 'e'] if yerr is not None else [])))
-    return one_row(out), figstyle.read(cur)
+    return analyze_csv.one_row(out), analyze_csv.table(cur)
 
 
 def eq4(tmp, S):
@@ -210,7 +201,7 @@ def welch_tost(a, b):
     d = seedstats.welch_diff(a, b, level=1 - 2 * ALPHA)
     e = seedstats.tost(d, MARGIN, alpha=ALPHA)
     t = d.est / d.se
-    return {'d': d.est, 'se': d.se, 'df': d.df, 't': t, 'p_diff': float(2 * stats.t.sf(abs(t), d.df)),
+    return {'d': d.est, 'se': d.se, 'df': d.df, 't': t, 'p_diff': seedstats.two_sided_p(d),
             'p_tost': e.p, 'ci90': (e.lo, e.hi)}
 
 
@@ -220,7 +211,7 @@ def ks(tmp, a, b, name, n_dec_a, n_dec_b):
     pb = write_csv(os.path.join(tmp, name + '_b.csv'), x=b)
     out = os.path.join(tmp, name + '_ks.csv')
     analyze('ks', pa, pb, '--column', 'x', '--alpha', ALPHA, '--out', out)
-    r = one_row(out)
+    r = analyze_csv.one_row(out)
     n_eff = r['n_a'] * r['n_b'] / (r['n_a'] + r['n_b'])
     n_dec = n_dec_a * n_dec_b / (n_dec_a + n_dec_b)
     r['critical_dec'] = r['critical'] * np.sqrt(n_eff / n_dec)
@@ -252,7 +243,7 @@ def eq5(tmp, S):
     src = write_csv(os.path.join(tmp, 'eq5.csv'), x=[S[p]['ell'][0] for p in pts], y=[S[p]['F'][0] for p in pts])
     out = os.path.join(tmp, 'eq5_fit.csv')
     analyze('fit-linear', src, '--x', 'x', '--y', 'y', '--names', 'c1,c2', '--out', out)
-    return {'row': one_row(out), 'points': pts}
+    return {'row': analyze_csv.one_row(out), 'points': pts}
 
 
 def eq20(tmp, runs):
@@ -289,7 +280,7 @@ def eq7(work, code, pt, runs, scale, fname):
         src = write_csv(os.path.join(cache, key + '.csv'), x=sub)
         analyze('fit-lognormal', src, '--column', 'x', '--raw', '--out', out, '--curve', cur, '--nbins', NBINS)
         os.remove(src)
-    return {'row': one_row(out), 'curve': figstyle.read(cur), 'n': len(x), 'n_pos': len(pos),
+    return {'row': analyze_csv.one_row(out), 'curve': analyze_csv.table(cur), 'n': len(x), 'n_pos': len(pos),
             'n_fit': min(len(pos), FIT_MAX), 'zero_frac': 1 - len(pos) / len(x), 'absent': absent,
             'neg_frac': float(np.mean(x < 0)), 'min': float(x.min())}
 
@@ -310,9 +301,9 @@ def yade_compare(tmp, work, runs, gs, gy, S, Y):
         if pt not in S:
             continue
         (ms, es), (my, ey) = S[pt]['F'], Y[pt]['F']
-        comb = np.hypot(es, ey)
+        comb = seedstats.combined_se(es, ey)
         c = {'diff': ms - my, 'comb': comb, 'ks': {}}
-        c['pass'] = bool(abs(ms - my) <= YADE_TOL * comb) if np.isfinite(comb) else None
+        c['pass'] = seedstats.agrees(ms - my, comb, YADE_TOL)  # None without an SE
         fy = {r['seed']: r['result']['F_PLd'] for r in runs[gy][pt]}
         c['paired'] = mean_se([r['result']['F_PLd'] - fy[r['seed']] for r in runs[gs][pt] if r['seed'] in fy])
         for scale, _, fname, _ in SCALES:
@@ -715,7 +706,7 @@ def hist(tmp, x, lims, name):
     src = write_csv(name + '.csv', x=x[x > 0])
     out = name + '_pdf.csv'
     analyze('pdf', src, '--column', 'x', '--raw', '--lo', lims[0], '--hi', lims[1], '--nbins', NBINS, '--out', out)
-    return figstyle.read(out)
+    return analyze_csv.table(out)
 
 
 def pdf_panels(tmp, work, series, name, title):

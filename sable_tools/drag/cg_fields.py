@@ -21,26 +21,11 @@ Grid coordinates are those of the compute (the mesh body frame with `frame mesh`
 """
 import argparse
 
-import h5py
 import numpy as np
 
+from sable_tools.readers.h5 import cg_windows  # the fix ave/cg file, windows averaged
+
 COMPONENTS = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))  # xx yy zz xy xz yz
-
-
-def load(path, windows=slice(None)):
-    """Window-averaged fields: dict of arrays [nx, ny, nz, ...] plus x, y, z, step."""
-    with h5py.File(path, "r", swmr=True) as f:
-        n = len(f["step"])  # complete windows (written last)
-        w = np.arange(n)[windows]
-        if len(w) == 0:
-            raise SystemExit(f"{path}: no complete window in {windows}")
-        s = f["samples"][:n][w]
-        out = {k: np.tensordot(s, f[k][:n][w], axes=1) / s.sum() for k in f.attrs["fields"]}
-        out.update({k: f[k][:] for k in ("x", "y", "z")})
-        out["step"] = f["step"][:n][w]
-        out["frame"] = f.attrs["frame"][0]
-        out["support"] = float(f["support"][0])
-    return out
 
 
 def tensor(s6):
@@ -150,7 +135,7 @@ def main():
     p.add_argument("--stride", type=int, default=2, help="ellipses at every stride-th node (default 2)")
     p.add_argument("--layers", type=float, metavar="LEVEL", help="layer means against the weight above (LEVEL: surface z)")
     a = p.parse_args()
-    d = load(a.file, slice(*[int(x) if x else None for x in a.windows.split(":")]))
+    d = cg_windows(a.file, slice(*[int(x) if x else None for x in a.windows.split(":")]))
     i, j = np.abs(d["x"]).argmin(), np.abs(d["y"]).argmin()
     P = pressure(d["stress"][i, j])
     val, vec = principal(d["stress"][i, j])

@@ -255,7 +255,8 @@ def seed_mean_curve(runs):
     k = np.ones(SMOOTH) / SMOOTH  # running mean over SMOOTH/100 turn
     f = np.array([np.convolve(y[:n], k, 'valid') for _, y in curves])
     t = np.convolve(curves[0][0][:n], k, 'valid')
-    return t, f.mean(0), f.std(0, ddof=1) if len(f) > 1 else np.zeros(len(t))
+    mean, sd = seedstats.pointwise(f)
+    return t, mean, np.nan_to_num(sd)  # no band (0) for one seed
 
 
 def study_cases(cases):

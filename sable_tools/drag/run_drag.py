@@ -257,8 +257,8 @@ def freeze_sable(folder):
 # ---------------------------------------------------------------- one run
 def parse_stdout(text):
     """SCENE/SETTLED/RESULT key=value lines, BLOCK values, summed Loop times."""
-    rec = {'blocks': [float(m) for m in re.findall(r'^BLOCK \d+ F=(\S+)', text, re.M)],
-           'loop_time_s': sum(float(t) for t in re.findall(r'^Loop time of (\S+)', text, re.M))}
+    rec = {'blocks': [float(kv['F']) for _, kv in screen.numbered(text, 'BLOCK') if 'F' in kv],
+           'loop_time_s': sum(screen.loop_times(text))}
     for key in ('SCENE', 'SETTLED', 'RESULT', 'PIECE'):
         lines = screen.key_lines(text, key)
         if lines:
@@ -278,14 +278,11 @@ def is_done(folder):
 
 
 def launch(cmd, folder, stdout_name, threads):
-    """Run cmd in folder with stdout to stdout_name; returns (exit code, wall s, CPU s, text)."""
-    t0 = time.monotonic()
-    with open(os.path.join(folder, stdout_name), 'w') as f:
-        env = {**os.environ, 'OMP_NUM_THREADS': str(threads)}
-        p = subprocess.Popen(cmd, cwd=folder, stdout=f, stderr=subprocess.STDOUT, env=env)
-        _, status, usage = os.wait4(p.pid, 0)  # wait4: the run's own CPU time, whatever else runs
-    text = open(os.path.join(folder, stdout_name), errors='replace').read()
-    return os.waitstatus_to_exitcode(status), time.monotonic() - t0, usage.ru_utime + usage.ru_stime, text
+    """Run cmd in folder with stdout to stdout_name; returns (exit code, wall s, CPU s, text).
+    runner.measured: os.wait4, the run's own CPU time, whatever else runs."""
+    m = runner.measured(cmd, folder, os.path.join(folder, stdout_name),
+                        env={**os.environ, 'OMP_NUM_THREADS': str(threads)})
+    return m.rc, m.wall, m.cpu, m.text
 
 
 def run_one(case, code, seed, folder, exe, threads=1, chunk=0, version=None, out=None):
@@ -346,7 +343,7 @@ def run_pieces(rec, cmd, folder, threads, chunk, turns):
         name = f'piece{k}'
         rc, wall, cpu, text = launch(cmd + ['-log', f'log_{name}.txt', '-var', 'halves', str(n), '-var', 'resume', str(k)],
                                      folder, f'stdout_{name}.txt', threads)
-        halves = [(int(a), float(b)) for a, b in re.findall(r'^HALF (\d+) F=(\S+)', text, re.M)]
+        halves = [(i, float(kv['F'])) for i, kv in screen.numbered(text, 'HALF') if 'F' in kv]
         piece = parse_stdout(text)
         ok = rc == 0 and [h[0] for h in halves] == list(range(k + 1, k + n + 1)) and 'piece' in piece
         if not ok:

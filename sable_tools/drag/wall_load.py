@@ -25,8 +25,10 @@ import argparse, glob, math, os, re, sys
 
 import numpy as np
 
+from sable_tools import seedstats  # the means over the seeds with load files
 from sable_tools.drag import report_drag  # the runs and their statistics
 from sable_tools.drag import run_drag  # the deck's numbers
+from sable_tools.readers import ave_time  # the load files (fix ave/time)
 
 G = 9.81
 
@@ -35,7 +37,7 @@ def load_rows(folder):
     """(floor, side, cylinder) vertical forces per half-turn, pieces in order."""
     paths = glob.glob(os.path.join(folder, 'drag_load*.txt'))
     key = lambda p: int(m.group(1)) if (m := re.search(r'_load_(\d+)\.txt$', p)) else 0
-    rows = [np.loadtxt(p, comments='#', ndmin=2) for p in sorted(paths, key=key)]
+    rows = [ave_time.read_rows(p)[1] for p in sorted(paths, key=key)]  # step, f_floor[3], f_side[3], f_cyl[3]
     return np.concatenate(rows)[:, 1:4] if rows else None
 
 
@@ -91,12 +93,12 @@ def cases(out):
             continue
         sm = report_drag.summary(c, 'sable')
         row = {'case': c['name'], 'hL': sm['hL'], 'seeds': len(runs), 'load_seeds': len(loads),
-               'grains': int(runs[0]['result']['grains']), 'cyl': float(np.mean([ld['cyl'] for ld in loads]))}
+               'grains': int(runs[0]['result']['grains']), 'cyl': seedstats.summary([ld['cyl'] for ld in loads]).mean}
         for k in ('first', 'stat'):
             row['F_' + k] = sm['F_' + k][:2]
-            row['share_' + k] = float(np.mean([ld[k] for ld in loads]))
+            row['share_' + k] = seedstats.summary([ld[k] for ld in loads]).mean
             for q in ('lam_', 'J_'):
-                row[q + k] = float(np.mean([ld[q + k] for ld in loads]))
+                row[q + k] = seedstats.summary([ld[q + k] for ld in loads]).mean
             row['Fn_' + k] = row['F_' + k][0] / (row['hL'] * row['J_' + k])
         rows.append(row)
     return sorted(rows, key=lambda r: r['hL'])

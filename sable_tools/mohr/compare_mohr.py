@@ -27,10 +27,10 @@ them without running YADE; refused before anything runs when mohr.in or mohr_yad
 since, or the parameters or seeds differ, and after sable's runs when a packing differs from
 the one YADE started from.
 """
-import argparse, csv, datetime, hashlib, json, math, os, shutil, subprocess, sys
+import argparse, csv, datetime, hashlib, json, os, shutil, subprocess, sys
 
 from sable_tools.mohr import mohr_report  # the states files' one reader; mean_se: seedstats.summary
-from sable_tools import runner  # the runs into their logs
+from sable_tools import runner, seedstats  # the runs into their logs; the agreement test
 from sable_tools.paths import REPO
 from sable_tools.readers import analyze as analyze_csv, yade  # sable-analyze's CSV; the states files
 
@@ -73,17 +73,16 @@ def reduce(states_path, workdir):
     analyze(None, 'bulk-modulus', states_path, '--syy', 'syy', '--sxx', 'sxx', '--eyy', 'eps', '--cycle', 'cycle',
             '--loading', 'loading', '--out', bk)
     env = analyze_csv.rows(mc)
-    kr = [l.split(',') for l in open(bk) if l.strip() and not l.startswith('#')]
-    kr = [r for r in kr if r[0].strip().isdigit()]
+    kr = analyze_csv.rows(bk)  # row,cycle,syy,syy_mid,eyy,K: one row per Eq. 6 increment
     last = int(max(r['cycle'] for r in rows))
     peaks = {}
     for c in (1, last):
         ld = [r for r in rows if int(r['cycle']) == c and r['loading'] == 1]
         peaks[c] = ld[-1]
-    if int(kr[-1][1]) != last:
-        sys.exit(f'{states_path}: the last Eq. 6 increment is of cycle {kr[-1][1]}, not {last}')
+    if int(kr[-1]['cycle']) != last:
+        sys.exit(f'{states_path}: the last Eq. 6 increment is of cycle {kr[-1]["cycle"]}, not {last}')
     out = {'muM_c1': float(env[0]['mu_M']), 'muM_last': float(env[-1]['mu_M']),
-           'C_c1': float(env[0]['C']), 'C_last': float(env[-1]['C']), 'K_last': float(kr[-1][-1])}
+           'C_c1': float(env[0]['C']), 'C_last': float(env[-1]['C']), 'K_last': float(kr[-1]['K'])}
     for tag, c in (('c1', 1), ('last', last)):
         out[f'Z_peak_{tag}'] = peaks[c]['Z']
         out[f'porosity_peak_{tag}'] = peaks[c]['porosity']
@@ -153,6 +152,102 @@ def figure(path, seeds, states, envs):
     plt.close(fig)
 
 
+def judge(values, seeds):
+    """The table's rows (per quantity: each code's mean and seed-to-seed SE, the difference and its
+    tolerance 2 sqrt(SE_s^2 + SE_y^2), the paired difference) and whether every JUDGED quantity
+    agrees within its tolerance. values: {code: {seed: {quantity: value}}}."""
+    ok = True
+    rows = []
+    for q in JUDGED + INFO:
+        vs = [values['sable'][s][q] for s in seeds if s in values['sable']]
+        vy = [values['yade'][s][q] for s in seeds if s in values['yade']]
+        ms, ses, ns = mohr_report.mean_se(vs)
+        my, sey, ny = mohr_report.mean_se(vy)
+        se = seedstats.combined_se(ses, sey)
+        diff = ms - my
+        pd = [values['sable'][s][q] - values['yade'][s][q] for s in seeds
+              if s in values['sable'] and s in values['yade']]
+        pm, pse, _ = mohr_report.mean_se(pd)
+        if q in JUDGED:
+            passed = bool(seedstats.agrees(diff, se, 2.0))  # |diff| <= 2 combined SE; False without an SE
+            res = 'PASS' if passed else 'FAIL'
+            ok = ok and passed
+        else:
+            res = 'not judged'
+        rows.append({'quantity': q, 'sable_mean': ms, 'sable_se': ses, 'yade_mean': my, 'yade_se': sey,
+                     'n': min(ns, ny), 'diff': diff, 'tolerance': 2 * se, 'paired_diff': pm, 'paired_se': pse,
+                     'result': res})
+    return rows, ok
+
+
+def run_seeds(a, variables, extra, codes):
+    """Each seed: sable's deposit and protocol in OUT/sable/seed_S, YADE's from that packing in
+    OUT/yade/seed_S when 'yade' is in codes; their reductions. Returns (values, states, envs:
+    {code: {seed: ...}}, packs: the packing's sha256 per seed, errors)."""
+    values = {c: {} for c in ('sable', 'yade')}
+    states = {c: {} for c in ('sable', 'yade')}
+    envs = {c: {} for c in ('sable', 'yade')}
+    packs, errors = {}, []
+    for s in a.seeds:
+        sd = os.path.join(a.out, 'sable', f'seed_{s}')
+        os.makedirs(sd, exist_ok=True)
+        cmd = [a.sable, '-in', DECK, '-var', 'seed', s, '-var', 'out', 'm']
+        for k, v in variables.items():
+            cmd += ['-var', k, v]
+        print(f'sable seed {s} ...', flush=True)
+        err = run(cmd, sd, os.path.join(sd, 'screen.txt'), a.timeout)
+        if err:
+            errors.append(f'sable seed {s}: {err}')
+            continue
+        packs[s] = sha256(os.path.join(sd, 'm_pack.dump'))
+        for c in codes[1:]:
+            yd = os.path.join(a.out, 'yade', f'seed_{s}')
+            os.makedirs(yd, exist_ok=True)
+            shutil.copy(os.path.join(sd, 'm_pack.dump'), yd)
+            ycmd = [a.yade, '-n', '-x', YSCRIPT, '--out', 'm', '--states', os.path.join(sd, 'm_states.txt'),
+                    '--cycles', variables['cycles']] + [x for k, v in extra.items() for x in (f'--{k}', v)]
+            print(f'yade seed {s} ...', flush=True)
+            err = run(ycmd, yd, os.path.join(yd, 'screen.txt'), a.timeout)
+            if err:
+                errors.append(f'yade seed {s}: {err}')
+            else:
+                values['yade'][s], envs['yade'][s] = reduce(os.path.join(yd, 'm_yade_states.txt'), yd)
+                states['yade'][s] = read_states(os.path.join(yd, 'm_yade_states.txt'))
+            trim_log(os.path.join(yd, 'screen.txt'), os.path.join(yd, 'log.txt'))
+            for f in ('screen.txt', 'm_pack.dump'):
+                os.remove(os.path.join(yd, f))
+        values['sable'][s], envs['sable'][s] = reduce(os.path.join(sd, 'm_states.txt'), sd)
+        states['sable'][s] = read_states(os.path.join(sd, 'm_states.txt'))
+        trim_log(os.path.join(sd, 'screen.txt'), os.path.join(sd, 'log.txt'))
+        for f in ('screen.txt', 'log.sable', 'm_pack.dump', 'm_peak_c1.txt', 'm_peak_last.txt'):
+            if os.path.exists(os.path.join(sd, f)):
+                os.remove(os.path.join(sd, f))
+    return values, states, envs, packs, errors
+
+
+def report_lines(rows, values, seeds, variables, refnote, sable, errors, ok):
+    """compare.md's lines: the setting, the judged table, each seed's values, errors, the verdict."""
+    g = lambda v: f'{v:.5g}'  # noqa: E731
+    lines = [f'# Mohr protocol (petit2017): sable vs YADE on the same packings ({datetime.date.today().isoformat()})', '',
+             '`input_scripts/mohr/mohr.in`' + ''.join(f' -var {k} {v}' for k, v in variables.items()) +
+             f', seeds {" ".join(seeds)}; YADE: `input_scripts/mohr/mohr_yade.py` from each sable packing. '
+             'Mean ± seed-to-seed SE per code; tolerance 2 sqrt(SE_s^2 + SE_y^2); paired: mean ± SE of the '
+             'per-seed difference sable - YADE (same packing; not judged). Stresses in Pa, K in Pa.', '',
+             f'- {refnote}', f'- sable: `{sable}` ran now', '',
+             '| quantity | sable | YADE | n | diff | tolerance | paired diff | result |', '|---|---|---|---|---|---|---|---|']
+    for r in rows:
+        lines.append(f'| {r["quantity"]} | {g(r["sable_mean"])} ± {r["sable_se"]:.2g} | {g(r["yade_mean"])} ± '
+                     f'{r["yade_se"]:.2g} | {r["n"]} | {r["diff"]:.3g} | {r["tolerance"]:.3g} | '
+                     f'{r["paired_diff"]:.3g} ± {r["paired_se"]:.2g} | {r["result"]} |')
+    lines += ['', '| seed | code | ' + ' | '.join(JUDGED[:5]) + ' |', '|---|---|' + '---|' * 5]
+    for s in seeds:
+        for c in ('sable', 'yade'):
+            if s in values[c]:
+                lines.append(f'| {s} | {c} | ' + ' | '.join(g(values[c][s][q]) for q in JUDGED[:5]) + ' |')
+    lines += [''] + [f'- error: {e}' for e in errors] + ['', f'**{"PASS" if ok else "FAIL"}**']
+    return lines
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('--seeds', nargs='+', default=SEEDS)
@@ -212,44 +307,7 @@ def main():
         if missing:
             sys.exit(f'the stored YADE reference has no seed {" ".join(missing)} (it has {" ".join(rec["seeds"])})')
     codes = ['sable'] + ([] if stored else ['yade'])
-    values = {c: {} for c in ('sable', 'yade')}
-    states = {c: {} for c in ('sable', 'yade')}
-    envs = {c: {} for c in ('sable', 'yade')}
-    packs, errors = {}, []
-    for s in a.seeds:
-        sd = os.path.join(a.out, 'sable', f'seed_{s}')
-        os.makedirs(sd, exist_ok=True)
-        cmd = [a.sable, '-in', DECK, '-var', 'seed', s, '-var', 'out', 'm']
-        for k, v in variables.items():
-            cmd += ['-var', k, v]
-        print(f'sable seed {s} ...', flush=True)
-        err = run(cmd, sd, os.path.join(sd, 'screen.txt'), a.timeout)
-        if err:
-            errors.append(f'sable seed {s}: {err}')
-            continue
-        packs[s] = sha256(os.path.join(sd, 'm_pack.dump'))
-        for c in codes[1:]:
-            yd = os.path.join(a.out, 'yade', f'seed_{s}')
-            os.makedirs(yd, exist_ok=True)
-            shutil.copy(os.path.join(sd, 'm_pack.dump'), yd)
-            ycmd = [a.yade, '-n', '-x', YSCRIPT, '--out', 'm', '--states', os.path.join(sd, 'm_states.txt'),
-                    '--cycles', variables['cycles']] + [x for k, v in extra.items() for x in (f'--{k}', v)]
-            print(f'yade seed {s} ...', flush=True)
-            err = run(ycmd, yd, os.path.join(yd, 'screen.txt'), a.timeout)
-            if err:
-                errors.append(f'yade seed {s}: {err}')
-            else:
-                values['yade'][s], envs['yade'][s] = reduce(os.path.join(yd, 'm_yade_states.txt'), yd)
-                states['yade'][s] = read_states(os.path.join(yd, 'm_yade_states.txt'))
-            trim_log(os.path.join(yd, 'screen.txt'), os.path.join(yd, 'log.txt'))
-            for f in ('screen.txt', 'm_pack.dump'):
-                os.remove(os.path.join(yd, f))
-        values['sable'][s], envs['sable'][s] = reduce(os.path.join(sd, 'm_states.txt'), sd)
-        states['sable'][s] = read_states(os.path.join(sd, 'm_states.txt'))
-        trim_log(os.path.join(sd, 'screen.txt'), os.path.join(sd, 'log.txt'))
-        for f in ('screen.txt', 'log.sable', 'm_pack.dump', 'm_peak_c1.txt', 'm_peak_last.txt'):
-            if os.path.exists(os.path.join(sd, f)):
-                os.remove(os.path.join(sd, f))
+    values, states, envs, packs, errors = run_seeds(a, variables, extra, codes)
     if stored:
         bad = [s for s in a.seeds if s in packs and packs[s] != rec['pack_sha256'][s]]
         if bad:
@@ -278,51 +336,15 @@ def main():
                        'envelopes': envs['yade']}, open(os.path.join(STORED, 'results.json'), 'w'), indent=1)
             print(f'stored the YADE reference in {show(STORED)}')
     # ---- the table
-    ok = not errors
-    rows = []
-    for q in JUDGED + INFO:
-        vs = [values['sable'][s][q] for s in a.seeds if s in values['sable']]
-        vy = [values['yade'][s][q] for s in a.seeds if s in values['yade']]
-        ms, ses, ns = mohr_report.mean_se(vs)
-        my, sey, ny = mohr_report.mean_se(vy)
-        se = math.sqrt(ses ** 2 + sey ** 2)
-        diff = ms - my
-        pd = [values['sable'][s][q] - values['yade'][s][q] for s in a.seeds
-              if s in values['sable'] and s in values['yade']]
-        pm, pse, _ = mohr_report.mean_se(pd)
-        if q in JUDGED:
-            passed = abs(diff) <= 2 * se if not math.isnan(se) else False
-            res = 'PASS' if passed else 'FAIL'
-            ok = ok and passed
-        else:
-            res = 'not judged'
-        rows.append({'quantity': q, 'sable_mean': ms, 'sable_se': ses, 'yade_mean': my, 'yade_se': sey,
-                     'n': min(ns, ny), 'diff': diff, 'tolerance': 2 * se, 'paired_diff': pm, 'paired_se': pse,
-                     'result': res})
+    rows, passed = judge(values, a.seeds)
+    ok = not errors and passed
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, 'compare.csv'), 'w', newline='') as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         for r in rows:
             w.writerow({k: (f'{v:.10g}' if isinstance(v, float) else v) for k, v in r.items()})
-    g = lambda v: f'{v:.5g}'  # noqa: E731
-    lines = [f'# Mohr protocol (petit2017): sable vs YADE on the same packings ({datetime.date.today().isoformat()})', '',
-             f'`input_scripts/mohr/mohr.in`' + ''.join(f' -var {k} {v}' for k, v in variables.items()) +
-             f', seeds {" ".join(a.seeds)}; YADE: `input_scripts/mohr/mohr_yade.py` from each sable packing. '
-             'Mean ± seed-to-seed SE per code; tolerance 2 sqrt(SE_s^2 + SE_y^2); paired: mean ± SE of the '
-             'per-seed difference sable - YADE (same packing; not judged). Stresses in Pa, K in Pa.', '',
-             f'- {refnote}', f'- sable: `{a.sable}` ran now', '',
-             '| quantity | sable | YADE | n | diff | tolerance | paired diff | result |', '|---|---|---|---|---|---|---|---|']
-    for r in rows:
-        lines.append(f'| {r["quantity"]} | {g(r["sable_mean"])} ± {r["sable_se"]:.2g} | {g(r["yade_mean"])} ± '
-                     f'{r["yade_se"]:.2g} | {r["n"]} | {r["diff"]:.3g} | {r["tolerance"]:.3g} | '
-                     f'{r["paired_diff"]:.3g} ± {r["paired_se"]:.2g} | {r["result"]} |')
-    lines += ['', '| seed | code | ' + ' | '.join(JUDGED[:5]) + ' |', '|---|---|' + '---|' * 5]
-    for s in a.seeds:
-        for c in ('sable', 'yade'):
-            if s in values[c]:
-                lines.append(f'| {s} | {c} | ' + ' | '.join(g(values[c][s][q]) for q in JUDGED[:5]) + ' |')
-    lines += [''] + [f'- error: {e}' for e in errors] + ['', f'**{"PASS" if ok else "FAIL"}**']
+    lines = report_lines(rows, values, a.seeds, variables, refnote, a.sable, errors, ok)
     open(os.path.join(a.out, 'compare.md'), 'w').write('\n'.join(lines) + '\n')
     json.dump({'vars': variables, 'seeds': a.seeds, 'ref': a.ref, 'values': values, 'rows': rows, 'errors': errors},
               open(os.path.join(a.out, 'compare.json'), 'w'), indent=1)

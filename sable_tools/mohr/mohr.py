@@ -25,7 +25,7 @@ import time
 from sable_tools.readers.yade import read_states  # the states files' one reader
 from sable_tools import runner  # sable's run into its log
 from sable_tools.paths import REPO as ROOT
-from sable_tools.readers import analyze as analyze_csv, screen  # sable-analyze's CSV; the RESULT line
+from sable_tools.readers import analyze as analyze_csv, dump, screen  # sable-analyze's CSV; the peak's contacts; the RESULT line
 
 HERE = os.path.join(ROOT, "input_scripts", "mohr")  # mohr.in
 DECK = os.path.join(HERE, "mohr.in")
@@ -196,11 +196,8 @@ def phi_min_eq9(d, peak, mu, mu_m):
     path = os.path.join(d, peak)
     if not os.path.exists(path):
         return float("nan")
-    with open(path) as f:
-        lines = f.read().splitlines()
-    i = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ENTRIES")) + 1
     with open(os.path.join(d, "phi.csv"), "w") as f:
-        f.write("phi\n" + "".join(l.split()[2] + "\n" for l in lines[i:] if len(l.split()) >= 5))
+        f.write("phi\n" + "".join(repr(x) + "\n" for x in dump.local_column(path, 2).tolist()))
     try:
         analyze(["phi-min-eq9", "--mu", repr(mu), "--mu-m", repr(mu_m), "phi.csv", "--phi", "phi", "--out", "phimin.csv"], d)
         v = float(analyze_csv.rows(os.path.join(d, "phimin.csv"))[0]["phi_min_deg"])

@@ -3,13 +3,13 @@ points.csv and the figures (called by `mohr.py reduce`)."""
 import csv
 import datetime
 import glob
-import gzip
 import json
 import math
 import os
 
-from sable_tools import seedstats  # statistics over seeds, one module for every study
+from sable_tools import seedstats as S  # statistics over seeds, one module for every study (its tests: exceeds, within, differs)
 from sable_tools.readers.yade import read_states  # the states files of both codes
+from sable_tools.readers import dump  # the peaks' contact rows (dump local)
 
 SE_DIFF = 2.0      # "different": |d| > 2 combined SE
 Z_EQ = 1.645       # one-sided 5 % for the equivalence and "consistent" tests
@@ -17,7 +17,7 @@ Z_EQ = 1.645       # one-sided 5 % for the equivalence and "consistent" tests
 
 def mean_se(xs):
     """(mean, seed-to-seed SE, n) of the seeds' values, nan dropped: seedstats.summary (SE nan for one seed)."""
-    s = seedstats.summary(xs)
+    s = S.summary(xs)
     return s.mean, s.se, s.n
 
 
@@ -82,30 +82,30 @@ def report(root, sweeps, base, seeds, point_name):
     lk = [(m, v) for m, v in lk if v]
     if len(lk) >= 3:
         b, e = wline([m for m, _ in lk], [v[0] for _, v in lk], [v[1] for _, v in lk])
-        verdict("T1 locked mu_M(c15) rises with mu", b > SE_DIFF * e, f"slope {b:.3f} +- {e:.3f}")
+        verdict("T1 locked mu_M(c15) rises with mu", S.exceeds(b, e, SE_DIFF), f"slope {b:.3f} +- {e:.3f}")
     else:
         verdict("T1 locked mu_M(c15) rises with mu", None, f"{len(lk)} points with >= 3 runs")
     for m, v in lk:
-        verdict(f"T2 mu_M(c15) > mu at mu {m}", v[0] - m > SE_DIFF * v[1], f"{fmt(*v[:2])} vs {m}")
+        verdict(f"T2 mu_M(c15) > mu at mu {m}", S.exceeds(v[0] - m, v[1], SE_DIFF), f"{fmt(*v[:2])} vs {m}")
     v = get(P(mu=0.3), "mu_M_last")
     verdict("T3 mu_M(c15) at mu 0.3, delta 0.5 ~ 0.5 (+-0.05)",
-            None if not v else abs(v[0] - 0.5) + Z_EQ * v[1] < 0.05, f"{fmt(*v[:2])}" if v else "missing")
+            None if not v else S.within(v[0] - 0.5, v[1], 0.05, Z_EQ), f"{fmt(*v[:2])}" if v else "missing")
     fr = get(P(mu=1.0, rotation=1), "mu_M_first")
     lc = get(P(mu=1.0), "mu_M_first")
-    verdict("T4a free, cycle 1: mu_M < mu at mu 1.0", None if not fr else 1.0 - fr[0] > SE_DIFF * fr[1],
+    verdict("T4a free, cycle 1: mu_M < mu at mu 1.0", None if not fr else S.exceeds(1.0 - fr[0], fr[1], SE_DIFF),
             fmt(*fr[:2]) if fr else "missing")
-    ok = None if not (fr and lc) else lc[0] - fr[0] > SE_DIFF * math.hypot(fr[1], lc[1])
+    ok = None if not (fr and lc) else S.exceeds(lc[0] - fr[0], S.combined_se(fr[1], lc[1]), SE_DIFF)
     verdict("T4b cycle 1 at mu 1.0: free < locked", ok,
             f"free {fmt(*fr[:2])}, locked {fmt(*lc[:2])}" if fr and lc else "missing")
     for key in ("mu_M_last", "mu_M_first"):
         a, b2 = get(P(), key), get(P(damp="restitution"), key)
-        ok = None if not (a and b2) else abs(a[0] - b2[0]) + Z_EQ * math.hypot(a[1], b2[1]) < 0.05
+        ok = None if not (a and b2) else S.within(a[0] - b2[0], S.combined_se(a[1], b2[1]), 0.05, Z_EQ)
         verdict(f"T5 damping: {key} cundall ~ restitution (+-0.05)", ok,
                 f"{fmt(*a[:2])} vs {fmt(*b2[:2])}" if a and b2 else "missing")
     ref = get(P(), "mu_M_last")
     for d in (0.0, 0.2, 0.7):
         v = get(P(delta=d), "mu_M_last")
-        ok = None if not (v and ref) else abs(v[0] - ref[0]) + Z_EQ * math.hypot(v[1], ref[1]) < 0.05
+        ok = None if not (v and ref) else S.within(v[0] - ref[0], S.combined_se(v[1], ref[1]), 0.05, Z_EQ)
         verdict(f"T6 delta {d} ~ delta 0.5, mu_M(c15) (+-0.05)", ok,
                 f"{fmt(*v[:2])} vs {fmt(*ref[:2])}" if v and ref else "missing")
     for key, lab, sign in (("Z_peak", "T7 Z at the peak falls with mu", -1), ("K_peak", "T8 K at the peak falls with mu", -1)):
@@ -113,12 +113,12 @@ def report(root, sweeps, base, seeds, point_name):
         pts_ = [(m, v) for m, v in pts_ if v]
         if len(pts_) >= 3:
             b, e = wline([m for m, _ in pts_], [v[0] for _, v in pts_], [v[1] for _, v in pts_])
-            verdict(lab, sign * b > SE_DIFF * e, f"slope {b:.4g} +- {e:.2g}")
+            verdict(lab, S.exceeds(sign * b, e, SE_DIFF), f"slope {b:.4g} +- {e:.2g}")
         else:
             verdict(lab, None, "missing")
     al = [r["alpha"] for k, runs in pts.items() if "_rot0_" in k for r in runs]
     a = mean_se(al)
-    verdict("T9 alpha (all locked runs) ~ 0.47 (+-0.05)", None if a[2] < 3 else abs(a[0] - 0.47) + Z_EQ * a[1] < 0.05,
+    verdict("T9 alpha (all locked runs) ~ 0.47 (+-0.05)", None if a[2] < 3 else S.within(a[0] - 0.47, a[1], 0.05, Z_EQ),
             f"{fmt(a[0], a[1])} over {a[2]} runs")
 
     # points.csv
@@ -176,16 +176,8 @@ def save(fig, path, dpi=110):
 
 
 def read_peak(path):
-    op = gzip.open if path.endswith(".gz") else open
-    rows = []
-    with op(path, "rt") as f:
-        lines = f.read().splitlines()
-    i = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ENTRIES")) + 1
-    for l in lines[i:]:
-        p = l.split()
-        if len(p) >= 5:
-            rows.append((float(p[2]), float(p[3]), float(p[4])))
-    return rows
+    """(phi, and the next two values) of each contact row of a peak's dump local (plain or .gz)."""
+    return [(float(p[2]), float(p[3]), float(p[4])) for _, _, rows in dump.local_snapshots(path) for p in rows]
 
 
 def figures(root, pts, base, point_name):
@@ -358,7 +350,7 @@ def report_damping(sweep_root, new_seeds, old_seeds, point_name, base):
             m, se, n = mean_se([a - b for a, b in pairs])
             ca, cb = mean_se([a for a, _ in pairs]), mean_se([b for _, b in pairs])
             L.append(f"| {lab} | {tag}: {n} | {fmt(ca[0], ca[1])} | {fmt(cb[0], cb[1])} | {m:+.4f} +- {se:.4f} | "
-                     f"{'yes' if abs(m) + Z_EQ * se < 0.05 else 'no'} | {'yes' if abs(m) > SE_DIFF * se else 'no'} |")
+                     f"{'yes' if S.within(m, se, 0.05, Z_EQ) else 'no'} | {'yes' if S.differs(m, se, SE_DIFF) else 'no'} |")
     with open(os.path.join(d2, "REPORT.md"), "w") as f:
         f.write("\n".join(L) + "\n")
     print("\n".join(L))
@@ -396,7 +388,7 @@ def report_clumps(sweep_root, point_name, base, betas=(0.25, 0.62, 0.90), mus=(0
     pts_ = [(b, v) for b, v in pts_ if v[2] >= 3]
     if len(pts_) == 3:
         sl, e = wline([b for b, _ in pts_], [v[0] for _, v in pts_], [v[1] for _, v in pts_])
-        tests.append(("K1 mu 1.0: mu_M(c15) rises with beta", "PASS" if sl > SE_DIFF * e else "FAIL",
+        tests.append(("K1 mu 1.0: mu_M(c15) rises with beta", "PASS" if S.exceeds(sl, e, SE_DIFF) else "FAIL",
                       f"slope {sl:.3f} +- {e:.3f}"))
     else:
         tests.append(("K1 mu 1.0: mu_M(c15) rises with beta", "n/a", f"{len(pts_)} betas with >= 3 runs"))
@@ -406,12 +398,12 @@ def report_clumps(sweep_root, point_name, base, betas=(0.25, 0.62, 0.90), mus=(0
     for b in betas:
         v = ms(cl.get(pt(b, 0.1), []), "mu_M_last")
         ok = "n/a" if v[2] < 3 or lock01[2] < 3 else (
-            "PASS" if abs(v[0] - lock01[0]) + Z_EQ * math.hypot(v[1], lock01[1]) < 0.05 else "FAIL")
+            "PASS" if S.within(v[0] - lock01[0], S.combined_se(v[1], lock01[1]), 0.05, Z_EQ) else "FAIL")
         tests.append((f"K2 mu 0.1, beta {b}: ~ locked disks (+-0.05)", ok,
                       f"{fmt(v[0], v[1])} vs {fmt(lock01[0], lock01[1])}"))
         v = ms(cl.get(pt(b, 1.0), []), "mu_M_last")
-        ok = "n/a" if v[2] < 3 else ("PASS" if v[0] - free10[0] > SE_DIFF * math.hypot(v[1], free10[1]) and
-                                      lock10[0] - v[0] > SE_DIFF * math.hypot(v[1], lock10[1]) else "FAIL")
+        ok = "n/a" if v[2] < 3 else ("PASS" if S.exceeds(v[0] - free10[0], S.combined_se(v[1], free10[1]), SE_DIFF) and
+                                      S.exceeds(lock10[0] - v[0], S.combined_se(v[1], lock10[1]), SE_DIFF) else "FAIL")
         tests.append((f"K3 mu 1.0, beta {b}: between free and locked disks", ok,
                       f"{fmt(v[0], v[1])} (free {fmt(free10[0], free10[1])}, locked {fmt(lock10[0], lock10[1])})"))
     L += ["", "## Tests", "", "| test | verdict | values |", "|---|---|---|"] + [f"| {a} | {b} | {c} |" for a, b, c in tests]

@@ -41,10 +41,48 @@ def parse_screen(text):
     return obs, {c: [sorted(s), [s[k] for k in sorted(s)]] for c, s in series.items()}
 
 
+def error_lines(text):
+    """The error messages of a screen, in order: sable's and LIGGGHTS' lines starting with ERROR
+    (with more than the bare word) and YADE's (Python's) RuntimeError lines, stripped."""
+    return [l.strip() for l in text.splitlines()
+            if (l.startswith('ERROR') and len(l.strip()) > 6) or l.startswith('RuntimeError')]
+
+
+def tagged(text, key):
+    """The rest of each line that starts with the word KEY (a deck's print "KEY ..."), in order."""
+    return [line[len(key) + 1:] for line in text.splitlines() if line.startswith(key + ' ')]
+
+
 def key_lines(text, key):
     """The k=v words of each line that starts with KEY, one dict of strings a line, in order."""
-    return [dict(w.split('=', 1) for w in line.split()[1:] if '=' in w)
-            for line in text.splitlines() if line.startswith(key + ' ')]
+    return [dict(w.split('=', 1) for w in rest.split() if '=' in w) for rest in tagged(text, key)]
+
+
+def numeric_keys(text, key):
+    """The k=v words of all lines that start with KEY whose values are numbers, as floats (a key
+    given twice: the last line's value), e.g. the RESULT lines of a deck."""
+    out = {}
+    for kv in key_lines(text, key):
+        for k, v in kv.items():
+            x = to_float(v)
+            if x is not None:
+                out[k] = x
+    return out
+
+
+def numbered(text, key):
+    """Lines "KEY i k=v ...", i an integer (the drag deck's BLOCK and HALF lines): [(i, {k: v strings})]."""
+    out = []
+    for rest in tagged(text, key):
+        w = rest.split()
+        if w and w[0].isdigit():
+            out.append((int(w[0]), dict(x.split('=', 1) for x in w[1:] if '=' in x)))
+    return out
+
+
+def loop_times(text):
+    """The loop time (s) of every run, in order, from either code's "Loop time of T ..." lines."""
+    return [float(t) for t in re.findall(r'^Loop time of (\S+)', text, re.M) if to_float(t) is not None]
 
 
 def sable_loop(text):

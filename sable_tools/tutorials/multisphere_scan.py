@@ -17,7 +17,8 @@ import argparse, concurrent.futures, glob, json, os, re, shutil
 
 import numpy as np
 
-from sable_tools import runner  # the codes' commands and their screen
+from sable_tools import runner, seedstats  # the codes' commands and their screen; the seed means
+from sable_tools.readers import screen, vtk  # the thermo table; the VTK snapshots
 
 SOURCE = '/usr/share/doc/liggghts/examples/LIGGGHTS/Tutorials_public/multisphere_stone_restitution'
 
@@ -40,18 +41,16 @@ def run(code, h, args):
     shutil.copytree(os.path.join(SOURCE, 'data'), os.path.join(d, 'data'), dirs_exist_ok=True)
     open(os.path.join(d, 'in.scan'), 'w').write(deck(h))
     out, _ = runner.execute(runner.code_command(code, args.sable) + ['-in', 'in.scan'], d, None, runner.one_thread())
-    rows = [l.split() for l in out.splitlines() if re.match(r'^\s*40000\s+50\s', l)]
-    return float(rows[-1][3]) if rows else float('nan')
+    return final_zcm(out)
 
 
-def points(path):
-    lines = open(path).read().split('\n')
-    n = int(re.search(r'POINTS (\d+)', '\n'.join(lines[:6])).group(1))
-    nums, i = [], 5
-    while len(nums) < 3 * n:
-        nums += [float(x) for x in lines[i].split()]
-        i += 1
-    return np.array(nums).reshape(-1, 3)
+def final_zcm(text):
+    """The grains' mean z at step 40000 with all 50 inserted, from the screen's thermo table
+    (step atoms ke c_tut_z); nan when the run did not get there."""
+    _, series = screen.parse_screen(text)
+    atoms = dict(zip(*series.get('atoms', [[], []])))
+    z = [v for step, v in zip(*series.get('tut_z', [[], []])) if step == 40000 and atoms.get(step) == 50]
+    return z[-1] if z else float('nan')
 
 
 def main():
@@ -78,16 +77,15 @@ def main():
             f0, f1 = os.path.join(d, 'post', 'multi_200.vtk'), os.path.join(d, 'post', 'multi_40000.vtk')
             if not (os.path.exists(f0) and os.path.exists(f1)):
                 continue
-            q0 = points(f0)
+            q0 = vtk.points(f0)
             # Release height: the centre at step 200 plus 200 steps of fall at ~1 m/s.
             h0 = [q0[k * 50:(k + 1) * 50, 2].mean() + 0.002 for k in range(len(q0) // 50)]
             pred.append(np.mean(np.interp(h0, hs, both)))
-            final.append(points(f1)[:, 2].mean())
+            final.append(vtk.points(f1)[:, 2].mean())
         if pred:
-            print(f'{code}: {len(pred)} seeds, zcm predicted from its insertion heights {np.mean(pred):.5f}, '
-                  f'actual {np.mean(final):.5f}')
-            result['prediction'][code] = {'seeds': len(pred), 'predicted': float(np.mean(pred)),
-                                          'actual': float(np.mean(final))}
+            mp, mf = seedstats.summary(pred).mean, seedstats.summary(final).mean  # seed means
+            print(f'{code}: {len(pred)} seeds, zcm predicted from its insertion heights {mp:.5f}, actual {mf:.5f}')
+            result['prediction'][code] = {'seeds': len(pred), 'predicted': mp, 'actual': mf}
     json.dump(result, open(os.path.join(args.out, 'scan.json'), 'w'), indent=1)
 
 

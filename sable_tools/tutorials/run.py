@@ -33,7 +33,8 @@ import argparse, concurrent.futures, json, math, os, re, shutil, sys, time
 import numpy as np
 
 from sable_tools import runner, seedstats  # running the codes; statistics over seeds
-from sable_tools.readers.screen import parse_screen  # OBSERVABLE lines and thermo tables
+from sable_tools.readers.screen import error_lines, parse_screen  # ERROR lines; OBSERVABLE lines and thermo tables
+from sable_tools.readers import vtk  # the mesh snapshots' wear
 from sable_tools.paths import REPO
 
 HERE = os.path.join(REPO, 'reference_runs', 'tutorials')  # the stored tutorial results
@@ -184,12 +185,6 @@ def observables(text, ok):
     return obs
 
 
-def vtk_field(text, name):
-    """A cell field of a mesh VTK file, LIGGGHTS' (FIELD arrays) or sable's (SCALARS) layout."""
-    m = re.search(r'^(?:SCALARS )?' + name + r' .*\n(?:LOOKUP_TABLE default\n)?((?:[-+0-9.eE ]+\n)+)', text, re.M)
-    return [float(x) for x in m.group(1).split()] if m else None
-
-
 def mesh_observables(run):
     """Decks dumping mesh wear (chute_wear): the summed and largest triangle wear of the
     last mesh snapshot in post/ (per area, LIGGGHTS' `wear finnie`)."""
@@ -198,7 +193,7 @@ def mesh_observables(run):
     if not snaps:
         return {}
     last = max(snaps, key=lambda f: int(re.search(r'\d+', f).group()))
-    wear = vtk_field(open(os.path.join(post, last)).read(), 'wear')
+    wear = vtk.field(open(os.path.join(post, last)).read(), 'wear')
     return {'wear_sum': float(sum(wear)), 'wear_max': float(max(wear))} if wear else {}
 
 
@@ -222,7 +217,7 @@ def run_one(name, code, seed, args):
         text += out
         if rc != 0 or 'ERROR' in out:
             rec['ok'] = False
-            errs = [l for l in out.splitlines() if 'ERROR' in l]
+            errs = error_lines(out)
             last = out.strip().splitlines()[-1] if out.strip() else ''
             rec['error'] = (errs[0] if errs else f'{deck}: exit status {rc}: {last}')[:300]
             break

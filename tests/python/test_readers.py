@@ -86,6 +86,8 @@ def test_states_files_of_both_codes(path, code):
     assert list(rows[0]) == lines[1].split()
     assert [float(x) for x in lines[-1].split()] == list(rows[-1].values())
     assert int(meta["N"]) > 0
+    meta_t, text = yade.read_states(path, text=True)  # as printed: the digits the tests judge
+    assert meta_t == meta and list(text[-1].values()) == lines[-1].split()
 
 
 DECK = """units si
@@ -111,6 +113,8 @@ compute k all ke
 variable x1 equal x[1]
 fix at all ave/time 500 1 500 c_k v_x1 file ave.txt hdf5 ave.h5
 dump d all custom 1000 out.dump id type radius x y z
+compute cg all stress/cg kernel gauss 0.002 grid -0.004 0.004 3 -0.002 0.002 2 -0.002 0.002 2
+fix cga all ave/cg 100 1000 c_cg file cg.h5
 thermo_style custom step atoms ke
 thermo 1000
 run 3000
@@ -190,3 +194,191 @@ def test_sable_analyze_csv_rows_and_columns():
     assert len(rows) == len(body) - 1
     for name, values in cols.items():
         assert [float(r[name]) for r in rows] == values.tolist()
+
+
+def test_tagged_numbered_and_loop_times():
+    text = ("BENCH natoms 300 ke 4.5e-06 ztop 0.0094\nBENCHMARK x\nBLOCK 1 F=2.5\nBLOCK 2 F=3.0 n=4\n"
+            "BLOCK x F=9\nHALF 3 F=-1e-3\nLoop time of 1.5 s on 1 process for 10 steps with 2 atoms: 13 "
+            "particle-steps/s, 0 neighbor builds\nLoop time of 0.25 on 1 procs for 5 steps with 2 atoms\n"
+            "BENCH natoms 2\n")
+    assert screen.tagged(text, "BENCH") == ["natoms 300 ke 4.5e-06 ztop 0.0094", "natoms 2"]
+    assert screen.numbered(text, "BLOCK") == [(1, {"F": "2.5"}), (2, {"F": "3.0", "n": "4"})]
+    assert screen.numbered(text, "HALF") == [(3, {"F": "-1e-3"})]
+    assert screen.loop_times(text) == [1.5, 0.25]
+    assert screen.loop_times("no run") == []
+
+
+def test_loop_times_of_a_stored_log():
+    # the drag log's runs: settling, fill, the rotation; the last is the timing block's
+    text = open(SABLE_LOG).read()
+    times = screen.loop_times(text)
+    assert len(times) == text.count("\nLoop time of") and times[-1] == 422.333
+
+
+def test_cg_windows_of_the_run(run):
+    import h5py
+    work, _ = run
+    path = str(work / "cg.h5")
+    with h5py.File(path, "r") as f:  # the file as written: 3 windows of 10 samples
+        raw = {k: np.asarray(f[k]) for k in ("step", "samples", "rho")}
+    assert raw["step"].tolist() == [1000, 2000, 3000] and raw["samples"].tolist() == [10, 10, 10]
+    assert raw["rho"].max() > 0
+    d = h5.cg_windows(path)
+    assert {"rho", "stress", "x", "y", "z", "step", "frame", "support"} <= set(d)
+    assert all(isinstance(k, str) for k in d) and isinstance(d["frame"], str)
+    assert (len(d["x"]), len(d["y"]), len(d["z"])) == (3, 2, 2) and d["stress"].shape == (3, 2, 2, 6)
+    w = raw["samples"]
+    assert d["rho"] == pytest.approx(np.tensordot(w, raw["rho"], axes=1) / w.sum(), rel=1e-12)
+    last = h5.cg_windows(path, slice(-1, None))
+    assert last["step"].tolist() == [3000] and last["rho"] == pytest.approx(raw["rho"][-1], rel=1e-12)
+    with pytest.raises(SystemExit):
+        h5.cg_windows(path, slice(5, None))
+
+
+def test_analyze_one_row_repeated_names(tmp_path):
+    # sable-analyze ks: '# ' metadata, then one row whose header names n twice (one per sample)
+    p = tmp_path / "ks.csv"
+    p.write_text("# source: a.csv b.csv\nd,p,n,n,critical\n0.25,0.5,40,60,0.2776\n")
+    assert analyze.one_row(str(p)) == {"d": 0.25, "p": 0.5, "n": 40.0, "n_2": 60.0, "critical": 0.2776}
+
+
+def test_analyze_table_csv(tmp_path):
+    p = tmp_path / "curve.csv"
+    p.write_text("# source: f.csv\n# gaussian_limit: 1\n# note: a: b\nx,pdf,fit\n0.5,0,0.1\n1.5,2.25,2\n\n")
+    t = analyze.table(str(p))
+    assert t.meta == {"source": "f.csv", "gaussian_limit": "1", "note": "a: b"}
+    assert dict(t) == {"x": [0.5, 1.5], "pdf": [0.0, 2.25], "fit": [0.1, 2.0]}
+    analyze.need(t, str(p), "x", "pdf")
+    with pytest.raises(SystemExit, match="no column 'eq7'"):
+        analyze.need(t, str(p), "x", "eq7")
+    (tmp_path / "empty.csv").write_text("# source: f.csv\n")
+    with pytest.raises(SystemExit, match="no header line"):
+        analyze.table(str(tmp_path / "empty.csv"))
+
+
+def test_analyze_table_hdf5(tmp_path):
+    # sable-analyze's HDF5 layout: one 1-D dataset per column, the root attribute columns, metadata as attributes
+    import h5py
+    p = str(tmp_path / "curve.h5")
+    with h5py.File(p, "w") as f:
+        f.attrs["columns"] = np.array(["x", "pdf"], dtype=h5py.string_dtype())
+        f.attrs["source"] = np.array([b"f.csv"])
+        f["x"], f["pdf"], f["other"] = np.array([0.5, 1.5]), np.array([0.0, 2.25]), np.array([9.0])
+    t = analyze.table(p)
+    assert t.meta == {"columns": ["x", "pdf"], "source": "f.csv"}
+    assert list(t) == ["x", "pdf"] and t["pdf"].tolist() == [0.0, 2.25]
+
+
+LOCAL = """ITEM: TIMESTEP
+100
+ITEM: NUMBER OF ENTRIES
+2
+ITEM: BOX BOUNDS pp ff pp
+0 1
+0 1
+-1 1
+ITEM: ENTRIES c_f[1] c_f[2] c_f[3]
+1 2 0.5
+1 3 -0.25
+ITEM: TIMESTEP
+200
+ITEM: NUMBER OF ENTRIES
+1
+ITEM: BOX BOUNDS pp ff pp
+0 1
+0 1
+-1 1
+ITEM: ENTRIES c_f[1] c_f[2] c_f[3]
+2 3 1.5e-3
+
+"""
+
+
+@pytest.mark.parametrize("gz", [False, True])
+def test_dump_local_snapshots_and_column(tmp_path, gz):
+    import gzip
+    path = str(tmp_path / ("c.txt.gz" if gz else "c.txt"))
+    with (gzip.open(path, "wt") if gz else open(path, "w")) as f:
+        f.write(LOCAL)
+    snaps = list(dump.local_snapshots(path))
+    names = ["c_f[1]", "c_f[2]", "c_f[3]"]
+    assert snaps == [(100, names, [["1", "2", "0.5"], ["1", "3", "-0.25"]]), (200, names, [["2", "3", "1.5e-3"]])]
+    assert dump.local_column(path, 2).tolist() == [0.5, -0.25, 1.5e-3]
+    assert dump.local_column(path, 2, first=101).tolist() == [1.5e-3]
+    assert dump.local_column(path, 0, first=300).tolist() == []
+
+
+def test_dump_local_of_a_stored_peak():
+    # mohr.in's peak contacts (dump local, gzipped): "ITEM: ENTRIES c_fab[1] ... c_fab[5]", then "484 494 -0.728812 ..."
+    path = repo_path("reference_runs", "mohr", "sweep", "clumps", "runs", "mu0.1_rot1_d0.5_cundall_N400_c15_beta0.25",
+                     "s15485867", "mohr_peak_c1.txt.gz")
+    (step, names, rows), = dump.local_snapshots(path)
+    import gzip
+    lines = gzip.open(path, "rt").read().splitlines()
+    assert step == int(lines[1]) and len(rows) == int(lines[3])
+    assert names == [f"c_fab[{k}]" for k in range(1, 6)] and rows[0] == lines[9].split()
+    assert dump.local_column(path, 2)[0] == float(lines[9].split()[2])
+
+
+def test_numeric_keys_last_wins_numbers_only():
+    text = "RESULT F=1.5 name=abc n=3\nRESULTX F=9\nRESULT F=2.5 e=nan\nother RESULT F=7\n"
+    got = screen.numeric_keys(text, "RESULT")
+    assert set(got) == {"F", "n", "e"} and (got["F"], got["n"]) == (2.5, 3.0) and math.isnan(got["e"])
+    assert screen.numeric_keys(text, "CAVITY") == {}
+
+
+VTK_POINTS = """# vtk DataFile Version 2.0
+LIGGGHTS mesh/VTK export
+ASCII
+DATASET POLYDATA
+POINTS 4 float
+0 0 0.5 1 0 0.25
+0 1 0 1
+1 -2e-3
+POLYGONS 1 5
+4 0 1 2 3
+CELL_DATA 3
+FIELD FieldData 2
+wear 1 3 float
+0.5 0.25 1e-3
+area 1 3 float
+1 1 1
+"""
+
+SABLE_SCALARS = """CELL_DATA 2
+SCALARS wear float 1
+LOOKUP_TABLE default
+2.5 -1
+SCALARS wearx float 1
+LOOKUP_TABLE default
+7 7
+"""
+
+
+def test_vtk_points_and_fields(tmp_path):
+    from sable_tools.readers import vtk
+    p = tmp_path / "m.vtk"
+    p.write_text(VTK_POINTS)
+    assert vtk.points(str(p)).tolist() == [[0, 0, 0.5], [1, 0, 0.25], [0, 1, 0], [1, 1, -2e-3]]
+    assert vtk.field(VTK_POINTS, "wear") == [0.5, 0.25, 1e-3]   # LIGGGHTS' FIELD array
+    assert vtk.field(SABLE_SCALARS, "wear") == [2.5, -1.0]      # sable's SCALARS, not wearx
+    assert vtk.field(VTK_POINTS, "missing") is None
+
+
+def test_multisphere_scan_final_zcm():
+    from sable_tools.tutorials.multisphere_scan import final_zcm
+    liggghts = ("Step Atoms KinEng c_tut_z \n       0        0            0            0 \n"
+                "   40000       50 1.2e-06 0.0123 \nLoop time of 1 on 1 procs for 40000 steps with 50 atoms\n")
+    assert final_zcm(liggghts) == 0.0123
+    assert math.isnan(final_zcm(liggghts.replace("      50 ", "      49 ")))  # not all inserted
+    assert math.isnan(final_zcm("ERROR: no deck"))
+
+
+def test_error_lines():
+    text = ("ERROR\nERROR: deck.in:3: unknown command 'foo'\nWARNING: ERROR in a warning\n"
+            "Traceback (most recent call last):\nRuntimeError: compute sl: hi is not above lo\n"
+            "ERROR on proc 0: Cannot open file x (../input.cpp:12)\n")
+    assert screen.error_lines(text) == ["ERROR: deck.in:3: unknown command 'foo'",
+                                        "RuntimeError: compute sl: hi is not above lo",
+                                        "ERROR on proc 0: Cannot open file x (../input.cpp:12)"]
+    assert screen.error_lines("all fine\n") == []

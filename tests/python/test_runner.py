@@ -56,3 +56,33 @@ def test_analyze_reports_its_failure():
     assert runner.analyze(["--help"]).returncode == 0
     r = runner.analyze(["no-such-subcommand"])
     assert r.returncode != 0 and r.stderr
+
+
+def test_measured_status_times_and_screen(tmp_path):
+    log = tmp_path / "screen.txt"
+    # a second of CPU in the child alone (a busy loop), then exit 3
+    m = runner.measured(["sh", "-c", "echo $OMP_NUM_THREADS; echo err >&2; "
+                         "i=0; while [ $i -lt 200000 ]; do i=$((i+1)); done; exit 3"],
+                        tmp_path, log, env=runner.one_thread())
+    assert (m.rc, m.timed_out, m.text) == (3, False, "1\nerr\n")
+    assert log.read_text() == m.text
+    assert m.cpu > 0.05 and m.wall >= m.cpu * 0.5  # sh's own CPU time, not this process'
+    assert m.cpu == pytest.approx(m.rusage.ru_utime + m.rusage.ru_stime, abs=1e-12)
+
+
+def test_measured_timeout_kills(tmp_path):
+    m = runner.measured(["sh", "-c", "echo started; exec sleep 5"], tmp_path, tmp_path / "log", timeout=0.3)
+    assert m.timed_out and m.rc == -9 and m.text == "started\n"
+    assert 0.3 <= m.wall < 3
+
+
+def test_measured_watch_sees_the_running_pid(tmp_path):
+    seen = []
+    m = runner.measured(["sleep", "0.3"], tmp_path, tmp_path / "log", watch=seen.append, interval=0.01)
+    assert m.rc == 0 and not m.timed_out
+    assert len(seen) >= 5 and set(seen) == {seen[0]} and seen[0] != os.getpid()
+
+
+def test_measured_missing_program(tmp_path):
+    with pytest.raises(OSError):
+        runner.measured(["no_such_code_here"], tmp_path, tmp_path / "log")

@@ -239,3 +239,57 @@ class MonteCarloTest(unittest.TestCase):
         self.assertTrue(0.15 < p < 0.25, p)
         self.assertRate(hits / MR, p, "one-sided power, 4 seeds")
 
+
+
+class AddedTest(unittest.TestCase):
+    def test_planned(self):
+        g = S.planned(2.0, 0.3, 4)
+        self.assertEqual((g.mean, g.sd, g.n, g.df), (2.0, 0.3, 4, 3.0))
+        self.assertAlmostEqual(g.se, 0.15, places=15)  # 0.3 / sqrt(4)
+        # a planned Welch difference: se = sd sqrt(1/5 + 1/3), df by hand
+        d = S.welch_diff(S.planned(0.0, 0.1, 5), S.planned(0.0, 0.1, 3))
+        va, vb = 0.01 / 5, 0.01 / 3
+        self.assertAlmostEqual(d.se, 0.1 * math.sqrt(1 / 5 + 1 / 3), places=14)
+        self.assertAlmostEqual(d.df, (va + vb) ** 2 / (va ** 2 / 4 + vb ** 2 / 2), places=10)
+
+    def test_pointwise(self):
+        m, sd = S.pointwise([[1.0, 2.0, 0.0], [3.0, 2.0, 4.0]])
+        self.assertEqual(m.tolist(), [2.0, 2.0, 2.0])
+        self.assertEqual(sd.tolist(), [math.sqrt(2.0), 0.0, math.sqrt(8.0)])  # ddof 1 over two seeds
+        m1, sd1 = S.pointwise([[5.0, 6.0]])
+        self.assertEqual(m1.tolist(), [5.0, 6.0])
+        self.assertTrue(np.isnan(sd1).all())
+
+    def test_two_sided_p_is_welchs(self):
+        for a, b in WelchTest.CASES:
+            self.assertAlmostEqual(S.two_sided_p(S.welch_diff(a, b)), st.ttest_ind(a, b, equal_var=False).pvalue,
+                                   places=12)
+        e = S.Estimate(1.0, 0.5, 8.0, NAN, NAN)
+        self.assertAlmostEqual(S.two_sided_p(e, 1.0), 1.0, places=14)
+        self.assertAlmostEqual(S.two_sided_p(e), 2 * st.t.sf(2.0, 8), places=14)
+        self.assertTrue(math.isnan(S.two_sided_p(S.Estimate(1.0, NAN, 0.0, NAN, NAN))))
+
+    def test_fixed_multiplier_rules(self):
+        self.assertEqual(S.combined_se(0.3, 0.4), 0.5)
+        self.assertEqual(S.combined_se(0.3, 0.4, 1.2), 1.3)
+        # agrees: |d| <= k se (boundary included), None without a finite se
+        self.assertTrue(S.agrees(1.0, 0.5))
+        self.assertTrue(S.agrees(-0.99, 0.5))
+        self.assertFalse(S.agrees(1.01, 0.5))
+        self.assertFalse(S.agrees(0.3, 0.1, k=2.5))
+        self.assertIsNone(S.agrees(0.0, NAN))
+        # differs: |d| > k se (two-sided); exceeds: d > k se (one-sided)
+        self.assertTrue(S.differs(-1.01, 0.5))
+        self.assertFalse(S.differs(1.0, 0.5))
+        self.assertTrue(S.exceeds(1.01, 0.5))
+        self.assertFalse(S.exceeds(-1.01, 0.5))
+        self.assertFalse(S.exceeds(0.5, NAN))
+        # within: |d| + z se < margin; 0.02 + 1.645 * 0.01 = 0.03645
+        self.assertTrue(S.within(0.02, 0.01, 0.0365))
+        self.assertFalse(S.within(-0.02, 0.01, 0.0364))
+        self.assertFalse(S.within(0.0, 0.01, 0.0199, z=2.0))
+        self.assertFalse(S.within(0.0, NAN, 1.0))
+        # the z rule is the large-df limit of tost(): the same verdicts at df 1e6
+        for est, se, margin in ((0.02, 0.01, 0.0365), (0.02, 0.01, 0.0364), (-0.01, 0.02, 0.043)):
+            e = S.Estimate(est, se, 1e6, NAN, NAN)
+            self.assertEqual(S.within(est, se, margin, z=st.norm.ppf(0.95)), S.tost(e, margin).equivalent)

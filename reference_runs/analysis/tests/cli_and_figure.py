@@ -208,8 +208,9 @@ def check_drawn(curve):
     """What fig_pdf draws is the curve file: the data points where pdf > 0 and one line per fit form,
     each with its label, on a log y axis."""
     from sable_tools import fig_pdf, figstyle
+    from sable_tools.readers import analyze
     figstyle.use()
-    t = figstyle.read(curve)
+    t = analyze.table(curve)
     fig, ax = fig_pdf.draw(t, log=True)
     lines = {l.get_label(): l for l in ax.get_lines()}
     forms = [k for k in ("eq7", "normal", "eq8", "eq9", "eq10") if k in t]

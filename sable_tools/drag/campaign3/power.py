@@ -79,6 +79,12 @@ def ledger(rate):
     print(f"total: sable {tot['sable']:.1f} core-h (budget 30), LIGGGHTS {tot['liggghts']:.1f} core-h (budget 20)")
 
 
+def planned_diff(sd, na, nb):
+    """(se, Welch-Satterthwaite df) of the difference of two means of na and nb seeds of this sd."""
+    d = S.welch_diff(S.planned(0.0, sd, na), S.planned(0.0, sd, nb))
+    return d.se, d.df
+
+
 def power(cv, runs):
     """The tests' standard errors under the scatter measured, and their power."""
     print('\n3. Power of the pre-registered tests (alpha 0.05; the estimate normal, its estimated error'
@@ -89,8 +95,7 @@ def power(cv, runs):
     cv_shallow = 0.03  # measured 0.014-0.031 at 1-2 L: the larger, rounded up
 
     def group(h, n, c):
-        sd = c * F[h]
-        return S.Summary(F[h], sd, n, sd / math.sqrt(n), n - 1)
+        return S.planned(F[h], c * F[h], n)
 
     def r_se(n, c):
         b = S.slope([hm[h] for h in (2, 3.7, 5)], [group(h, n, c) for h in (2, 3.7, 5)])
@@ -113,23 +118,20 @@ def power(cv, runs):
           f'{S.tost_power(se3, df3, 0.15):.2f} |')
     for key, marg in (('F_stat', 0.15), ('F_first', 0.20)):
         for ns, nl in ((5, 3), (4, 2)):
-            se = cv[key] * math.sqrt(1 / ns + 1 / nl)
-            df = S.satterthwaite([(cv[key] ** 2 / ns, ns - 1), (cv[key] ** 2 / nl, nl - 1)])
+            se, df = planned_diff(cv[key], ns, nl)
             print(f'| T6 sable - LIGGGHTS {key} (fraction of the mean), true 0 | {ns} vs {nl} | {se:.3f} | '
                   f'{df:.1f} | {marg} | {S.tost_power(se, df, marg):.2f} |')
     # Fig. 3: F_first slope against log10 E* over 1.36e5, 4e5, 1e6, 3e6, 1e7 (4, 2, 5, 2, 3 seeds)
     x = [math.log10(e) for e in (1.36e5, 4e5, 1e6, 3e6, 1e7)]
-    gs = [S.Summary(1.0, cv['F_first'], n, cv['F_first'] / math.sqrt(n), n - 1) for n in (4, 2, 5, 2, 3)]
+    gs = [S.planned(1.0, cv['F_first'], n) for n in (4, 2, 5, 2, 3)]
     b = S.slope(x, gs)
     print(f"| T7a F_first per decade of E* (fraction of the mean), true 0 | 4,2,5,2,3 | {b.se:.3f} | {b.df:.1f} | "
           f"0.10 | {S.tost_power(b.se, b.df, 0.10):.2f} |")
     for n in (2, 3):
-        se = cv['F_stat'] * math.sqrt(1 / 5 + 1 / n)
-        df = S.satterthwaite([(cv['F_stat'] ** 2 / 5, 4), (cv['F_stat'] ** 2 / n, n - 1)])
+        se, df = planned_diff(cv['F_stat'], 5, n)
         print(f"| T7c F_stat(1e7) - F_stat(1e6) (fraction), true 0 | 5 vs {n} | {se:.3f} | {df:.1f} | 0.15 | "
               f"{S.tost_power(se, df, 0.15):.2f} |")
-    se = cv['F_stat'] * math.sqrt(1 / 4 + 1 / 5)
-    df = S.satterthwaite([(cv['F_stat'] ** 2 / 4, 3), (cv['F_stat'] ** 2 / 5, 4)])
+    se, df = planned_diff(cv['F_stat'], 4, 5)
     print(f"| T7b F_stat(1.4e5) - F_stat(1e6) > 0 (fraction), true 0.15 | 4 vs 5 | {se:.3f} | {df:.1f} | - | "
           f"{S.one_sided_power(se, df, 0.15):.2f} |")
 
