@@ -211,6 +211,13 @@ void cmd_timestep_check(Simulation& sim, const Args& a) {
   else a.fail(1, "stop or accept");
 }
 
+// info plan: each following run prints its step plan (core/step_plan.h) after its setup.
+void cmd_info(Simulation& sim, const Args& a) {
+  if (a.word(1, "'plan'") != "plan") a.fail(1, "'plan' (the only info keyword sable has)");
+  if (a.size() > 2) a.fail(2, "nothing after 'plan'");
+  sim.print_plan = true;
+}
+
 void cmd_run(Simulation& sim, const Args& a) {
   long n = a.integer(1, "the number of steps");
   for (std::size_t i = 2; i < a.size(); ++i) {
@@ -363,6 +370,7 @@ SABLE_COMMAND("neigh_modify", cmd_neigh_modify);
 SABLE_COMMAND("timestep", cmd_timestep);
 SABLE_COMMAND("timestep_check", cmd_timestep_check);
 SABLE_COMMAND("run", cmd_run);
+SABLE_COMMAND("info", cmd_info);
 SABLE_COMMAND("fix", cmd_fix);
 SABLE_COMMAND("unfix", cmd_unfix);
 SABLE_COMMAND("fix_modify", cmd_fix_modify);

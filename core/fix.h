@@ -67,37 +67,31 @@ class Fix {
   // ---- Per-atom tasks: what a hook does, declared; the step plan runs it.
   // A hook whose work treats every atom on its own is named in `atom_tasks`
   // and written as range(): core calls begin(hook) serially, range() on each
-  // thread's atoms (Atoms::split, the pair pass's ranges) and end(hook)
-  // serially; POST_FORCE tasks run inside the force pass, each range as soon
-  // as its pair forces are final, and an integrator holding both
-  // INITIAL_INTEGRATE and FINAL_INTEGRATE as tasks is fused across steps
-  // (AtomRange). Each atom sees the operations of one serial pass in the same
-  // order: the same bits for any thread count. A fix writes no threading.
+  // thread's atoms and end(hook) serially. The step plan (core/step_plan.h)
+  // composes these: an integrator's INITIAL_INTEGRATE task is its first half
+  // kick and drift, its FINAL_INTEGRATE task the second half kick, and the
+  // plan may run them in one pass with other tasks (the force clear, a folded
+  // gravity, the rebuild check's scan) or inside the force pass. Each atom sees
+  // the operations of the plain plan in the same order: the same bits for any
+  // thread count and any rewrite. A fix writes no threading.
   unsigned atom_tasks = 0;  // FixHook bits
   // Tasks (of atom_tasks) in two phases: range() runs with phase 0 on every
   // thread's range, then, once all have finished, with phase 1. For work that
   // first gathers over atoms of other ranges (rigid bodies: each body summed and
-  // advanced by one thread, then every member placed from its body). Such an
-  // integrator is fused but not pipelined into the force pass.
+  // advanced by one thread, then every member placed from its body). Phase 0 of
+  // the second half kick must leave the bodies ready for the first half: the plan
+  // may skip its phase 1 (placing the members) when the first half follows.
   unsigned two_phase_tasks = 0;  // FixHook bits
   struct AtomRange {
     int thread = 0;
     std::size_t lo = 0, hi = 0;
     int phase = 0;  // two_phase_tasks: 0, then 1
-    // INITIAL_INTEGRATE, when the plan fuses: run last step's FINAL_INTEGRATE
-    // first (nothing looked at the atoms in between), zero every force and
-    // torque of the range after (nothing reads them before the force pass),
-    // and add rmass * accel to each force first (the last post_force task,
-    // which fold_acceleration() declared, was skipped). The same bits.
-    bool final_first = false, clear = false;
-    const double* accel = nullptr;
   };
   virtual void begin(FixHook) {}
   virtual void range(FixHook, const AtomRange&) {}
   virtual void end(FixHook) {}
   // A POST_FORCE task that only adds m a to every grain (gravity on all) gives
-  // a here: as the last post_force fix, the plan may fold it into the fused
-  // integrator on steps that defer the final half kick.
+  // a here: the plan may fold it into the integrator's pass (fold_gravity).
   virtual bool fold_acceleration(double /*a*/[3]) const { return false; }
 
   // Rigid bodies: the body of atom i (-1: in none of this fix's bodies) and a
@@ -122,9 +116,6 @@ class Fix {
 
   // Runs the task declared for hook h (if any) over all atoms: begin, the ranges, end.
   void run_task(FixHook h);
-  // `after(t, lo, hi)`, when given, runs on each thread's range once the task
-  // (its last phase) is done with it: the step plan's work on the same atoms.
-  void run_task(FixHook h, const AtomRange& how, const RangeTail& after = {});
 
   // Fastest speed this fix imposes (moving walls), for the time-step check.
   virtual double max_speed() const { return 0.0; }

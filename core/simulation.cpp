@@ -439,15 +439,6 @@ void Simulation::choose_kinematics() {
   atoms.rotation = turns;
 }
 
-// Atoms::clear_forces, threaded for large systems (the step loop's only other per-atom pass).
-static void clear_forces_threaded(Atoms& a) {
-  double *f = a.f.data(), *t = a.torque.data();
-  a.for_ranges([&](int, std::size_t lo, std::size_t hi) {
-#pragma omp simd
-    for (std::size_t k = 3 * lo; k < 3 * hi; ++k) f[k] = t[k] = 0.0;
-  });
-}
-
 // "pair 1.48 / 1.49 / 1.50 s of 1.69 s (88%)": each thread's busy seconds
 // (min / mean / max) in the passes' wall seconds; the rest it waited for the others.
 static std::string balance_text(const char* what, const ThreadBalance& b) {
@@ -460,25 +451,31 @@ static std::string balance_text(const char* what, const ThreadBalance& b) {
   return buf;
 }
 
-void Simulation::explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix* fused, bool ranged) {
+void Simulation::explain_slow_path(const StepPlan& plan) {
   auto note = [&](const Fix* f, const std::string& what) {
     if (!slow_path_noted_.insert(f->id).second) return;
     print("Note: fix " + f->id + " (" + f->style + ") " + what);
   };
+  if (!(plan_rewrites & kFuse)) return;
+  std::vector<const Fix*> integrators, post;
+  bool pipelined = false;
+  for (const Stage& s : plan.stages) {
+    if (s.kind == Stage::Hook && (s.hook == INITIAL_INTEGRATE || s.hook == FINAL_INTEGRATE)) integrators.push_back(s.fix);
+    if (s.kind == Stage::Hook && s.hook == POST_FORCE) post.push_back(s.fix);
+    pipelined = pipelined || (s.kind == Stage::ForcePass && !s.ops.empty());
+  }
   constexpr unsigned kBoth = INITIAL_INTEGRATE | FINAL_INTEGRATE;
-  if (!step_fusion) return;
-  if (!fused) {
-    const bool several = hook[0].size() > 1 || hook[4].size() > 1;
-    for (int h : {0, 4})
-      for (const Fix* f : hook[h])
-        if (several || (f->atom_tasks & kBoth) != kBoth)
-          note(f, std::string(several ? "is one of several integrating fixes" : "integrates outside the step plan") +
-                      ": the two half steps and the force clear run as separate passes over every grain, and "
-                      "the post-force fixes after the force pass (3-4 parallel regions a step instead of 1)");
+  if (!plan.integrator) {
+    const bool several = integrators.size() > 2;
+    for (const Fix* f : integrators)
+      if (several || (f->atom_tasks & kBoth) != kBoth)
+        note(f, std::string(several ? "is one of several integrating fixes" : "integrates outside the step plan") +
+                    ": the two half steps and the force clear run as separate passes over every grain, and "
+                    "the post-force fixes after the force pass (3-4 parallel regions a step instead of 1)");
     return;
   }
-  if (ranged || !pair) return;
-  for (const Fix* f : hook[3])
+  if (pipelined || !pair) return;
+  for (const Fix* f : post)
     if (!(f->atom_tasks & POST_FORCE))
       note(f, "has a post_force that is not a per-atom task: the force pass, the post-force fixes and the "
               "integrator run as separate passes over every grain (3 parallel regions a step instead of 1)");
@@ -487,6 +484,106 @@ void Simulation::explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix
 void Simulation::request_stop(const std::string& why) {
   stop_ = true;
   if (!why.empty()) skip_runs_ = why;
+}
+
+bool Simulation::quiet(long s) const {
+  if (s >= run_last || (thermo->every > 0 && s % thermo->every == 0)) return false;
+  for (auto& f : fixes)
+    if ((f->hooks & END_OF_STEP) && s % f->nevery == 0) return false;
+  for (auto& d : dumps)
+    if (s % d->every == 0) return false;
+  return true;
+}
+
+void Simulation::force_pass(const Stage& s) {
+  if (s.ops.empty()) {
+    if (pair) pair->compute();
+    return;
+  }
+  const bool next_first = std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::FirstHalf; });
+  if (std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::Prescan; }))
+    neighbor.expect_prescan(atoms, step + 1);
+  begin_ops(s.ops);
+  double fix_s = 0.0, all_s = 0.0;  // thread 0's seconds in post_force tasks and in all ops (time split)
+  pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
+    if (t != 0) return run_ops_on_range(*this, s.ops, t, lo, hi);
+    const auto t0 = std::chrono::steady_clock::now();
+    run_ops_on_range(*this, s.ops, t, lo, hi, &fix_s);
+    all_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  });
+  end_ops(s.ops);
+  cleared_steps += next_first && std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::ClearForces; });
+  timers.pair -= all_s;  // thread 0's share, as the time split counts
+  timers.fixes += fix_s;
+  timers.integrate += all_s - fix_s;
+}
+
+void Simulation::run_stage(const Stage& s) {
+  switch (s.kind) {
+    case Stage::Hook:
+      switch (s.hook) {
+        case INITIAL_INTEGRATE: return s.fix->initial_integrate();
+        case POST_INTEGRATE: return s.fix->post_integrate();
+        case PRE_FORCE: return s.fix->pre_force();
+        case POST_FORCE: return s.fix->post_force();
+        case FINAL_INTEGRATE: return s.fix->final_integrate();
+        case END_OF_STEP:
+          if (step % s.fix->nevery == 0) s.fix->end_of_step();
+          return;
+      }
+      return;
+    case Stage::AtomPass: {
+      const auto has = [&](AtomOp::Kind k) {
+        return std::any_of(s.ops.begin(), s.ops.end(), [&](auto& o) { return o.kind == k; });
+      };
+      if (has(AtomOp::Prescan)) neighbor.expect_prescan(atoms, step);
+      run_atom_ops(*this, s.ops);
+      cleared_steps += has(AtomOp::FirstHalf) && has(AtomOp::ClearForces);
+      return;
+    }
+    case Stage::Rebuild: return rebuild_if_due();
+    case Stage::ForcePass: return force_pass(s);
+    case Stage::Check:
+      // A velocity turned non-finite makes a position non-finite next step, which the
+      // rebuild check catches: a separate pass only when it did not scan this step.
+      if (neighbor.positions_scanned_step != step) check_atoms(false);
+      return;
+    case Stage::Output:
+      if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last || stop_) thermo->line(step);
+      for (auto& d : dumps)
+        if (step % d->every == 0) d->write(step);
+      return;
+  }
+}
+
+// Which part of the time split a stage counts in.
+using TimerField = double Simulation::Timers::*;
+static TimerField timer_of(const Stage& s) {
+  switch (s.kind) {
+    case Stage::Rebuild: return &Simulation::Timers::neigh;
+    case Stage::ForcePass: return &Simulation::Timers::pair;
+    case Stage::Check:
+    case Stage::Output: return &Simulation::Timers::output;
+    case Stage::AtomPass:
+      return s.ops.size() == 1 && s.ops[0].kind == AtomOp::ClearForces ? &Simulation::Timers::pair
+                                                                       : &Simulation::Timers::integrate;
+    case Stage::Hook:
+      if (s.hook == PRE_FORCE) return &Simulation::Timers::pair;
+      if (s.hook == POST_FORCE || s.hook == END_OF_STEP) return &Simulation::Timers::fixes;
+      return &Simulation::Timers::integrate;
+  }
+  return &Simulation::Timers::fixes;
+}
+
+static bool applies(When w, bool quiet, bool after_quiet) {
+  switch (w) {
+    case When::Always: return true;
+    case When::Loud: return !quiet;
+    case When::Quiet: return quiet;
+    case When::AfterLoud: return !after_quiet;
+    case When::AfterQuiet: return after_quiet;
+  }
+  return true;
 }
 
 void Simulation::run(long nsteps) {
@@ -502,162 +599,33 @@ void Simulation::run(long nsteps) {
   thermo->line(step);
   for (auto& d : dumps)
     if (step % d->every == 0) d->write(step);
-
-  std::vector<Fix*> hook[6];
-  for (auto& f : fixes)
-    for (int h = 0; h < 6; ++h)
-      if (f->hooks & (1u << h)) hook[h].push_back(f.get());
+  const StepPlan plan = build_plan(*this, plan_rewrites);
+  if (print_plan) print(plan.describe());
+  explain_slow_path(plan);
 
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
   auto t_last_progress = t_start;
-  auto tic = t_start;
-  auto lap = [&](double& acc) {
-    const auto now = clock::now();
-    acc += std::chrono::duration<double>(now - tic).count();
-    tic = now;
-  };
   timers = Timers{};
   const long builds0 = neighbor.builds;
   thread_balance(PassKind::Pair).clear();
   thread_balance(PassKind::Atoms).clear();
-
-  // Step fusion, when one integrator holds both integration hooks: its final
-  // half kick waits for the next initial pass on steps where nobody looks at
-  // the atoms in between (no output, no end-of-step fix, not the last step),
-  // and it zeroes the forces itself when no fix runs between it and the force
-  // pass. Two passes over every grain fewer; the same bits. (Measuring the
-  // displacements for the rebuild check there too was slower: the separate
-  // pass leaves x in cache for the force pass.)
-  constexpr unsigned kBothHalves = INITIAL_INTEGRATE | FINAL_INTEGRATE;
-  Fix* fused = step_fusion && hook[0].size() == 1 && hook[4].size() == 1 && hook[0][0] == hook[4][0] &&
-                       (hook[0][0]->atom_tasks & kBothHalves) == kBothHalves
-                   ? hook[0][0]
-                   : nullptr;
-  const bool clear_in_integrate = fused && hook[1].empty() && hook[2].empty();
-  // On those steps a last post_force pass that only adds m a to every grain
-  // (gravity) is skipped too, and the next initial pass adds m a to the forces
-  // it reads: the same additions in the same order.
-  double accel[3];
-  Fix* folded = fused && !hook[3].empty() && hook[3].back()->fold_acceleration(accel) ? hook[3].back() : nullptr;
-  auto quiet = [&](long s) {
-    if (s >= run_last || (thermo->every > 0 && s % thermo->every == 0)) return false;
-    for (Fix* f : hook[5])
-      if (s % f->nevery == 0) return false;
-    for (auto& d : dumps)
-      if (s % d->every == 0) return false;
-    return true;
-  };
-  bool deferred = false;  // last step's final half kick is still to do
-  // Pipelining, when fused and every post_force fix is ranged: each thread
-  // runs the post_force fixes on its own atoms inside the force pass as soon
-  // as their pair forces are final (Pair::compute_then) and, when the final
-  // half kick is deferred, the next step's fused initial pass too (unless it
-  // runs in two phases: then at the start of the next step, as usual). One
-  // parallel region per step instead of four; the threads' uneven shares of
-  // the passes add up to one wait; the atoms are still in the core's cache.
-  // Every atom sees the same operations in the same order: the same bits.
-  bool ranged = fused && pair;
-  for (Fix* f : hook[3]) ranged = ranged && (f->atom_tasks & POST_FORCE);
-  const bool tail_integrates = fused && !(fused->two_phase_tasks & INITIAL_INTEGRATE);
-  // A two-phase integrator (rigid bodies) places each thread's atoms in its last
-  // phase: the rebuild check's scan follows there, one parallel region fewer.
-  const bool scan_after_placing = fused && !tail_integrates && hook[1].empty();
-  explain_slow_path(hook, fused, ranged);
-  bool pre_integrated = false;  // this step's initial pass ran in the last force pass
-  std::vector<Fix*> tail_fixes;
-  double tail_fix_s = 0.0, tail_int_s = 0.0;  // thread 0's seconds in them (time split)
-
+  bool after_quiet = false;  // the last step deferred its second half kick
   while (step < run_last && !stop_) {
     ++step;
     time += dt;
-    tic = clock::now();
-    Fix::AtomRange fusion;  // this step's initial pass (see Fix::AtomRange)
-    fusion.final_first = deferred;
-    fusion.clear = clear_in_integrate;
-    fusion.accel = deferred && folded ? accel : nullptr;
-    deferred = false;
-    if (!pre_integrated) {
-      if (scan_after_placing) {  // implies fused
-        neighbor.expect_prescan(atoms, step);
-        fused->run_task(INITIAL_INTEGRATE, fusion, [&](int t, std::size_t lo, std::size_t hi) {
-          neighbor.prescan_range(atoms, t, lo, hi);
-        });
-      } else if (fused) {
-        fused->run_task(INITIAL_INTEGRATE, fusion);
-      } else {
-        for (Fix* f : hook[0]) f->initial_integrate();
-      }
+    const bool q = plan.defers && quiet(step);
+    auto tic = clock::now();
+    for (const Stage& s : plan.stages) {
+      if (!applies(s.when, q, after_quiet)) continue;
+      run_stage(s);
+      const auto now = clock::now();
+      timers.*timer_of(s) += std::chrono::duration<double>(now - tic).count();
+      tic = now;
     }
-    cleared_steps += clear_in_integrate;
-    pre_integrated = false;
-    for (Fix* f : hook[1]) f->post_integrate();
-    lap(timers.integrate);
-    rebuild_if_due();
-    lap(timers.neigh);
-    for (Fix* f : hook[2]) f->pre_force();
-    if (!clear_in_integrate) clear_forces_threaded(atoms);
-    deferred = fused && quiet(step);
-    if (ranged) {
-      tail_fixes.clear();
-      for (Fix* f : hook[3])
-        if (!(deferred && f == folded)) tail_fixes.push_back(f);
-      for (Fix* f : tail_fixes) f->begin(POST_FORCE);
-      // next step's pass, and its rebuild check's scan (nothing moves atoms in between)
-      Fix::AtomRange next;
-      next.final_first = true;
-      next.clear = clear_in_integrate;
-      next.accel = folded ? accel : nullptr;
-      const bool pipelined = deferred && tail_integrates;
-      if (pipelined) fused->begin(INITIAL_INTEGRATE);
-      const bool prescan = pipelined && hook[1].empty();
-      if (prescan) neighbor.expect_prescan(atoms, step + 1);
-      tail_fix_s = tail_int_s = 0.0;
-      pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
-        const auto t0 = t == 0 ? clock::now() : clock::time_point{};
-        Fix::AtomRange r = next;
-        r.thread = t, r.lo = lo, r.hi = hi;
-        for (Fix* f : tail_fixes) f->range(POST_FORCE, r);
-        const auto t1 = t == 0 ? clock::now() : clock::time_point{};
-        if (pipelined) fused->range(INITIAL_INTEGRATE, r);
-        if (prescan) neighbor.prescan_range(atoms, t, lo, hi);
-        if (t == 0) {
-          tail_fix_s += std::chrono::duration<double>(t1 - t0).count();
-          tail_int_s += std::chrono::duration<double>(clock::now() - t1).count();
-        }
-      });
-      for (Fix* f : tail_fixes) f->end(POST_FORCE);
-      if (pipelined) fused->end(INITIAL_INTEGRATE);
-      pre_integrated = pipelined;
-      lap(timers.pair);
-      timers.pair -= tail_fix_s + tail_int_s;  // thread 0's share, as the time split counts
-      timers.fixes += tail_fix_s;
-      timers.integrate += tail_int_s;
-    } else {
-      if (pair) pair->compute();
-      lap(timers.pair);
-      for (Fix* f : hook[3])
-        if (!(deferred && f == folded)) f->post_force();
-      lap(timers.fixes);
-    }
-    fused_steps += deferred;
-    folded_steps += deferred && folded;
-    velocities_unread = quiet(step);
-    if (!deferred)
-      for (Fix* f : hook[4]) f->final_integrate();
-    velocities_unread = false;
-    lap(timers.integrate);
-    for (Fix* f : hook[5])
-      if (step % f->nevery == 0) f->end_of_step();
-    lap(timers.fixes);
-    // A velocity turned non-finite now makes a position non-finite next step,
-    // which the rebuild check catches: a separate pass only when it did not scan.
-    // (With the final half deferred, next step's checks see its result.)
-    if (neighbor.positions_scanned_step != step && !deferred) check_atoms(false);
-    if ((thermo->every > 0 && step % thermo->every == 0) || step == run_last || stop_) thermo->line(step);
-    for (auto& d : dumps)
-      if (step % d->every == 0) d->write(step);
-    lap(timers.output);
+    fused_steps += q;
+    folded_steps += q && plan.folded;
+    after_quiet = q;
 
     const auto now = clock::now();
     if (std::chrono::duration<double>(now - t_last_progress).count() >= progress_every_s && step < run_last) {

@@ -19,6 +19,7 @@
 #include "core/neighbor.h"
 #include "core/pair.h"
 #include "core/region.h"
+#include "core/step_plan.h"
 
 namespace sable {
 
@@ -130,16 +131,15 @@ class Simulation {
   };
   StepBounds step_bounds(double vmin = 0.0) const;
 
-  bool step_fusion = true;  // let the integrator fuse passes (run()); off: every pass separate (tests)
+  // The rewrites the step plan may take (core/step_plan.h; tests turn each off);
+  // `info plan` prints each run's plan.
+  unsigned plan_rewrites = kAllRewrites;
+  bool print_plan = false;
   // Let contacts run the 2D and no-rotation kernels where the scene allows
   // (setup: Atoms::plane_2d, Atoms::rotation); off (`contact_kernels full`):
   // always the full 3D kernel, the same physics (benchmarks, checks).
   bool reduced_kernels = true;
   long fused_steps = 0;     // steps whose final half kick ran in the next initial pass (run())
-  // True during a step's final integration when nothing reads the grains'
-  // velocities before the next step's initial integration (no output, no
-  // end-of-step fix, not the last step): rigid bodies leave their members' until then.
-  bool velocities_unread = false;
   long folded_steps = 0;    // ... and whose gravity pass went into it too
   long cleared_steps = 0;   // steps whose forces the fused initial pass zeroed (run())
   // Time split of the last run (seconds).
@@ -154,7 +154,10 @@ class Simulation {
   void rebuild_if_due();
   void choose_kinematics();  // Atoms::plane_2d and Atoms::rotation for this run
   // Says once per fix which fix keeps the step off the fused, pipelined plan and what that costs.
-  void explain_slow_path(const std::vector<Fix*> (&hook)[6], const Fix* fused, bool ranged);
+  void explain_slow_path(const StepPlan& plan);
+  bool quiet(long s) const;  // nobody looks at the grains after step s (core/step_plan.h)
+  void run_stage(const Stage& s);
+  void force_pass(const Stage& s);
   std::set<std::string> slow_path_noted_;
   void claim_restart_leftovers();
   bool stop_ = false;

@@ -25,14 +25,12 @@ void Pair::compute_then(const RangeTail& tail) {
   sim.atoms.for_ranges(tail);
 }
 
-void Fix::run_task(FixHook h) { run_task(h, AtomRange{}); }
-
-void Fix::run_task(FixHook h, const AtomRange& how, const RangeTail& after) {
+void Fix::run_task(FixHook h) {
   if (!(atom_tasks & h)) return;
   begin(h);
   const bool phases = two_phase_tasks & h;
   sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
-    AtomRange r = how;
+    AtomRange r;
     r.thread = t, r.lo = lo, r.hi = hi;
     range(h, r);
     if (phases) {
@@ -40,7 +38,6 @@ void Fix::run_task(FixHook h, const AtomRange& how, const RangeTail& after) {
       r.phase = 1;
       range(h, r);
     }
-    if (after) after(t, lo, hi);
   });
   end(h);
 }

@@ -70,7 +70,7 @@ void FixMultisphere::initial_integrate() { set_.initial_integrate(sim.dt); }
 
 void FixMultisphere::final_integrate() {
   sum_forces();
-  set_.final_integrate(sim.dt, sim.velocities_unread);
+  set_.final_integrate(sim.dt);
 }
 
 // Member forces summed, then gravity as LIGGGHTS applies it: M g on each body

@@ -27,25 +27,15 @@ class FixNveSphere : public Fix {
       }
   }
   bool turns_grains() const override { return spin_; }
-  // Initial: half kick, then drift, in one pass over the atoms; fused (the
-  // step plan, AtomRange) with last step's final half kick (and gravity)
-  // before it and the force clear after it. Final: the half kick.
+  // Initial: half kick, then drift, in one pass over the atoms. Final: the half
+  // kick. The step plan composes them with its other per-atom work.
   void range(FixHook h, const AtomRange& r) override {
     if (h == FINAL_INTEGRATE) return integrate<0>(r);
-    const bool accel = r.final_first && r.accel;
-    const unsigned m = kDrift | (r.final_first ? kFinalFirst : 0u) | (r.clear ? kClear : 0u) | (accel ? kAccel : 0u);
-    switch (m) {
-      case kDrift: return integrate<kDrift>(r);
-      case kDrift | kFinalFirst: return integrate<kDrift | kFinalFirst>(r);
-      case kDrift | kClear: return integrate<kDrift | kClear>(r);
-      case kDrift | kFinalFirst | kClear: return integrate<kDrift | kFinalFirst | kClear>(r);
-      case kDrift | kFinalFirst | kAccel: return integrate<kDrift | kFinalFirst | kAccel>(r);
-      default: return integrate<kDrift | kFinalFirst | kClear | kAccel>(r);
-    }
+    integrate<kDrift>(r);
   }
 
  private:
-  static constexpr unsigned kDrift = 1, kFinalFirst = 2, kClear = 4, kAccel = 8;
+  static constexpr unsigned kDrift = 1;
   const bool spin_;  // nve/sphere: omega from the torque; nve: omega untouched
 
   // Half-step velocity and spin update from force and torque (and the drift
@@ -55,8 +45,7 @@ class FixNveSphere : public Fix {
     Atoms& at = sim.atoms;
     const double dt = sim.dt, h = 0.5 * sim.dt;
     const Arrays p{at.x.data(),      at.v.data(),      at.omega.data(), at.f.data(), at.torque.data(),
-                   at.rmass.data(), at.radius.data(), r.accel,         at.mask.data(), groupbit,
-                   at.inertia_factor};
+                   at.rmass.data(), at.radius.data(), at.mask.data(),  groupbit,      at.inertia_factor};
     for (std::size_t a = r.lo; a < r.hi; a += kBlock) {
       const std::size_t b = std::min(r.hi, a + kBlock);
       if (groupbit == 1u)  // group all (bit 0): the mask test leaves the loop
@@ -73,7 +62,6 @@ class FixNveSphere : public Fix {
     double* t;
     const double* rmass;
     const double* radius;
-    const double* accel;  // kAccel: the folded gravity
     const std::uint32_t* mask;
     std::uint32_t groupbit;
     double inertia_factor;  // Atoms::inertia
@@ -82,15 +70,12 @@ class FixNveSphere : public Fix {
   // over their 3 (b - a) vector components without branches, which the
   // compiler vectorises (a loop over atoms with an inner loop over x, y, z
   // it does not). Each component sees the same operations as before.
-  // kFinalFirst: the same two additions as a final pass followed by an
-  // initial one (same forces, same order), so the same bits; kAccel: gravity's
-  // addition to the force first, as its own pass would have made it.
   // kMasked (a named group): grains outside it keep x, v and omega (a select,
-  // not arithmetic: bit for bit), and their forces are cleared with kClear.
+  // not arithmetic: bit for bit).
   static constexpr std::size_t kBlock = 128;
   template <unsigned kMode, bool kMasked, bool kSpin>
   static void block(const Arrays& p, std::size_t a, std::size_t b, double dt, double h) {
-    alignas(64) double hm[3 * kBlock], hw[3 * kBlock], ma[3 * kBlock];
+    alignas(64) double hm[3 * kBlock], hw[3 * kBlock];
     alignas(64) unsigned char in[3 * kBlock];
     for (std::size_t i = a; i < b; ++i) {
       const double m = p.rmass[i], r = p.radius[i];
@@ -101,28 +86,19 @@ class FixNveSphere : public Fix {
         hm[c] = km;
         hw[c] = kw;
         in[c] = member;
-        if constexpr ((kMode & kAccel) != 0) ma[c] = m * p.accel[k];
       }
     }
     const std::size_t n = 3 * (b - a);
     double* __restrict x = p.x + 3 * a;
     double* __restrict v = p.v + 3 * a;
     double* __restrict w = p.w + 3 * a;
-    double* __restrict f = p.f + 3 * a;
-    double* __restrict t = p.t + 3 * a;
+    const double* __restrict f = p.f + 3 * a;
+    const double* __restrict t = p.t + 3 * a;
     for (std::size_t c = 0; c < n; ++c) {
-      double fc = f[c];
+      const double fc = f[c];
       [[maybe_unused]] const double tc = t[c];
-      if constexpr ((kMode & kAccel) != 0) {  // fix gravity's own addition, stored as it stores it
-        fc += ma[c];
-        f[c] = fc;
-      }
       double vc = v[c];
       [[maybe_unused]] double wc = w[c];
-      if constexpr ((kMode & kFinalFirst) != 0) {
-        vc += hm[c] * fc;
-        if constexpr (kSpin) wc += hw[c] * tc;
-      }
       vc += hm[c] * fc;
       if constexpr (kSpin) wc += hw[c] * tc;
       if constexpr (kMasked) {
@@ -134,7 +110,6 @@ class FixNveSphere : public Fix {
         if constexpr (kSpin) w[c] = wc;
         if constexpr ((kMode & kDrift) != 0) x[c] += dt * vc;
       }
-      if constexpr ((kMode & kClear) != 0) f[c] = t[c] = 0.0;
     }
   }
 };

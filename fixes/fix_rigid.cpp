@@ -68,7 +68,7 @@ class FixRigid : public Fix {
     if (h == INITIAL_INTEGRATE)
       set_.initial_range(r, sim.dt);
     else
-      set_.final_range(r, sim.dt, sim.velocities_unread);
+      set_.final_range(r, sim.dt);
   }
 
   void setup() override { set_.sum_forces(); }

@@ -257,12 +257,11 @@ void second_half(Body& b, double dt, bool spin) {
 }
 }  // namespace
 
-// Bodies k0 .. k1 - 1: (the deferred second half kick,) the first half kick, the drift, the turn.
-void BodySet::advance(int k0, int k1, double dt, bool final_first, const double* accel) {
+// Bodies k0 .. k1 - 1: the first half kick, the drift, the turn.
+void BodySet::advance(int k0, int k1, double dt) {
   const double dtf = 0.5 * dt;
   for (int k = k0; k < k1; ++k) {
     Body& b = bodies[k];
-    if (final_first) sum_body(k, accel), second_half(b, dt, false);
     kick(b, dtf);
     for (int e = 0; e < 3; ++e) b.xcm[e] += dt * b.vcm[e];
   }
@@ -288,13 +287,13 @@ void BodySet::turn(int k0, int k1, double dt) {
 
 void BodySet::initial_integrate(double dt) {
   turning_.resize(bodies.size());
-  advance(0, static_cast<int>(bodies.size()), dt, false, nullptr);
+  advance(0, static_cast<int>(bodies.size()), dt);
   place_range(0, sim_.atoms.n, true);
 }
 
-void BodySet::final_integrate(double dt, bool members_unread) {
-  for (Body& b : bodies) second_half(b, dt, !members_unread);
-  if (!members_unread) place_members(false);
+void BodySet::final_integrate(double dt) {
+  for (Body& b : bodies) second_half(b, dt, true);
+  place_members(false);
 }
 
 void BodySet::begin_task() {
@@ -312,26 +311,19 @@ void BodySet::initial_range(const Fix::AtomRange& r, double dt) {
   if (r.phase == 0) {
     int k0, k1;
     owned(r, k0, k1);
-    advance(k0, k1, dt, r.final_first, r.final_first ? r.accel : nullptr);
+    advance(k0, k1, dt);
     return;
   }
   place_range(r.lo, r.hi, true);
-  if (!r.clear) return;
-  Atoms& at = sim_.atoms;
-  std::fill(at.f.begin() + 3 * r.lo, at.f.begin() + 3 * r.hi, 0.0);
-  std::fill(at.torque.begin() + 3 * r.lo, at.torque.begin() + 3 * r.hi, 0.0);
 }
 
-void BodySet::final_range(const Fix::AtomRange& r, double dt, bool members_unread) {
-  if (r.phase == 1) {
-    if (!members_unread) place_range(r.lo, r.hi, false);
-    return;
-  }
+void BodySet::final_range(const Fix::AtomRange& r, double dt) {
+  if (r.phase == 1) return place_range(r.lo, r.hi, false);
   int k0, k1;
   owned(r, k0, k1);
   for (int k = k0; k < k1; ++k) {
-    sum_body(k, nullptr);
-    second_half(bodies[k], dt, !members_unread);
+    sum_body(k);
+    second_half(bodies[k], dt, true);
   }
 }
 
@@ -464,8 +456,8 @@ void BodySet::list_members() {
     if (const int k = static_cast<int>(c[kStride * i]) - 1; k >= 0) member_[at_k[k]++] = static_cast<int>(i);
 }
 
-// Over the members in atom order (with rmass accel added to each force: a folded gravity).
-void BodySet::sum_body(int k, const double* accel) {
+// Over the members in atom order.
+void BodySet::sum_body(int k) {
   const Atoms& at = sim_.atoms;
   const auto& c = at.column(col);
   Body& b = bodies[k];
@@ -474,9 +466,7 @@ void BodySet::sum_body(int k, const double* accel) {
   for (int m = start_[k]; m < start_[k + 1]; ++m) {
     const std::size_t i = static_cast<std::size_t>(member_[m]);
     mask |= at.mask[i];
-    V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
-    if (accel)
-      for (int e = 0; e < 3; ++e) f[e] += at.rmass[i] * accel[e];
+    const V3 f{at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
     const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
     const V3 t = cross(d, f);
     for (int e = 0; e < 3; ++e) {
@@ -526,7 +516,7 @@ void BodySet::find_damping() {
 
 void BodySet::sum_forces() {
   follow_atom_order();
-  for (std::size_t k = 0; k < bodies.size(); ++k) sum_body(static_cast<int>(k), nullptr);
+  for (std::size_t k = 0; k < bodies.size(); ++k) sum_body(static_cast<int>(k));
 }
 
 }  // namespace sable::rigid

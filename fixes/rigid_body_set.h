@@ -101,9 +101,8 @@ class BodySet {
 
   // First half of the NVE step (half kick, drift, orientation), then the members placed.
   void initial_integrate(double dt);
-  // Second half kick from the summed force and torque, then the members'
-  // velocities (unless members_unread: the next placing pass sets them anyway).
-  void final_integrate(double dt, bool members_unread = false);
+  // Second half kick from the summed force and torque, then the members' velocities.
+  void final_integrate(double dt);
   // Members from their body: the offset turned to the body's orientation (kept
   // as it is when the body cannot turn), the position wrapped into the box,
   // v = vcm + w x d, and each sphere's spin the body's.
@@ -113,13 +112,13 @@ class BodySet {
   // same bits for any thread count).
   void sum_forces();
   // The same steps as the plan's two-phase tasks (see the top of this file):
-  // begin_task serially before each, then the phases on every atom range. The
-  // initial task with r.final_first first does the deferred second half kick of
-  // the last step (forces summed with rmass r.accel added: a folded gravity),
-  // and with r.clear zeroes the range's forces and torques after placing.
+  // begin_task serially before each, then the phases on every atom range:
+  // phase 0 advances the bodies a thread owns, phase 1 places its members. The
+  // final task's phase 0 leaves each body ready for the next first half (omega
+  // included), so that the plan may skip its phase 1 when that half follows.
   void begin_task();
   void initial_range(const Fix::AtomRange& r, double dt);
-  void final_range(const Fix::AtomRange& r, double dt, bool members_unread);
+  void final_range(const Fix::AtomRange& r, double dt);
   // Where place_members would put grain i of body k, and its velocity.
   void expected(std::size_t i, int k, double* x, double* v) const;
   // The body the deck numbers n (from 0), and the deck's number of body k.
@@ -147,9 +146,9 @@ class BodySet {
   void number_new_bodies();
   void list_members();
   void owned(const Fix::AtomRange& r, int& k0, int& k1) const;  // the bodies of r's thread
-  void sum_body(int k, const double* accel);
+  void sum_body(int k);
   void damp(Body& b, std::uint32_t mask) const;
-  void advance(int k0, int k1, double dt, bool final_first, const double* accel);
+  void advance(int k0, int k1, double dt);
   void turn(int k0, int k1, double dt);
   void place_range(std::size_t lo, std::size_t hi, bool positions);
 };

@@ -486,7 +486,7 @@ Result run_threads(int threads, const std::string& deck, bool fusion = true) {
   omp_set_num_threads(threads);
 #endif
   Deck d;
-  d->step_fusion = fusion;
+  d->plan_rewrites = fusion ? sable::kAllRewrites : 0u;
   d(deck);
   ts = saved;
 #ifdef _OPENMP

@@ -242,7 +242,7 @@ TEST(DampingCundall, FusedPlanSameBitsAnyThreadCount) {
     omp_set_num_threads(threads);
 #endif
     Deck d;
-    d->step_fusion = fusion;
+    d->plan_rewrites = fusion ? sable::kAllRewrites : 0u;
     d(kBed);
     ts = saved;
 #ifdef _OPENMP
