@@ -18,6 +18,10 @@ enum FixHook : unsigned {
   POST_FORCE = 1u << 3,
   FINAL_INTEGRATE = 1u << 4,
   END_OF_STEP = 1u << 5,
+  // Not a hook but a task an integrator may offer: the second half kick of the
+  // last step, then the first half kick and drift of this one, on the same atoms
+  // in one loop (the bits of the two tasks in a row; the plan's fuse uses it).
+  FINAL_THEN_INITIAL = 1u << 6,
 };
 
 class Fix {

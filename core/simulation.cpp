@@ -500,7 +500,8 @@ void Simulation::force_pass(const Stage& s) {
     if (pair) pair->compute();
     return;
   }
-  const bool next_first = std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::FirstHalf; });
+  const bool next_first = std::any_of(s.ops.begin(), s.ops.end(),
+                                      [](auto& o) { return o.kind == AtomOp::FirstHalf || o.kind == AtomOp::BothHalves; });
   if (std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::Prescan; }))
     neighbor.expect_prescan(atoms, step + 1);
   begin_ops(s.ops);
@@ -538,7 +539,7 @@ void Simulation::run_stage(const Stage& s) {
       };
       if (has(AtomOp::Prescan)) neighbor.expect_prescan(atoms, step);
       run_atom_ops(*this, s.ops);
-      cleared_steps += has(AtomOp::FirstHalf) && has(AtomOp::ClearForces);
+      cleared_steps += (has(AtomOp::FirstHalf) || has(AtomOp::BothHalves)) && has(AtomOp::ClearForces);
       return;
     }
     case Stage::Rebuild: return rebuild_if_due();

@@ -18,6 +18,7 @@ const char* hook_name(FixHook h) {
     case POST_FORCE: return "post_force";
     case FINAL_INTEGRATE: return "final_integrate";
     case END_OF_STEP: return "end_of_step";
+    case FINAL_THEN_INITIAL: return "final_integrate + initial_integrate";
   }
   return "?";
 }
@@ -49,24 +50,36 @@ bool blockwise(const AtomOp& op) {
     case AtomOp::ClearForces: return true;
     case AtomOp::FirstHalf:
     case AtomOp::SecondHalf: return !two_phase(op);
+    case AtomOp::BothHalves: return true;
     default: return false;
   }
 }
 
 FixHook hook_of(const AtomOp& op) {
-  return op.kind == AtomOp::FirstHalf ? INITIAL_INTEGRATE : op.kind == AtomOp::SecondHalf ? FINAL_INTEGRATE : POST_FORCE;
+  switch (op.kind) {
+    case AtomOp::FirstHalf: return INITIAL_INTEGRATE;
+    case AtomOp::SecondHalf: return FINAL_INTEGRATE;
+    case AtomOp::BothHalves: return FINAL_THEN_INITIAL;
+    default: return POST_FORCE;
+  }
 }
+
+bool moves_atoms(const AtomOp& op) { return op.kind == AtomOp::FirstHalf || op.kind == AtomOp::BothHalves; }
 
 bool calls_fix(const AtomOp& op) { return op.fix && op.kind != AtomOp::AddMassAccel; }
 
 void run_op(Simulation& sim, const AtomOp& op, int t, std::size_t lo, std::size_t hi) {
   Atoms& at = sim.atoms;
   switch (op.kind) {
-    case AtomOp::AddMassAccel: {
-      double* f = at.f.data();
-      const double* m = at.rmass.data();
-      for (std::size_t i = lo; i < hi; ++i)
-        for (int k = 0; k < 3; ++k) f[3 * i + k] += m[i] * op.accel[k];
+    case AtomOp::AddMassAccel: {  // as fix gravity adds it
+      double* __restrict f = at.f.data();
+      const double* __restrict m = at.rmass.data();
+      const double a0 = op.accel[0], a1 = op.accel[1], a2 = op.accel[2];
+      for (std::size_t i = lo; i < hi; ++i) {
+        f[3 * i] += m[i] * a0;
+        f[3 * i + 1] += m[i] * a1;
+        f[3 * i + 2] += m[i] * a2;
+      }
       return;
     }
     case AtomOp::ClearForces: {
@@ -211,8 +224,12 @@ StepPlan fuse(StepPlan p) {
   const bool clear = hook_stages(p, POST_INTEGRATE).empty() && hook_stages(p, PRE_FORCE).empty();
   Stage after_loud{Stage::AtomPass, When::AfterLoud}, after_quiet{Stage::AtomPass, When::AfterQuiet};
   add_first_half(after_loud.ops, f);
-  after_quiet.ops.push_back(AtomOp{AtomOp::SecondHalf, f, 0});
-  add_first_half(after_quiet.ops, f);
+  if ((f->atom_tasks & FINAL_THEN_INITIAL) && !(f->two_phase_tasks & kBoth)) {
+    after_quiet.ops.push_back(AtomOp{AtomOp::BothHalves, f, 0});
+  } else {
+    after_quiet.ops.push_back(AtomOp{AtomOp::SecondHalf, f, 0});
+    add_first_half(after_quiet.ops, f);
+  }
   const int phase = after_loud.ops.back().phase;
   for (Stage* s : {&after_loud, &after_quiet})
     if (clear) s->ops.push_back(AtomOp{AtomOp::ClearForces, nullptr, phase});
@@ -289,7 +306,7 @@ StepPlan prescan(StepPlan p) {
   if (!p.integrator || !hook_stages(p, POST_INTEGRATE).empty()) return p;
   bool any = false;
   for (Stage& s : p.stages) {
-    const bool moves = std::any_of(s.ops.begin(), s.ops.end(), [](const AtomOp& o) { return o.kind == AtomOp::FirstHalf; });
+    const bool moves = std::any_of(s.ops.begin(), s.ops.end(), moves_atoms);
     if (!moves) continue;
     if (s.kind == Stage::AtomPass && !two_phase_integrator(p)) continue;  // x stays in cache for the force pass
     s.ops.push_back(AtomOp{AtomOp::Prescan, nullptr, s.ops.back().phase});
@@ -316,6 +333,7 @@ std::string AtomOp::describe() const {
     case AddMassAccel: return "add m a of " + fix_name(fix);
     case SecondHalf: return fix_name(fix) + ": second half kick" + ph;
     case FirstHalf: return fix_name(fix) + ": first half kick and drift" + ph;
+    case BothHalves: return fix_name(fix) + ": second half kick, first half kick and drift (one loop)";
     case ClearForces: return "clear forces";
     case PostForce: return fix_name(fix) + ": post_force";
     case Prescan: return "scan displacements for the rebuild check";

@@ -25,6 +25,7 @@ struct AtomOp {
     AddMassAccel,  // f += m a (a folded fix gravity)
     SecondHalf,    // the integrator's second half kick (Fix::range FINAL_INTEGRATE)
     FirstHalf,     // its first half kick and drift (Fix::range INITIAL_INTEGRATE)
+    BothHalves,    // SecondHalf then FirstHalf in one loop (Fix::range FINAL_THEN_INITIAL)
     ClearForces,   // f = torque = 0
     PostForce,     // a fix's post_force task
     Prescan,       // the rebuild check's displacement scan (Neighbor::prescan_range)

@@ -16,7 +16,8 @@ class FixNveSphere : public Fix {
  public:
   FixNveSphere(Simulation& s, const Args& a) : FixNveSphere(s, a, true) {}
   FixNveSphere(Simulation& s, const Args& a, bool spin) : Fix(s, a), spin_(spin) {
-    hooks = atom_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+    hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+    atom_tasks = hooks | FINAL_THEN_INITIAL;
     if (!spin_ && a.size() > 4) a.fail(4, "nothing after 'nve'");
     for (std::size_t i = 4; i < a.size(); ++i)
       if (a[i] != "update" && a[i] != "dipole" && a[i] != "disc") a.fail(i, "nothing (or update dipole/disc)");
@@ -28,14 +29,16 @@ class FixNveSphere : public Fix {
   }
   bool turns_grains() const override { return spin_; }
   // Initial: half kick, then drift, in one pass over the atoms. Final: the half
-  // kick. The step plan composes them with its other per-atom work.
+  // kick. Both, across a step boundary: one loop, the per-atom factors once.
+  // The step plan composes them with its other per-atom work.
   void range(FixHook h, const AtomRange& r) override {
     if (h == FINAL_INTEGRATE) return integrate<0>(r);
+    if (h == FINAL_THEN_INITIAL) return integrate<kDrift | kFinalFirst>(r);
     integrate<kDrift>(r);
   }
 
  private:
-  static constexpr unsigned kDrift = 1;
+  static constexpr unsigned kDrift = 1, kFinalFirst = 2;
   const bool spin_;  // nve/sphere: omega from the torque; nve: omega untouched
 
   // Half-step velocity and spin update from force and torque (and the drift
@@ -99,6 +102,10 @@ class FixNveSphere : public Fix {
       [[maybe_unused]] const double tc = t[c];
       double vc = v[c];
       [[maybe_unused]] double wc = w[c];
+      if constexpr ((kMode & kFinalFirst) != 0) {  // the same two additions as two passes
+        vc += hm[c] * fc;
+        if constexpr (kSpin) wc += hw[c] * tc;
+      }
       vc += hm[c] * fc;
       if constexpr (kSpin) wc += hw[c] * tc;
       if constexpr (kMasked) {
