@@ -9,6 +9,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/threads.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -27,6 +28,7 @@ class FixNveSphere : public Fix {
       }
   }
   bool turns_grains() const override { return spin_; }
+  void export_yade(YadeScript& s) const override;  // YADE's NewtonIntegrator; fix nve refuses
   // Initial: half kick, then drift, in one pass over the atoms; fused (the
   // step plan, AtomRange) with last step's final half kick (and gravity)
   // before it and the force clear after it. Final: the half kick.
@@ -143,6 +145,15 @@ class FixNveSphere : public Fix {
 struct FixNve : FixNveSphere {
   FixNve(Simulation& s, const Args& a) : FixNveSphere(s, a, false) {}
 };
+
+void FixNveSphere::export_yade(YadeScript& s) const {
+  if (!spin_) return Fix::export_yade(s);
+  const Args a = args.tail(1);
+  for (std::size_t k = 3; k < a.size(); ++k)
+    if (a[k] != "disc") a.fail(k, "nothing (export-yade translates nve/sphere [disc])");
+  s.rotate();
+  s.integrate(groupbit);
+}
 
 SABLE_FIX("nve/sphere", FixNveSphere);
 SABLE_FIX("nve", FixNve);
