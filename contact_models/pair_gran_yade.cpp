@@ -10,7 +10,8 @@ void PairGran::export_yade(YadeScript& s) const {
   const Args& a = args;
   if (a.size() < 4 || a[2] != "model") a.fail(1, "gran model ... (export-yade)");
   s.model = a[3];
-  if (s.model != "hertz" && s.model != "linear/kneib") a.fail(3, "hertz or linear/kneib (the laws export-yade maps onto YADE)");
+  if (s.model != "hertz" && s.model != "linear/kneib")
+    a.fail(3, "hertz or linear/kneib (the laws export-yade maps onto YADE)");
   bool history = false;
   for (std::size_t i = 4; i + 1 < a.size(); i += 2) {
     if (a[i] == "tangential" && a[i + 1] == "history") history = true;

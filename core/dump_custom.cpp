@@ -222,7 +222,7 @@ void DumpCustom::export_yade(YadeScript& s) const {
   const Args& a = args;  // dump ID group custom N file cols... (a[0]: the command)
   if (s.boundary.find_first_of("sm") != std::string::npos)
     s.refuse(a, "a dump with shrink-wrapped boundaries (boundary " + s.boundary +
-                ") writes a box YADE does not have; not translated");
+                    ") writes a box YADE does not have; not translated");
   static const std::map<std::string, std::string> kCol{
       {"id", "i"}, {"type", "_type[i]"}, {"mass", "_m[i]"}, {"radius", "_b(i).shape.radius"},
       {"diameter", "2 * _b(i).shape.radius"}, {"x", "_pos(i, 0)"}, {"y", "_pos(i, 1)"}, {"z", "_pos(i, 2)"},
@@ -236,7 +236,8 @@ void DumpCustom::export_yade(YadeScript& s) const {
       a.fail(k, "a dump column export-yade translates: id, type, mass, radius, diameter, x, y, z, vx, vy, vz, fx, fy, "
                 "fz, omegax, omegay, omegaz");
     const int c = force ? w[1] - 'x' : 0;
-    cols.push_back(force ? "O.forces.f(_bid(i), sync=True)[" + std::to_string(c) + "] + _m[i] * " + yade_num(s.gravity()[c])
+    cols.push_back(force ? "O.forces.f(_bid(i), sync=True)[" + std::to_string(c) + "] + _m[i] * " +
+                               yade_num(s.gravity()[c])
                          : kCol.at(w));
     fmts.push_back(w == "id" || w == "type" ? "%d " : "%g ");
   }
@@ -266,13 +267,14 @@ void DumpCustom::export_yade(YadeScript& s) const {
   }();
   const std::string box = s.dump_box();
   s.py << "# " << a.where().file << ":" << a.where().line << ": dump " << id << " custom\n"
-      << "_recorders.append(_DumpCustom(" << yade_quoted(id) << ", " << yade_quoted(file) << ", " << every << ", [";
+       << "_recorders.append(_DumpCustom(" << yade_quoted(id) << ", " << yade_quoted(file) << ", " << every << ", [";
   std::vector<long> ids;
   for (std::size_t i : members) ids.push_back(sim.atoms.id[i]);
   std::sort(ids.begin(), ids.end());
   for (long i : ids) s.py << i << ", ";
   s.py << "], " << yade_quoted(box) << ", " << yade_quoted("ITEM: ATOMS " + header_ + "\n") << ", [";
-  for (std::size_t c = 0; c < cols.size(); ++c) s.py << "(" << yade_quoted(fmts[c]) << ", lambda i: " << cols[c] << "), ";
+  for (std::size_t c = 0; c < cols.size(); ++c)
+    s.py << "(" << yade_quoted(fmts[c]) << ", lambda i: " << cols[c] << "), ";
   s.py << "]))\n";
 }
 

@@ -197,14 +197,16 @@ void DumpLocal::export_yade(YadeScript& s) const {
       continue;
     }
     const std::size_t open = a[k].find('[');
-    const Compute* c = a[k].rfind("c_", 0) == 0 && open != std::string::npos ? sim.find_compute(a[k].substr(2, open - 2)) : nullptr;
+    const Compute* c =
+        a[k].rfind("c_", 0) == 0 && open != std::string::npos ? sim.find_compute(a[k].substr(2, open - 2)) : nullptr;
     if (!c || (rows = c->export_yade_rows(s)).empty())
       a.fail(k, "c_ID[k] of a compute wall/gran/slices (export-yade's dump local takes no other local data)");
     if (!comp.empty() && c->id != comp) a.fail(k, "columns of one compute (export-yade)");
     comp = c->id;
     const int col = std::stoi(a[k].substr(open + 1)) - 1;
-    cols.push_back({"%g ", col == 0 ? "lambda r: r[0]" : "lambda r: r[" + std::to_string(col <= 3 ? 1 : 2) + "][" +
-                                                             std::to_string((col - 1) % 3) + "]"});
+    cols.push_back({"%g ", col == 0 ? "lambda r: r[0]"
+                                    : "lambda r: r[" + std::to_string(col <= 3 ? 1 : 2) + "][" +
+                                          std::to_string((col - 1) % 3) + "]"});
   }
   for (const Args& m : s.dump_mods[id])
     for (std::size_t k = 2; k < m.size();) {
@@ -225,8 +227,8 @@ void DumpLocal::export_yade(YadeScript& s) const {
     }
   const std::string box = s.dump_box();
   s.py << "# " << a.where().file << ":" << a.where().line << ": dump " << id << " local\n"
-      << "_recorders.append(_DumpLocal(" << yade_quoted(id) << ", " << yade_quoted(file) << ", " << every << ", " << yade_quoted(box)
-      << ", " << yade_quoted("ITEM: ENTRIES " + header_ + "\n") << ", lambda: " << rows << ", [";
+       << "_recorders.append(_DumpLocal(" << yade_quoted(id) << ", " << yade_quoted(file) << ", " << every << ", "
+       << yade_quoted(box) << ", " << yade_quoted("ITEM: ENTRIES " + header_ + "\n") << ", lambda: " << rows << ", [";
   for (const auto& [f, py] : cols) s.py << "(" << yade_quoted(f) << ", " << py << "), ";
   s.py << "]))\n";
 }

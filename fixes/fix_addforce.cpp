@@ -92,7 +92,8 @@ void FixAddforce::export_yade(YadeScript& s) const {
   const Atoms& at = sim.atoms;
   for (std::size_t i = 0; i < at.n; ++i)
     if (at.mask[i] & groupbit)
-      s.add_force("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + F[0] + ", " + F[1] + ", " + F[2] + "))");
+      s.add_force("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + F[0] + ", " + F[1] + ", " + F[2] +
+                  "))");
 }
 
 SABLE_FIX("addforce", FixAddforce);

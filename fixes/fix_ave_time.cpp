@@ -430,7 +430,8 @@ void FixAveTime::export_yade_recorder(YadeScript& s) const {
       off.push_back(a.integer(i + 1, "a value number"));
       i += 2;
     } else if (!o.parse(a, i, sched, "the first step to average from")) {
-      a.fail(i, "an ave/time keyword export-yade translates: mode, ave one, start, off, file, hdf5, title1, title2, title3");
+      a.fail(i, "an ave/time keyword export-yade translates: mode, ave one, start, off, file, hdf5, title1, "
+                "title2, title3");
     }
   }
   // Vector mode: each value a whole vector; export-yade knows compute wall/gran/slices' (c_ID).
@@ -471,18 +472,20 @@ void FixAveTime::export_yade_recorder(YadeScript& s) const {
   }
   std::string offs, names;
   for (std::size_t j = 0; j < cols.size(); ++j) {
-    offs += std::string(std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end() ? "True" : "False") + ", ";
+    const bool kept = std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end();
+    offs += std::string(kept ? "True" : "False") + ", ";
     names += yade_quoted(words[j]) + ", ";
   }
   s.py << "# " << a.where().file << ":" << a.where().line << ": fix " << id << " ave/time\n"
-      << "_avt[" << yade_quoted(id) << "] = _AveTime(" << (o.file.empty() ? "None" : yade_quoted(o.file)) << ", " << yade_quoted(h) << ", " << sched.nevery << ", "
-      << sched.nrepeat << ", " << sched.nfreq << ", " << sched.start << ", [";
+       << "_avt[" << yade_quoted(id) << "] = _AveTime(" << (o.file.empty() ? "None" : yade_quoted(o.file)) << ", "
+       << yade_quoted(h) << ", " << sched.nevery << ", " << sched.nrepeat << ", " << sched.nfreq << ", " << sched.start
+       << ", [";
   for (const auto& c : cols) s.py << c << ", ";
   s.py << "], [" << offs << "]";
   if (o.vector_mode) s.py << ", rows=" << nrows;
   if (!o.h5file.empty())
-    s.py << ", h5=(" << yade_quoted(o.h5file) << ", [" << names << "], [" << yade_quoted(id) << ", " << yade_quoted(style) << ", "
-        << yade_quoted(a.joined(1)) << "])";
+    s.py << ", h5=(" << yade_quoted(o.h5file) << ", [" << names << "], [" << yade_quoted(id) << ", "
+         << yade_quoted(style) << ", " << yade_quoted(a.joined(1)) << "])";
   s.py << ")\n_recorders.append(_avt[" << yade_quoted(id) << "])\n";
 }
 

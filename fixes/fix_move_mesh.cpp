@@ -102,15 +102,17 @@ void FixMoveMesh::export_yade(YadeScript& s) const {
     const double speed = std::sqrt(vec(6));
     if (speed == 0) return;
     m->motion = "TranslationEngine(ids=IDS, translationAxis=Vector3(" + yade_num(a.num(6, "vx") / speed) + ", " +
-                        yade_num(a.num(7, "vy") / speed) + ", " + yade_num(a.num(8, "vz") / speed) + "), velocity=" + yade_num(speed) + ")";
+                yade_num(a.num(7, "vy") / speed) + ", " + yade_num(a.num(8, "vz") / speed) +
+                "), velocity=" + yade_num(speed) + ")";
     for (int k = 0; k < 3; ++k) m->shift[k] = a.num(6 + k, "v") * sim.dt;
   } else if (a[5] == "rotate") {
     const double axis = std::sqrt(vec(11));
     // LIGGGHTS: right-handed about the axis, omega = 2 pi / period; YADE's RotationEngine turns the same way.
     m->motion = "RotationEngine(ids=IDS, rotationAxis=Vector3(" + yade_num(a.num(11, "ax") / axis) + ", " +
-                        yade_num(a.num(12, "ay") / axis) + ", " + yade_num(a.num(13, "az") / axis) + "), angularVelocity=" +
-                        yade_num(2 * std::numbers::pi / a.num(15, "a period")) + ", rotateAroundZero=True, zeroPoint=Vector3(" +
-                        yade_num(a.num(7, "ox")) + ", " + yade_num(a.num(8, "oy")) + ", " + yade_num(a.num(9, "oz")) + "))";
+                yade_num(a.num(12, "ay") / axis) + ", " + yade_num(a.num(13, "az") / axis) +
+                "), angularVelocity=" + yade_num(2 * std::numbers::pi / a.num(15, "a period")) +
+                ", rotateAroundZero=True, zeroPoint=Vector3(" + yade_num(a.num(7, "ox")) + ", " +
+                yade_num(a.num(8, "oy")) + ", " + yade_num(a.num(9, "oz")) + "))";
     for (int k = 0; k < 3; ++k) {
       m->origin[k] = a.num(7 + k, "origin");
       m->axis[k] = a.num(11 + k, "axis") / axis;

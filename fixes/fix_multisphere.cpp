@@ -6,7 +6,6 @@
 #include "core/restart.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
-#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -180,9 +179,6 @@ void FixMultisphere::read_state(const std::string& in) {
   set_.number = u.get_vector<int>();
   set_.numbers_read();
 }
-
-// --export-yade: each body a YADE clump with the template's mass and inertia (tools/yade_clumps.h).
-void FixMultisphere::export_yade(YadeScript& s) const { s.add_clumps(*this, yade::multisphere_clumps(sim, *this)); }
 
 SABLE_FIX("multisphere", FixMultisphere);
 
