@@ -16,6 +16,7 @@ namespace sable {
 class FixNveSphere : public Fix {
  public:
   FixNveSphere(Simulation& s, const Args& a) : FixNveSphere(s, a, true) {}
+  void export_yade(YadeScript& s) const override;  // YADE's NewtonIntegrator; fix nve refuses
   FixNveSphere(Simulation& s, const Args& a, bool spin) : Fix(s, a), spin_(spin) {
     hooks = atom_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
     if (!spin_ && a.size() > 4) a.fail(4, "nothing after 'nve'");
@@ -28,7 +29,6 @@ class FixNveSphere : public Fix {
       }
   }
   bool turns_grains() const override { return spin_; }
-  void export_yade(YadeScript& s) const override;  // YADE's NewtonIntegrator; fix nve refuses
   // Initial: half kick, then drift, in one pass over the atoms; fused (the
   // step plan, AtomRange) with last step's final half kick (and gravity)
   // before it and the force clear after it. Final: the half kick.
