@@ -13,13 +13,14 @@ namespace sable {
 
 class ComputeReduce : public Compute {
  public:
-  ComputeReduce(Simulation& s, const Args& a) : Compute(s, a) {
+  // in_region: reduce/region (a region ID before the mode).
+  ComputeReduce(Simulation& s, const Args& a, bool in_region = false) : Compute(s, a) {
     std::size_t i = 4;
     while (i < a.size() && a[i] == "update_on_run_end") {
       a.yes_no(i + 1, "yes or no");  // lazy evaluation makes it moot
       i += 2;
     }
-    if (style == "reduce/region") {
+    if (in_region) {
       region_ = a.word(i, "a region ID");
       if (!s.find_region(region_)) a.fail(i, "an existing region ID");
       ++i;
@@ -163,6 +164,10 @@ class ComputeReduce : public Compute {
 };
 
 SABLE_COMPUTE("reduce", ComputeReduce);
-SABLE_COMPUTE("reduce/region", ComputeReduce);
+// The region variant: the same class, told by its registration, not by its name.
+struct ComputeReduceRegion : ComputeReduce {
+  ComputeReduceRegion(Simulation& s, const Args& a) : ComputeReduce(s, a, true) {}
+};
+SABLE_COMPUTE("reduce/region", ComputeReduceRegion);
 
 }  // namespace sable

@@ -33,6 +33,7 @@
 #include "core/style_registry.h"
 #include "core/variable.h"
 #include "fixes/fix_wall_gran.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -146,6 +147,8 @@ class ComputeWallGranSlices : public Compute {
       local.insert(local.end(), row, row + 7);
     });
   }
+  std::string export_yade_term(const YadeScript& s, long k, const Args& at, const std::string& k_expr) const override;
+  std::string export_yade_rows(const YadeScript& s) const override;
 
  private:
   std::string wall_id_;
@@ -156,6 +159,35 @@ class ComputeWallGranSlices : public Compute {
   ContactRecords rec_;
   std::vector<double> slices_;
 };
+
+// --export-yade: c_ID[k] from YADE's interactions with the wall's body after the
+// step's force pass (the pass O.forces.f of the wall reports, as sable's slices
+// read the wall's last pass): minus the normal + shear force on the grain,
+// sliced by the grain's coordinate (its projection on the plane); _slice in the
+// script's head.
+std::string ComputeWallGranSlices::export_yade_term(const YadeScript& s, long k, const Args& at,
+                                                    const std::string& k_expr) const {
+  const long n = vector_size;
+  if (k < 1 || k > n)
+    at.fail_line("export-yade: c_" + id + "[" + std::to_string(k) + "]: slices 1.." + std::to_string(n));
+  const int w = s.wall_index(wall_id_);
+  if (w < 0) args.fail(4, "a primitive wall export-yade translated (fix " + wall_id_ + " is not one of its walls)");
+  auto bound = [&](std::size_t i) {
+    return "lambda: " + (args[i].rfind("v_", 0) == 0 ? s.translate(args[i], args) : yade_num(args.num(i, "a bound")));
+  };
+  return "_slice(" + yade_quoted(id) + ", " + (k_expr.empty() ? std::to_string(k - 1) : k_expr) + ", " +
+         std::to_string(w) + ", " + std::to_string(s.wall_axis(w)) + ", " + yade_num(s.wall_pos(w)) + ", " +
+         s.ids_of(groupbit) + ", " + std::to_string(n) + ", " + std::to_string(dim_) + ", " + bound(9) + ", " +
+         bound(11) + ", " + (clamp_ ? "True" : "False") + ")";
+}
+
+// The local rows (dump local): the grain, the contact point on the plane, the force on the wall.
+std::string ComputeWallGranSlices::export_yade_rows(const YadeScript& s) const {
+  const int w = s.wall_index(wall_id_);
+  if (w < 0) args.fail(4, "a primitive wall export-yade translated");
+  return "_wall_rows(" + yade_quoted(id) + ", " + std::to_string(w) + ", " + std::to_string(s.wall_axis(w)) + ", " +
+         yade_num(s.wall_pos(w)) + ", " + s.ids_of(groupbit) + ")";
+}
 
 SABLE_COMPUTE("wall/gran/slices", ComputeWallGranSlices);
 

@@ -28,6 +28,7 @@ class PairGran : public Pair {
  public:
   PairGran(Simulation& sim, const Args& args);
   void coeff(const Args& args) override;
+  void export_yade(YadeScript& s) const override;  // contact_models/pair_gran_yade.cpp
   void init() override;
   void compute() override { compute_then(RangeTail{}); }
   void compute_then(const RangeTail& tail) override;

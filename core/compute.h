@@ -9,6 +9,7 @@
 namespace sable {
 
 class Simulation;
+class YadeScript;  // tools/yade_script.h
 
 class Compute {
  public:
@@ -43,6 +44,15 @@ class Compute {
   virtual void compute_local() {}
   std::vector<double> local;  // rows * local_cols
   std::size_t local_rows() const { return local_cols ? local.size() / local_cols : 0; }
+
+  // sable --export-yade: c_ID[k] as a Python expression in the YADE script (k_expr,
+  // when given, is the Python for k - 1), and the local rows as one (dump local);
+  // "" where the style has no translation (the caller refuses, naming the reference).
+  virtual std::string export_yade_term(const YadeScript&, long /*k*/, const Args& /*at*/,
+                                             const std::string& /*k_expr*/ = "") const {
+    return "";
+  }
+  virtual std::string export_yade_rows(const YadeScript&) const { return ""; }
 
   long invoked_step = -1;  // callers use these to avoid recomputing within a step
   // Forget cached values (atoms may have changed between runs at the same step).

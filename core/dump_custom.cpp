@@ -10,6 +10,7 @@
 #include "core/dump_columns.h"
 #include "core/dump_file.h"
 #include "core/style_registry.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 namespace {
@@ -61,6 +62,7 @@ class DumpCustom : public Dump {
     fmt_.resize(cols_.size());
   }
 
+  void export_yade(YadeScript& s) const override;
   bool modify_param(const Args& a, std::size_t& i) override {
     const std::string& k = a[i];
     if (k == "sort" && i + 1 < a.size() && a[i + 1] != "id" && a[i + 1] != "off") {
@@ -210,6 +212,71 @@ class DumpCustom : public Dump {
 };
 
 }  // namespace
+
+// --export-yade: a _DumpCustom recorder (the script's head) writing this dump's
+// text on YADE's bodies: the same schedule, header, box, %g / %d values with a
+// trailing space (or the dump_modify format), rows in id order (sable: memory
+// order unless dump_modify sort id). Forces add m g to YADE's contact forces
+// (sable's f holds fix gravity's).
+void DumpCustom::export_yade(YadeScript& s) const {
+  const Args& a = args;  // dump ID group custom N file cols... (a[0]: the command)
+  if (s.boundary.find_first_of("sm") != std::string::npos)
+    s.refuse(a, "a dump with shrink-wrapped boundaries (boundary " + s.boundary +
+                    ") writes a box YADE does not have; not translated");
+  static const std::map<std::string, std::string> kCol{
+      {"id", "i"}, {"type", "_type[i]"}, {"mass", "_m[i]"}, {"radius", "_b(i).shape.radius"},
+      {"diameter", "2 * _b(i).shape.radius"}, {"x", "_pos(i, 0)"}, {"y", "_pos(i, 1)"}, {"z", "_pos(i, 2)"},
+      {"vx", "_b(i).state.vel[0]"}, {"vy", "_b(i).state.vel[1]"}, {"vz", "_b(i).state.vel[2]"},
+      {"omegax", "_b(i).state.angVel[0]"}, {"omegay", "_b(i).state.angVel[1]"}, {"omegaz", "_b(i).state.angVel[2]"}};
+  std::vector<std::string> cols, fmts;
+  for (std::size_t k = 6; k < a.size(); ++k) {
+    const std::string& w = a[k];
+    const bool force = w == "fx" || w == "fy" || w == "fz";
+    if (!force && !kCol.count(w))
+      a.fail(k, "a dump column export-yade translates: id, type, mass, radius, diameter, x, y, z, vx, vy, vz, fx, fy, "
+                "fz, omegax, omegay, omegaz");
+    const int c = force ? w[1] - 'x' : 0;
+    cols.push_back(force ? "O.forces.f(_bid(i), sync=True)[" + std::to_string(c) + "] + _m[i] * " +
+                               yade_num(s.gravity()[c])
+                         : kCol.at(w));
+    fmts.push_back(w == "id" || w == "type" ? "%d " : "%g ");
+  }
+  for (const Args& m : s.dump_mods[id]) {
+    for (std::size_t k = 2; k < m.size();) {
+      if (m[k] == "sort" && m.word(k + 1, "id") == "id") {
+        k += 2;
+      } else if (m[k] == "format") {
+        const std::size_t at = m.word(k + 1, "a format string") == "line" ? k + 2 : k + 1;
+        std::istringstream words(m.word(at, "a format string"));
+        for (std::size_t c = 0; c < fmts.size(); ++c) {
+          std::string w;
+          words >> w;
+          fmts[c] = yade_python_format(w) + " ";
+        }
+        k = at + 1;
+      } else {
+        m.fail(k, "a dump_modify keyword export-yade translates: format \"...\" (or format line \"...\"), sort id");
+      }
+    }
+  }
+  const std::vector<std::size_t> members = [&] {
+    std::vector<std::size_t> v;
+    for (std::size_t i = 0; i < sim.atoms.n; ++i)
+      if (sim.atoms.mask[i] & groupbit) v.push_back(i);
+    return v;
+  }();
+  const std::string box = s.dump_box();
+  s.py << "# " << a.where().file << ":" << a.where().line << ": dump " << id << " custom\n"
+       << "_recorders.append(_DumpCustom(" << yade_quoted(id) << ", " << yade_quoted(file) << ", " << every << ", [";
+  std::vector<long> ids;
+  for (std::size_t i : members) ids.push_back(sim.atoms.id[i]);
+  std::sort(ids.begin(), ids.end());
+  for (long i : ids) s.py << i << ", ";
+  s.py << "], " << yade_quoted(box) << ", " << yade_quoted("ITEM: ATOMS " + header_ + "\n") << ", [";
+  for (std::size_t c = 0; c < cols.size(); ++c)
+    s.py << "(" << yade_quoted(fmts[c]) << ", lambda i: " << cols[c] << "), ";
+  s.py << "]))\n";
+}
 
 SABLE_DUMP("custom", DumpCustom);
 

@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 namespace {
@@ -42,6 +43,7 @@ class DumpLocal : public Dump {
   void init() override {
     for (Column& c : cols_) resolve(args, c);
   }
+  void export_yade(YadeScript& s) const override;
 
   // dump_modify ... format float FMT | format N FMT | format none (LAMMPS' forms for
   // c_ID[k] values: one e/f/g conversion, e.g. %.17g for full precision).
@@ -180,6 +182,56 @@ class DumpLocal : public Dump {
 };
 
 }  // namespace
+
+// --export-yade: the local rows of one compute wall/gran/slices (id x y z fx fy fz:
+// the grain, the contact point on the plane, the force on the wall) as a
+// _DumpLocal recorder writing this dump's text. Rows in grain id order (sable:
+// its wall pass's order, atom memory order).
+void DumpLocal::export_yade(YadeScript& s) const {
+  const Args& a = args;  // dump ID group local N file values...
+  std::string comp, rows;
+  std::vector<std::pair<std::string, std::string>> cols;  // format, Python of row r (None: index)
+  for (std::size_t k = 6; k < a.size(); ++k) {
+    if (a[k] == "index") {
+      cols.push_back({"%d ", "None"});
+      continue;
+    }
+    const std::size_t open = a[k].find('[');
+    const Compute* c =
+        a[k].rfind("c_", 0) == 0 && open != std::string::npos ? sim.find_compute(a[k].substr(2, open - 2)) : nullptr;
+    if (!c || (rows = c->export_yade_rows(s)).empty())
+      a.fail(k, "c_ID[k] of a compute wall/gran/slices (export-yade's dump local takes no other local data)");
+    if (!comp.empty() && c->id != comp) a.fail(k, "columns of one compute (export-yade)");
+    comp = c->id;
+    const int col = std::stoi(a[k].substr(open + 1)) - 1;
+    cols.push_back({"%g ", col == 0 ? "lambda r: r[0]"
+                                    : "lambda r: r[" + std::to_string(col <= 3 ? 1 : 2) + "][" +
+                                          std::to_string((col - 1) % 3) + "]"});
+  }
+  for (const Args& m : s.dump_mods[id])
+    for (std::size_t k = 2; k < m.size();) {
+      if (m[k] != "format") m.fail(k, "format (export-yade translates dump local's format only)");
+      if (m.word(k + 1, "float, none or a column") == "none") {
+        for (auto& c : cols) c.first = c.second == "None" ? "%d " : "%g ";
+        k += 2;
+      } else if (m[k + 1] == "float") {
+        for (auto& c : cols)
+          if (c.second != "None") c.first = yade_python_format(m.word(k + 2, "a format")) + " ";
+        k += 3;
+      } else {
+        const long n = m.integer(k + 1, "a column number");
+        if (n < 1 || n > static_cast<long>(cols.size())) m.fail(k + 1, "a column number of the dump");
+        cols[n - 1].first = yade_python_format(m.word(k + 2, "a format")) + " ";
+        k += 3;
+      }
+    }
+  const std::string box = s.dump_box();
+  s.py << "# " << a.where().file << ":" << a.where().line << ": dump " << id << " local\n"
+       << "_recorders.append(_DumpLocal(" << yade_quoted(id) << ", " << yade_quoted(file) << ", " << every << ", "
+       << yade_quoted(box) << ", " << yade_quoted("ITEM: ENTRIES " + header_ + "\n") << ", lambda: " << rows << ", [";
+  for (const auto& [f, py] : cols) s.py << "(" << yade_quoted(f) << ", " << py << "), ";
+  s.py << "]))\n";
+}
 
 SABLE_DUMP("local", DumpLocal);
 

@@ -10,6 +10,7 @@
 namespace sable {
 
 class Simulation;
+class YadeScript;  // tools/yade_script.h
 
 enum FixHook : unsigned {
   INITIAL_INTEGRATE = 1u << 0,
@@ -60,6 +61,12 @@ class Fix {
   // A global array, f_ID[i][j] (1-based; LAMMPS' fix rigid: one row per body).
   int array_rows = 0, array_cols = 0;
   virtual double compute_array(int /*i*/, int /*j*/) { return 0.0; }
+
+  // sable --export-yade: this fix's part of the YADE script, from its parsed
+  // members (tools/yade_script.h). A style with no translation refuses at its line.
+  virtual void export_yade(YadeScript&) const {
+    args.fail_line("export-yade: fix style '" + style + "' is not translated to YADE");
+  }
 
   // Restart state (write_restart / read_restart). A fix whose behaviour depends on
   // its history (insertion counters, random streams) appends that state to `out`

@@ -53,6 +53,7 @@
 #include "core/random.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "fixes/fix_particletemplate_multisphere.h"
 #include "fixes/fix_particletemplate_sphere.h"
 
 namespace sable {
@@ -581,7 +582,7 @@ void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
   }
   auto* tmpl = dynamic_cast<FixParticletemplateSphere*>(sim.find_fix(a.word(2, "a particle template fix ID")));
   if (!tmpl) a.fail(2, "the ID of a fix particletemplate/sphere defined earlier");
-  if (tmpl->style != "particletemplate/sphere")
+  if (dynamic_cast<FixParticletemplateMultisphere*>(tmpl))  // a sphere template, not its multisphere kin
     a.fail(2, "a fix particletemplate/sphere (for clumps too: 'clump beta B' draws one radius per clump)");
   long seed = 0;
   double floor = dom.lo[1], beta = 0;

@@ -9,6 +9,7 @@
 #include "core/style_registry.h"
 #include "core/threads.h"
 #include "fixes/group_force.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -38,6 +39,7 @@ class FixAddforce : public Fix {
     region_.init(sim, args);
   }
   bool keeps_plane() const override { return force_.keeps_plane(); }
+  void export_yade(YadeScript& s) const override;  // each grain's force, added each step
 
   void begin(FixHook) override {
     active_ = sim.step % every_ == 0;
@@ -79,6 +81,20 @@ class FixAddforce : public Fix {
   BlockSum<4> sum_;
   double total_[4] = {0, 0, 0, 0};  // energy, force before
 };
+
+void FixAddforce::export_yade(YadeScript& s) const {
+  if (args.size() > 7) args.fail(7, "nothing after fx fy fz (export-yade translates no every or region)");
+  std::string F[3];
+  for (int k = 0; k < 3; ++k) {
+    F[k] = s.force_component(args, 4 + k);
+    if (F[k] == "None") F[k] = "0";
+  }
+  const Atoms& at = sim.atoms;
+  for (std::size_t i = 0; i < at.n; ++i)
+    if (at.mask[i] & groupbit)
+      s.add_force("O.forces.addF(_bid(" + std::to_string(at.id[i]) + "), Vector3(" + F[0] + ", " + F[1] + ", " + F[2] +
+                  "))");
+}
 
 SABLE_FIX("addforce", FixAddforce);
 

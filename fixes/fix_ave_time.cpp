@@ -28,6 +28,7 @@
 #include "core/style_registry.h"
 #include "core/thermo.h"
 #include "core/variable.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 namespace ave {
@@ -237,6 +238,10 @@ class FixAveTime : public Fix {
   }
   void setup() override { end_of_step(); }  // LIGGGHTS: samples at setup when due (step 0 with Nrepeat 1)
 
+  // --export-yade: a _AveTime recorder (the script's head), written after the engines.
+  void export_yade(YadeScript& s) const override {
+    s.add_recorder(*this, [this](YadeScript& s) { export_yade_recorder(s); });
+  }
   void end_of_step() override {
     if (sim.step != nvalid_) return;
     const std::size_t nv = values_.size(), rows = vector_mode_ ? nrows_ : 1;
@@ -288,6 +293,7 @@ class FixAveTime : public Fix {
   }
 
  private:
+  void export_yade_recorder(YadeScript& s) const;
   struct Value {
     char kind = 0;  // c, f, v
     std::string id, word;
@@ -397,6 +403,91 @@ class FixAveTime : public Fix {
 };
 
 }  // namespace
+
+// fix ave/time (ave one; scalar mode, or vector mode of compute wall/gran/slices)
+// as the script's _AveTime: the same schedule (LIGGGHTS' nextvalid), averages and
+// text file as here, its values evaluated on YADE's bodies.
+void FixAveTime::export_yade_recorder(YadeScript& s) const {
+  const Args& a = args;  // fix ID group ave/time Nevery Nrepeat Nfreq values... keywords...
+  ave::Schedule sched;
+  sched.parse(a, 4);
+  std::size_t i = 7;
+  std::vector<std::string> cols, words;
+  for (char kind; i < a.size(); ++i) {
+    std::string ref;
+    int index = 0;
+    if (!parse_reference(a[i], kind, ref, index)) break;
+    words.push_back(a[i]);
+  }
+  ave::Options o;
+  std::vector<long> off;
+  while (i < a.size()) {
+    const std::string& k = a[i];
+    if (k == "ave" && a.word(i + 1, "one") != "one")
+      a.fail(i + 1, "ave one (export-yade translates no running or window averages)");
+    if (k == "overwrite") a.fail(i, "file F or hdf5 F (export-yade writes no overwrite files)");
+    if (k == "off") {
+      off.push_back(a.integer(i + 1, "a value number"));
+      i += 2;
+    } else if (!o.parse(a, i, sched, "the first step to average from")) {
+      a.fail(i, "an ave/time keyword export-yade translates: mode, ave one, start, off, file, hdf5, title1, "
+                "title2, title3");
+    }
+  }
+  // Vector mode: each value a whole vector; export-yade knows compute wall/gran/slices' (c_ID).
+  long nrows = 1;
+  for (std::size_t j = 0; j < words.size(); ++j) {
+    if (!o.vector_mode) {
+      cols.push_back("lambda: " + s.translate(words[j], a));  // after the options: those errors first
+      continue;
+    }
+    const Compute* c = words[j].rfind("c_", 0) == 0 ? sim.find_compute(words[j].substr(2)) : nullptr;
+    const std::string row = c ? c->export_yade_term(s, 1, a, "r") : "";  // row r of the vector
+    if (row.empty())
+      a.fail(7 + j, "c_ID of a compute wall/gran/slices (export-yade's vector-mode ave/time takes no other vector)");
+    const long n = c->vector_size;
+    if (j > 0 && n != nrows) a.fail(7 + j, "vectors of one length");
+    nrows = n;
+    cols.push_back("lambda: [" + row + " for r in range(" + std::to_string(n) + ")]");
+  }
+  // Header as fix_ave_time.cpp writes it.
+  std::string h = o.title_or(0, "# Time-averaged data for fix " + id) + "\n";
+  if (o.titled[1]) {
+    h += o.title[1] + "\n";
+  } else if (!o.vector_mode) {
+    h += "# TimeStep";
+    for (const auto& w : words) h += " " + w;
+    h += "\n";
+  } else {
+    h += "# TimeStep Number-of-rows\n";
+  }
+  if (o.vector_mode) {
+    if (o.titled[2]) {
+      h += o.title[2] + "\n";
+    } else {
+      h += "# Row";
+      for (const auto& w : words) h += " " + w;
+      h += "\n";
+    }
+  }
+  std::string offs, names;
+  for (std::size_t j = 0; j < cols.size(); ++j) {
+    const bool kept = std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end();
+    offs += std::string(kept ? "True" : "False") + ", ";
+    names += yade_quoted(words[j]) + ", ";
+  }
+  s.py << "# " << a.where().file << ":" << a.where().line << ": fix " << id << " ave/time\n"
+       << "_avt[" << yade_quoted(id) << "] = _AveTime(" << (o.file.empty() ? "None" : yade_quoted(o.file)) << ", "
+       << yade_quoted(h) << ", " << sched.nevery << ", " << sched.nrepeat << ", " << sched.nfreq << ", " << sched.start
+       << ", [";
+  for (const auto& c : cols) s.py << c << ", ";
+  s.py << "], [" << offs << "]";
+  if (o.vector_mode) s.py << ", rows=" << nrows;
+  if (!o.h5file.empty())
+    s.py << ", h5=(" << yade_quoted(o.h5file) << ", [" << names << "], [" << yade_quoted(id) << ", "
+         << yade_quoted(style) << ", " << yade_quoted(a.joined(1)) << "])";
+  s.py << ")\n_recorders.append(_avt[" << yade_quoted(id) << "])\n";
+}
 
 SABLE_FIX("ave/time", FixAveTime);
 

@@ -33,6 +33,7 @@ class FixAveforce : public Fix {
     region_.init(sim, args);
   }
   bool keeps_plane() const override { return force_.keeps_plane(); }
+  void export_yade(YadeScript& s) const override { export_yade_set_forces(s, *this, true); }
 
   void post_force() override {
     Atoms& at = sim.atoms;

@@ -11,6 +11,7 @@ namespace sable {
 
 class FixCheckTimestepGran : public Fix {
  public:
+  void export_yade(YadeScript&) const override {}  // --export-yade: a check of sable's step only
   FixCheckTimestepGran(Simulation& s, const Args& a) : Fix(s, a) {
     hooks = END_OF_STEP;
     nevery = static_cast<int>(a.integer(4, "the check period N"));

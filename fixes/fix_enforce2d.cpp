@@ -10,6 +10,8 @@ namespace sable {
 
 class FixEnforce2d : public Fix {
  public:
+  // --export-yade: the script locks z, X and Y of every grain in 2D (blockedDOFs).
+  void export_yade(YadeScript&) const override {}
   FixEnforce2d(Simulation& s, const Args& a) : Fix(s, a) {
     hooks = atom_tasks = POST_FORCE;
     if (a.size() > 4) a.fail(4, "nothing after 'enforce2d'");

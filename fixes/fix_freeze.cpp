@@ -11,6 +11,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/threads.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -23,6 +24,7 @@ class FixFreeze : public Fix {
   }
   bool freezes_group() const override { return true; }
   bool keeps_plane() const override { return true; }  // zeroes forces
+  void export_yade(YadeScript& s) const override { s.freeze(*this); }  // fixed YADE bodies
   void init() override {
     bool after = false;
     for (auto& f : sim.fixes) {

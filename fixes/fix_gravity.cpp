@@ -4,6 +4,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/threads.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -38,6 +39,11 @@ class FixGravity : public Fix {
     }
   }
   double acceleration() const override { return std::fabs(g_); }
+  // YADE's NewtonIntegrator gravity, which acts on every body.
+  void export_yade(YadeScript& s) const override {
+    if (groupbit != 1u) args.tail(1).fail(1, "all (YADE's gravity acts on every body)");
+    s.add_gravity(acc_);
+  }
   bool fold_acceleration(double a[3]) const override {
     for (int k = 0; k < 3; ++k) a[k] = acc_[k];
     return groupbit == 1u;

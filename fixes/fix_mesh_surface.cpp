@@ -6,6 +6,7 @@
 #include "core/restart.h"
 #include "core/simulation.h"
 #include "core/style_registry.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -126,6 +127,14 @@ double FixMeshSurface::compute_vector(int i) {
   if (i <= 3) return mesh_.force[i - 1];
   if (i <= 6) return mesh_.torque[i - 4];
   return mesh_.to_world(mesh_.ref_body)[i - 7];
+}
+
+// --export-yade: the triangles as sable loaded them (scale, move, rotate applied in
+// the deck's order) become YADE facets (what ymport.stl makes) if a wall/gran uses them.
+void FixMeshSurface::export_yade(YadeScript& s) const {
+  if (mesh_.belt[0] != 0 || mesh_.belt[1] != 0 || mesh_.belt[2] != 0)
+    s.refuse(args, "surface_vel (a conveyor mesh) is not translated to YADE");
+  s.add_mesh(*this, mesh_, type_);
 }
 
 SABLE_FIX("mesh/surface", FixMeshSurface);

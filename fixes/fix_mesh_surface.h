@@ -27,6 +27,7 @@ namespace sable {
 class FixMeshSurface : public Fix, public MeshHolder {
  public:
   FixMeshSurface(Simulation& sim, const Args& args);
+  void export_yade(YadeScript& s) const override;  // the triangles as YADE facets
   double compute_vector(int i) override;
   TriMesh& mesh() override { return mesh_; }
   int wall_type() const override { return type_; }

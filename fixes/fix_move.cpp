@@ -22,6 +22,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/variable.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -118,6 +119,7 @@ class FixMove : public Fix {
     origin_ = u.get<std::int64_t>();
   }
   bool turns_grains() const override { return style_ == Rotate; }  // it sets each grain's spin
+  void export_yade(YadeScript& s) const override;
   double max_speed() const override {
     if (style_ == Linear) return std::sqrt(sq(set_[0] ? vel_[0] : 0) + sq(set_[1] ? vel_[1] : 0) + sq(set_[2] ? vel_[2] : 0));
     if (style_ == Wiggle)
@@ -317,6 +319,25 @@ class FixMove : public Fix {
     }
   }
 };
+
+// linear only: each grain's velocity set once, its set components and spin locked
+// (YADE's blockedDOFs), a NULL component keeps the grain's velocity now.
+void FixMove::export_yade(YadeScript& s) const {
+  if (style_ != Linear) args.tail(1).fail(3, "linear (export-yade translates fix move linear)");
+  const Atoms& at = sim.atoms;
+  for (std::size_t i = 0; i < at.n; ++i) {
+    if (!(at.mask[i] & groupbit)) continue;
+    std::string vel = "Vector3(", dofs;
+    for (int k = 0; k < 3; ++k) {
+      if (set_[k]) dofs += "xyz"[k];
+      vel += yade_num(set_[k] ? vel_[k] : at.v[3 * i + k]) + (k < 2 ? ", " : ")");
+    }
+    s.block(i, dofs + "XYZ");
+    s.add_move("_b(" + std::to_string(at.id[i]) + ").state.vel = " + vel);
+    s.add_move("_b(" + std::to_string(at.id[i]) + ").state.angVel = Vector3(0, 0, 0)");
+  }
+  s.integrate(groupbit);
+}
 
 SABLE_FIX("move", FixMove);
 

@@ -15,6 +15,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "fixes/fix_mesh_surface.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -61,6 +62,7 @@ class FixMoveMesh : public Fix {
     speed_ = mo.rotate ? std::fabs(mo.omega) * reach(mesh, mo) : std::sqrt(mo.v[0] * mo.v[0] + mo.v[1] * mo.v[1] + mo.v[2] * mo.v[2]);
   }
   double max_speed() const override { return speed_; }
+  void export_yade(YadeScript& s) const override;
   // The pose catches up at each run's end, so an unfix between runs keeps all the motion made.
   void post_run() override {
     if (auto* m = dynamic_cast<FixMeshSurface*>(sim.find_fix(mesh_id_))) m->update_pose();
@@ -82,6 +84,44 @@ class FixMoveMesh : public Fix {
     return std::sqrt(r2);
   }
 };
+
+// fix move/mesh linear | rotate: a YADE TranslationEngine or RotationEngine on
+// the mesh's facets (IDS stands for them until the script's mesh index is known).
+void FixMoveMesh::export_yade(YadeScript& s) const {
+  const Args a = args.tail(1);  // ID group move/mesh mesh MESHID linear|rotate ...
+  const std::string& id = a.word(4, "a mesh ID");
+  YadeScript::MeshWall* m = s.mesh(id);
+  if (!m) a.fail(4, "the ID of a fix mesh/surface");
+  if (!m->motion.empty())
+    s.refuse(a, "one move/mesh per mesh (YADE's kinematic engines set the facets' velocity, they do not add)");
+  auto vec = [&](std::size_t i) {
+    double v[3] = {a.num(i, "x"), a.num(i + 1, "y"), a.num(i + 2, "z")};
+    return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  };
+  if (a.word(5, "linear or rotate") == "linear") {
+    const double speed = std::sqrt(vec(6));
+    if (speed == 0) return;
+    m->motion = "TranslationEngine(ids=IDS, translationAxis=Vector3(" + yade_num(a.num(6, "vx") / speed) + ", " +
+                yade_num(a.num(7, "vy") / speed) + ", " + yade_num(a.num(8, "vz") / speed) +
+                "), velocity=" + yade_num(speed) + ")";
+    for (int k = 0; k < 3; ++k) m->shift[k] = a.num(6 + k, "v") * sim.dt;
+  } else if (a[5] == "rotate") {
+    const double axis = std::sqrt(vec(11));
+    // LIGGGHTS: right-handed about the axis, omega = 2 pi / period; YADE's RotationEngine turns the same way.
+    m->motion = "RotationEngine(ids=IDS, rotationAxis=Vector3(" + yade_num(a.num(11, "ax") / axis) + ", " +
+                yade_num(a.num(12, "ay") / axis) + ", " + yade_num(a.num(13, "az") / axis) +
+                "), angularVelocity=" + yade_num(2 * std::numbers::pi / a.num(15, "a period")) +
+                ", rotateAroundZero=True, zeroPoint=Vector3(" + yade_num(a.num(7, "ox")) + ", " +
+                yade_num(a.num(8, "oy")) + ", " + yade_num(a.num(9, "oz")) + "))";
+    for (int k = 0; k < 3; ++k) {
+      m->origin[k] = a.num(7 + k, "origin");
+      m->axis[k] = a.num(11 + k, "axis") / axis;
+    }
+    m->angle = 2 * std::numbers::pi / a.num(15, "a period") * sim.dt;
+  } else {
+    a.fail(5, "linear or rotate (export-yade)");
+  }
+}
 
 SABLE_FIX("move/mesh", FixMoveMesh);
 

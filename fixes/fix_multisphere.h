@@ -24,6 +24,7 @@ std::vector<rigid::V3> clump_offsets(const ClumpShape& shape, const rigid::Q4& q
 class FixMultisphere : public Fix {
  public:
   FixMultisphere(Simulation& s, const Args& a);
+  void export_yade(YadeScript& s) const override;  // fixes/fix_multisphere_yade.cpp
   void init() override;
   void setup() override;
   void initial_integrate() override;

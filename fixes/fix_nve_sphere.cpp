@@ -9,12 +9,14 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "core/threads.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
 class FixNveSphere : public Fix {
  public:
   FixNveSphere(Simulation& s, const Args& a) : FixNveSphere(s, a, true) {}
+  void export_yade(YadeScript& s) const override;  // YADE's NewtonIntegrator; fix nve refuses
   FixNveSphere(Simulation& s, const Args& a, bool spin) : Fix(s, a), spin_(spin) {
     hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
     atom_tasks = hooks | FINAL_THEN_INITIAL;
@@ -125,6 +127,15 @@ class FixNveSphere : public Fix {
 struct FixNve : FixNveSphere {
   FixNve(Simulation& s, const Args& a) : FixNveSphere(s, a, false) {}
 };
+
+void FixNveSphere::export_yade(YadeScript& s) const {
+  if (!spin_) return Fix::export_yade(s);
+  const Args a = args.tail(1);
+  for (std::size_t k = 3; k < a.size(); ++k)
+    if (a[k] != "disc") a.fail(k, "nothing (export-yade translates nve/sphere [disc])");
+  s.rotate();
+  s.integrate(groupbit);
+}
 
 SABLE_FIX("nve/sphere", FixNveSphere);
 SABLE_FIX("nve", FixNve);

@@ -9,8 +9,9 @@
 
 namespace sable {
 
-FixParticledistributionDiscrete::FixParticledistributionDiscrete(Simulation& s, const Args& a) : Fix(s, a) {
-  const bool mass_based = style.find("numberbased") == std::string::npos;
+FixParticledistributionDiscrete::FixParticledistributionDiscrete(Simulation& s, const Args& a, bool number_based)
+    : Fix(s, a) {
+  const bool mass_based = !number_based;
   seed = parse_prime_seed(a, 4);
   const long nt = a.integer(5, "the number of templates");
   if (nt < 1) a.fail(5, "a number of templates >= 1");
@@ -110,6 +111,10 @@ std::vector<FixParticledistributionDiscrete::Grain> FixParticledistributionDiscr
 
 SABLE_FIX("particledistribution/discrete", FixParticledistributionDiscrete);
 SABLE_FIX("particledistribution/discrete/massbased", FixParticledistributionDiscrete);
-SABLE_FIX("particledistribution/discrete/numberbased", FixParticledistributionDiscrete);
+// The number-based variant: the same class, told by its registration, not by its name.
+struct FixParticledistributionDiscreteNumber : FixParticledistributionDiscrete {
+  FixParticledistributionDiscreteNumber(Simulation& s, const Args& a) : FixParticledistributionDiscrete(s, a, true) {}
+};
+SABLE_FIX("particledistribution/discrete/numberbased", FixParticledistributionDiscreteNumber);
 
 }  // namespace sable

@@ -11,7 +11,9 @@ namespace sable {
 
 class FixParticledistributionDiscrete : public Fix {
  public:
-  FixParticledistributionDiscrete(Simulation& s, const Args& a);
+  // number_based: /numberbased (weights are number fractions), else mass fractions.
+  FixParticledistributionDiscrete(Simulation& s, const Args& a, bool number_based = false);
+  void export_yade(YadeScript&) const override {}  // --export-yade: a definition only, as its templates
   struct Grain {
     FixParticletemplateSphere::Grain g;
     std::uint32_t groupbits;  // the template's and this fix's groups

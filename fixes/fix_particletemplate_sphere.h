@@ -19,6 +19,8 @@ struct ClumpShape;  // fixes/fix_particletemplate_multisphere.h
 class FixParticletemplateSphere : public Fix {
  public:
   FixParticletemplateSphere(Simulation& s, const Args& a);
+  // --export-yade: a definition only; the grains it made are in the atoms.
+  void export_yade(YadeScript&) const override {}
   struct Grain {
     double radius, density, mass;  // a clump: its bounding radius, density and mass
     int type;

@@ -15,6 +15,7 @@ namespace sable {
 class FixPropertyGlobal : public Fix, public GlobalProperty {
  public:
   FixPropertyGlobal(Simulation& sim, const Args& args);
+  void export_yade(YadeScript&) const override {}  // read by the materials the script writes
 
   double compute_scalar() override { return values.empty() ? 0.0 : values[0]; }
   double compute_vector(int i) override;  // 1-based

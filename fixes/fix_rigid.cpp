@@ -28,6 +28,7 @@
 #include "core/style_registry.h"
 #include "core/variable.h"
 #include "fixes/rigid_body_set.h"
+#include "tools/yade_script.h"
 
 namespace sable {
 
@@ -36,6 +37,7 @@ using namespace rigid;
 class FixRigid : public Fix {
  public:
   FixRigid(Simulation& s, const Args& a) : FixRigid(s, a, false) {}
+  void export_yade(YadeScript& s) const override { s.add_clumps(*this, yade::rigid_clumps(sim, *this)); }
   FixRigid(Simulation& s, const Args& a, bool small) : Fix(s, a), small_(small) {
     hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
     atom_tasks = two_phase_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;

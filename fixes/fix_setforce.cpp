@@ -28,6 +28,7 @@ class FixSetforce : public Fix {
     region_.init(sim, args);
   }
   bool keeps_plane() const override { return force_.keeps_plane(); }
+  void export_yade(YadeScript& s) const override { export_yade_set_forces(s, *this, false); }
 
   void begin(FixHook) override {
     force_.evaluate(sim, args);

@@ -26,6 +26,7 @@ namespace sable {
 class FixWallGran : public Fix {
  public:
   FixWallGran(Simulation& sim, const Args& args);
+  void export_yade(YadeScript& s) const override;  // fixes/fix_wall_gran_yade.cpp
   void init() override;
   void begin(FixHook) override;
   void range(FixHook, const AtomRange& r) override;

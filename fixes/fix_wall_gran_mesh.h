@@ -37,6 +37,7 @@ class FixMeshSurface;
 class FixWallGranMesh : public Fix {
  public:
   FixWallGranMesh(Simulation& sim, const Args& args);
+  void export_yade(YadeScript& s) const override;  // fixes/fix_wall_gran_yade.cpp
   void init() override;
   void begin(FixHook) override;
   void range(FixHook, const AtomRange& r) override;

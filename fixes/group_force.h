@@ -12,6 +12,10 @@
 
 namespace sable {
 
+class YadeScript;
+// sable --export-yade of fix aveforce (ave) and setforce (fixes/group_force_yade.cpp).
+void export_yade_set_forces(YadeScript& s, const Fix& f, bool ave);
+
 class ForceComponents {
  public:
   enum Kind : unsigned char { Null, Constant, Equal, Atom };

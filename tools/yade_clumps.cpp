@@ -1,4 +1,5 @@
-// Rigid bodies as YADE clumps (tools/yade_clumps.h).
+// Rigid bodies as YADE clumps (tools/yade_clumps.h); fix multisphere's are
+// made next to it (fixes/fix_multisphere_yade.cpp).
 #include "tools/yade_clumps.h"
 
 #include <algorithm>
@@ -7,14 +8,10 @@
 #include <Eigen/Dense>
 
 #include "core/args.h"
-
 #include "core/simulation.h"
-#include "fixes/fix_multisphere.h"
 
 namespace sable::yade {
-namespace {
 
-// Members of each body of `fix`, by atom index, bodies in the fix's order.
 std::vector<std::vector<std::size_t>> members(const Simulation& sim, const Fix& fix) {
   std::vector<std::vector<std::size_t>> m;
   for (std::size_t i = 0; i < sim.atoms.n; ++i) {
@@ -26,12 +23,6 @@ std::vector<std::vector<std::size_t>> members(const Simulation& sim, const Fix& 
   return m;
 }
 
-void store_inertia(const Eigen::Matrix3d& I, Clump& c) {
-  const double v[6] = {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)};
-  std::copy(v, v + 6, c.inertia);
-}
-
-// blockedDOFs from flags: a force flag off keeps that velocity component, as YADE's blocked DOF does.
 std::string dofs_of(const std::array<bool, 3>& f, const std::array<bool, 3>& t) {
   std::string d;
   for (int k = 0; k < 3; ++k)
@@ -39,6 +30,13 @@ std::string dofs_of(const std::array<bool, 3>& f, const std::array<bool, 3>& t) 
   for (int k = 0; k < 3; ++k)
     if (!t[k]) d += "XYZ"[k];
   return d;
+}
+
+namespace {
+
+void store_inertia(const Eigen::Matrix3d& I, Clump& c) {
+  const double v[6] = {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)};
+  std::copy(v, v + 6, c.inertia);
 }
 
 // Bodies lo..hi (1-based) named by a LAMMPS range: M, *, *n, n*, m*n.
@@ -122,31 +120,6 @@ std::vector<Clump> rigid_clumps(const Simulation& sim, const Fix& fix) {
     c.dofs = dofs_of(ff[b], tf[b]);
     c.member_mass = c.mass;
     std::sort(c.ids.begin(), c.ids.end());
-    out.push_back(c);
-  }
-  return out;
-}
-
-std::vector<Clump> multisphere_clumps(const Simulation& sim, const Fix& fix) {
-  const auto* ms = dynamic_cast<const FixMultisphere*>(&fix);
-  if (!ms) fix.args.fail_line("export-yade: fix " + fix.id + " is not a fix multisphere");
-  const auto body = members(sim, fix);
-  std::vector<Clump> out;
-  for (std::size_t b = 0; b < ms->bodies().size(); ++b) {
-    const rigid::Body& r = ms->body(static_cast<int>(b));
-    Clump c;
-    for (std::size_t i : b < body.size() ? body[b] : std::vector<std::size_t>{}) c.ids.push_back(sim.atoms.id[i]);
-    std::sort(c.ids.begin(), c.ids.end());
-    c.mass = c.member_mass = r.mass;  // LIGGGHTS: every member carries the body's mass
-    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
-    const rigid::V3* e[3] = {&r.ex, &r.ey, &r.ez};
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d a((*e[k])[0], (*e[k])[1], (*e[k])[2]);
-      I += r.moments[k] * a * a.transpose();
-    }
-    store_inertia(I, c);
-    for (int k = 0; k < 3; ++k) c.vcm[k] = r.vcm[k], c.omega[k] = r.omega[k];
-    c.dofs = dofs_of(r.fflag, r.tflag);
     out.push_back(c);
   }
   return out;

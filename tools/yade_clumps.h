@@ -1,9 +1,13 @@
 #pragma once
 // Rigid bodies of a deck as YADE clumps, for sable --export-yade
-// (tools/export_yade.cpp). Each body becomes one clump of its member spheres
+// (tools/yade_script.h). Each body becomes one clump of its member spheres
 // with sable's mass and inertia (YADE's own would come from the materials'
 // density, ignoring the masses sable gave the grains), its centre-of-mass
 // velocity and spin, and the degrees of freedom its force/torque flags lock.
+// Fix rigid's bodies are made here, fix multisphere's next to it
+// (fixes/fix_multisphere_yade.cpp) with the helpers below.
+#include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -29,8 +33,10 @@ struct Clump {
 // fix's `force` / `torque` keywords.
 std::vector<Clump> rigid_clumps(const Simulation& sim, const Fix& fix);
 
-// fix multisphere: the bodies' own mass, inertia (from the template) and state.
-std::vector<Clump> multisphere_clumps(const Simulation& sim, const Fix& fix);
+// Members of each body of `fix` (Fix::body_of), by atom index, bodies in the fix's order.
+std::vector<std::vector<std::size_t>> members(const Simulation& sim, const Fix& fix);
+// blockedDOFs from flags: a force flag off keeps that velocity component, as YADE's blocked DOF does.
+std::string dofs_of(const std::array<bool, 3>& force, const std::array<bool, 3>& torque);
 
 }  // namespace yade
 }  // namespace sable

@@ -48,6 +48,12 @@ fix integr all nve/sphere
 // Exports deck text (written to deck.in) and returns the script, or "ERROR: " + the message.
 std::string exported(const TempDir& tmp, const std::string& deck) {
   std::ofstream(tmp / "deck.in") << deck;
+  // SABLE_KEEP_YADE_DECKS=DIR keeps each deck, for tests/export_yade_same_script.sh
+  if (const char* keep = std::getenv("SABLE_KEEP_YADE_DECKS")) {
+    const auto* t = ::testing::UnitTest::GetInstance()->current_test_info();
+    static int n = 0;
+    std::ofstream(std::string(keep) + "/" + t->name() + "_" + std::to_string(++n) + ".in") << deck;
+  }
   sable::Simulation sim;
   sim.screen = nullptr;
   sable::Input in(sim);
@@ -104,7 +110,7 @@ TEST(ExportYade, ScriptHoldsGrainsLawRunAndObservables) {
 
 // YADE's Hertz wall contact takes R = r/2; the wall material the exporter
 // writes must give YADE's formulas LIGGGHTS' stiffness with R = r:
-// E*_YADE = sqrt(2) Y*, G_YADE / (2 - nu_YADE) = 2 sqrt(2) G* (export_yade.cpp).
+// E*_YADE = sqrt(2) Y*, G_YADE / (2 - nu_YADE) = 2 sqrt(2) G* (tools/yade_script.cpp).
 TEST(ExportYade, HertzWallMaterialRestoresLiggghtsStiffness) {
   TempDir tmp;
   const std::string s =
