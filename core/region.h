@@ -18,8 +18,13 @@ class Region {
   virtual bool inside(const double* x) const = 0;
   // Axis-aligned bounds of the inside (for insertion and lattices).
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  // Volume of the inside, for packing fractions (0 when unknown).
+  // Volume of the inside, for packing fractions (0 when unknown); area(): of its
+  // section by the plane z = 0, for 2D decks (0 when unknown).
   virtual double volume() const { return 0.0; }
+  virtual double area() const { return 0.0; }
+  // Signed distance from x to the surface of the inside (> 0 inside) in `dim`
+  // dimensions (2D: what bounds a disc at z = 0); NaN when the style has none.
+  virtual double depth(const double* x, int dim) const;
 
  protected:
   Simulation& sim;

@@ -1,4 +1,8 @@
 // region ID block xlo xhi ylo yhi zlo zhi [side in|out] [units box|lattice]
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "core/region.h"
 #include "core/style_registry.h"
 
@@ -22,6 +26,16 @@ class RegionBlock : public Region {
     return true;
   }
   double volume() const override { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+  double area() const override { return (hi[0] - lo[0]) * (hi[1] - lo[1]); }
+  double depth(const double* x, int dim) const override {
+    double in = std::numeric_limits<double>::max(), out2 = 0;
+    for (int k = 0; k < dim; ++k) {  // in 2D the z faces do not bound a disc at z = 0
+      in = std::min({in, x[k] - lo[k], hi[k] - x[k]});
+      const double e = std::max({lo[k] - x[k], x[k] - hi[k], 0.0});
+      out2 += e * e;
+    }
+    return in >= 0 ? in : -std::sqrt(out2);
+  }
 };
 
 SABLE_REGION("block", RegionBlock);

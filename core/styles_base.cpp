@@ -42,6 +42,8 @@ void Fix::run_task(FixHook h) {
   end(h);
 }
 
+double Region::depth(const double*, int) const { return std::numeric_limits<double>::quiet_NaN(); }
+
 Fix::Fix(Simulation& s, const Args& a) : sim(s), args(a) {
   id = a.word(1, "a fix ID");
   group = group_arg(s, a, 2);

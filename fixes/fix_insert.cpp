@@ -345,28 +345,11 @@ void FixInsert::setup_geometry() {
   }
   if (dim() == 2 && (R.lo[2] > 0 || R.hi[2] < 0) && R.interior)
     args.fail_line("in 2D grains are inserted at z = 0, but region '" + R.id + "' does not contain z = 0");
-  if (R.style == "block")
-    shape_ = Block;
-  else if (R.style == "sphere")
-    shape_ = Sphere;
-  else if (R.style == "cylinder") {
-    shape_ = Cylinder;
-    axis_ = -1;
-    for (int k = 0; k < 3 && axis_ < 0; ++k) {
-      const int p = (k + 1) % 3, q = (k + 2) % 3;
-      double x[3];
-      x[k] = 0.5 * (R.lo[k] + R.hi[k]);
-      x[p] = 0.5 * (R.lo[p] + R.hi[p]) + 0.4 * (R.hi[p] - R.lo[p]);
-      x[q] = 0.5 * (R.lo[q] + R.hi[q]) + 0.4 * (R.hi[q] - R.lo[q]);
-      if (!R.inside(x)) axis_ = k;  // off-axis diagonal point leaves the disc only across the axis
-    }
-    if (axis_ < 0) shape_ = Unknown;
-  }
   // Exact volume when the region lies in the box and knows it; else Monte-Carlo like LIGGGHTS.
   if (!clipped && R.interior && dim() == 3 && R.volume() > 0)
     region_volume_ = R.volume();
-  else if (!clipped && R.interior && dim() == 2 && shape_ == Block)
-    region_volume_ = (R.hi[0] - R.lo[0]) * (R.hi[1] - R.lo[1]);
+  else if (!clipped && R.interior && dim() == 2 && R.area() > 0)
+    region_volume_ = R.area();
   else {
     Rng mc(seed_ + 12);
     long in = 0;
@@ -382,45 +365,10 @@ void FixInsert::setup_geometry() {
   if (!(region_volume_ > 0)) args.fail_line("the insertion region '" + R.id + "' has no volume inside the box");
 }
 
-// Signed distance from x to the surface of the region's inside (> 0 inside); NaN when unknown.
-double FixInsert::depth(const double* x) const {
-  const Region& R = *region_;
-  switch (shape_) {
-    case Block: {
-      double in = std::numeric_limits<double>::max(), out2 = 0;
-      for (int k = 0; k < dim(); ++k) {  // in 2D the z faces do not bound a disc at z = 0
-        in = std::min({in, x[k] - R.lo[k], R.hi[k] - x[k]});
-        const double e = std::max({R.lo[k] - x[k], x[k] - R.hi[k], 0.0});
-        out2 += e * e;
-      }
-      return in >= 0 ? in : -std::sqrt(out2);
-    }
-    case Sphere: {
-      double d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += std::pow(x[k] - 0.5 * (R.lo[k] + R.hi[k]), 2);
-      return 0.5 * (R.hi[0] - R.lo[0]) - std::sqrt(d2);
-    }
-    case Cylinder: {
-      double rho2 = 0;
-      for (int k = 0; k < 3; ++k)
-        if (k != axis_) rho2 += std::pow(x[k] - 0.5 * (R.lo[k] + R.hi[k]), 2);
-      const int p = (axis_ + 1) % 3;
-      const double dr = 0.5 * (R.hi[p] - R.lo[p]) - std::sqrt(rho2);
-      const bool axial = !(dim() == 2 && axis_ == 2);
-      const double da = axial ? std::min(x[axis_] - R.lo[axis_], R.hi[axis_] - x[axis_]) : dr;
-      if (dr >= 0 && da >= 0) return std::min(dr, da);
-      return -std::hypot(std::max(-dr, 0.0), std::max(-da, 0.0));
-    }
-    case Unknown:
-      break;
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 // Is a grain (x, r) in the region: its centre, or with all_in yes all of it?
 bool FixInsert::in_region(const double* x, double r) {
   if (!all_in_) return region_->match(x);
-  const double dd = depth(x);
+  const double dd = region_->depth(x, dim());
   if (!std::isnan(dd)) return region_->interior ? dd >= r : dd <= -r;
   // Region style without a distance: test the centre and 26 points of the surface.
   if (!warned_all_in_) {

@@ -97,13 +97,10 @@ class FixInsert : public Fix {
   std::array<double, 4> quat_{1, 0, 0, 0};  // orientation constant
   std::vector<std::array<double, 4>> q_;    // per placed grain: its rotation (clumps)
   std::string dist_id_, region_id_;
-  enum Shape { Unknown, Block, Sphere, Cylinder } shape_ = Unknown;
-  int axis_ = 2;
   bool warned_all_in_ = false;
 
   bool shared_keyword(const Args& a, std::size_t& i);
   void setup_geometry();
-  double depth(const double* x) const;
   bool in_region(const double* x, double r);
   bool near_box_face(const double* x, double r) const;
   std::array<double, 4> orientation();
