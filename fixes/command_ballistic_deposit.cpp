@@ -54,6 +54,7 @@
 #include "core/simulation.h"
 #include "core/style_registry.h"
 #include "fixes/fix_particletemplate_multisphere.h"
+#include "fixes/fix_property_atom.h"
 #include "fixes/fix_particletemplate_sphere.h"
 
 namespace sable {
@@ -613,7 +614,7 @@ void cmd_ballistic_deposit(Simulation& sim, const Args& a) {
     if (!clumps) a.fail(body_at - 1, "'body' only with 'clump beta B' (a body ID per clump)");
     body_col = sim.atoms.find_column("f_" + body);
     const Fix* bf = sim.find_fix(body);
-    if (body_col < 0 || !bf || bf->style != "property/atom" || sim.atoms.column_stride(body_col) != 1)
+    if (body_col < 0 || !dynamic_cast<const FixPropertyAtom*>(bf) || sim.atoms.column_stride(body_col) != 1)
       a.fail(body_at, "the ID of a scalar fix property/atom defined earlier (it holds each clump's body ID)");
   }
   Atoms& at = sim.atoms;
