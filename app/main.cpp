@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/input.h"
-#include "core/simulation.h"
-#include "core/variable.h"
+#include "core/engine/error.h"
+#include "core/input/input.h"
+#include "core/engine/simulation.h"
+#include "core/input/variable.h"
 #include "tools/export_yade.h"
 
 int main(int argc, char** argv) {

@@ -3,9 +3,9 @@
 // variable read at each invocation), e.g. a slice bound that follows a piston.
 #include <string>
 
-#include "core/args.h"
-#include "core/simulation.h"
-#include "core/variable.h"
+#include "core/input/args.h"
+#include "core/engine/simulation.h"
+#include "core/input/variable.h"
 
 namespace sable {
 

@@ -2,7 +2,7 @@
 // rotational kinetic energy sum 1/2 I w^2 with I = Atoms::inertia (2/5 m r^2,
 // also in 2D as LIGGGHTS; 1/2 m r^2 for disks), a global scalar.
 #include "computes/kinetic_energy.h"
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -32,8 +32,8 @@
 
 #include "computes/bound_arg.h"
 #include "contact_models/pair_gran.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -1,7 +1,7 @@
 // compute ID group ke [update_on_run_end yes|no] [halfstep]: translational
 // kinetic energy sum 1/2 m v^2 of the group (LIGGGHTS compute ke), a global scalar.
 #include "computes/kinetic_energy.h"
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -1,7 +1,7 @@
 // compute ID group ke/multisphere: the translational kinetic energy 1/2 M vcm^2
 // summed over the bodies of fix multisphere (LIGGGHTS 3.8: the group is ignored), a global scalar.
 #include "computes/kinetic_energy.h"
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

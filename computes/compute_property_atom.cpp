@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <set>
 
-#include "core/dump_columns.h"
-#include "core/style_registry.h"
+#include "core/io/dump_columns.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 namespace {

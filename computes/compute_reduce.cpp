@@ -6,8 +6,8 @@
 // over all rows, with sum, min, max or ave. One input: a global scalar; several:
 // a global vector, one value per input (LIGGGHTS semantics, incl. its 1e20
 // for min/max of nothing and 0 for ave of nothing).
-#include "core/dump_columns.h"
-#include "core/style_registry.h"
+#include "core/io/dump_columns.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "contact_models/pair_gran.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_mesh_surface.h"
 #include "fixes/fix_wall_gran.h"
 #include "fixes/fix_wall_gran_mesh.h"

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "computes/cg_field.h"
-#include "core/compute.h"
+#include "core/engine/compute.h"
 
 namespace sable {
 

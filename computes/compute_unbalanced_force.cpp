@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "contact_models/pair_gran.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_damping_cundall.h"
 #include "fixes/fix_wall_gran.h"
 #include "fixes/fix_wall_gran_mesh.h"

@@ -27,11 +27,11 @@
 #include <vector>
 
 #include "computes/bound_arg.h"
-#include "core/atoms.h"
-#include "core/compute.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/variable.h"
+#include "core/engine/atoms.h"
+#include "core/engine/compute.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/input/variable.h"
 #include "fixes/fix_wall_gran.h"
 #include "tools/yade_script.h"
 

@@ -4,7 +4,7 @@
 // erotate/multisphere (fix multisphere's body sums). Global scalars.
 #include <string>
 
-#include "core/simulation.h"
+#include "core/engine/simulation.h"
 #include "fixes/fix_multisphere.h"
 
 namespace sable {

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/contact_columns.h"
-#include "core/neighbor.h"  // HistorySlot
+#include "core/engine/contact_columns.h"
+#include "core/engine/neighbor.h"  // HistorySlot
 
 namespace sable {
 

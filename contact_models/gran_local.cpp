@@ -1,6 +1,6 @@
 #include "contact_models/gran_local.h"
 
-#include "core/args.h"
+#include "core/input/args.h"
 
 namespace sable {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/neighbor.h"
+#include "core/engine/neighbor.h"
 
 namespace sable {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/atoms.h"
+#include "core/engine/atoms.h"
 
 namespace sable {
 

@@ -7,7 +7,7 @@
 // two spheres intersect, -pi/4 (r-ri-rj)(r+ri-rj)(r-ri+rj)(r+ri+rj) / r^2 at
 // centre distance r; `projection` pi max(ri, rj)^2; `constant` a given area.
 //
-// A law of the contact loop (core/contact_loop.h) like the force laws: the
+// A law of the contact loop (core/engine/contact_loop.h) like the force laws: the
 // loop finds the touching pairs of the half list (r < ri + rj, the force
 // pass's own test), gathers them into columns and scatters in list order with
 // its threads; this law writes each contact's heat flow into i in force
@@ -17,7 +17,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/contact_loop.h"
+#include "core/engine/contact_loop.h"
 
 namespace sable {
 

@@ -2,12 +2,12 @@
 // A contact law: the compile-time composition of one sub-model per axis
 // (normal, damping, tangential, rolling, cohesion), GranKernel<N, D, T, R, C>,
 // evaluating a chunk of
-// contacts from their kinematics (core/contact_columns.h) and nothing else.
+// contacts from their kinematics (core/engine/contact_columns.h) and nothing else.
 // The sub-model structs inline into one branch-free loop over the chunk's
 // columns, which the compiler vectorises; the virtual interfaces are crossed
 // once per chunk. Everything else (which contacts touch, threads, history
 // rows, gathering and scattering) is the contact loop's, in core
-// (core/contact_loop.h), shared by every law and every contact source: the
+// (core/engine/contact_loop.h), shared by every law and every contact source: the
 // pair list, primitive walls, meshes. The same law serves them all, as
 // LIGGGHTS registers each ContactModel<Style> for both pair and wall.
 // Compiled for the combinations of contact_models/compiled_laws.txt; every
@@ -35,7 +35,7 @@
 
 #include "contact_models/contact.h"
 #include "contact_models/materials.h"
-#include "core/contact_loop.h"
+#include "core/engine/contact_loop.h"
 
 namespace sable {
 
@@ -130,7 +130,7 @@ class GranKernel final
  public:
   static constexpr int kHN = N::kHistory, kHD = D::kHistory, kHT = T::kHistory, kHR = R::kHistory;
   static constexpr int kH = kHN + kHD + kHT + kHR + C::kHistory;
-  static_assert(kH <= kMaxLoopHistory, "more history values per contact than core/contact_loop.cpp builds loops for");
+  static_assert(kH <= kMaxLoopHistory, "more history values per contact than core/engine/contact_loop.cpp builds loops for");
 
   GranKernel() {
     N::history_slots(slots_);

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "core/args.h"
-#include "core/simulation.h"
-#include "core/global_property.h"
+#include "core/input/args.h"
+#include "core/engine/simulation.h"
+#include "core/engine/global_property.h"
 
 namespace sable {
 

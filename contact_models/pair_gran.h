@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
-#include "core/neighbor.h"
-#include "core/pair.h"
+#include "core/engine/neighbor.h"
+#include "core/engine/pair.h"
 
 namespace sable {
 

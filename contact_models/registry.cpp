@@ -5,8 +5,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/args.h"
-#include "core/simulation.h"
+#include "core/input/args.h"
+#include "core/engine/simulation.h"
 
 namespace sable {
 
@@ -90,7 +90,7 @@ static ComposedParts compose(const ModelSelection& s, const Args& a) {
   c.cohesion = p.cohesion.at(s.names[kCohesionAxis])();
   if (c.history() > kMaxLoopHistory)
     a.fail(s.at[kNormalAxis], "models with at most " + std::to_string(kMaxLoopHistory) +
-                                  " history values per contact together (core/contact_loop.h), not " +
+                                  " history values per contact together (core/engine/contact_loop.h), not " +
                                   std::to_string(c.history()));
   return c;
 }

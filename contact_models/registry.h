@@ -23,7 +23,7 @@
 #include "contact_models/builtin_models.h"  // generated: every built-in sub-model and its axis' TypeList
 #include "contact_models/composed.h"
 #include "contact_models/kernel.h"
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -50,9 +50,9 @@
 #include <numbers>
 #include <vector>
 
-#include "core/random.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/random.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_particletemplate_multisphere.h"
 #include "fixes/fix_property_atom.h"
 #include "fixes/fix_particletemplate_sphere.h"

@@ -10,10 +10,10 @@
 // masses), so the check counts the growth (Neighbor::radii_vary) before forces.
 #include <cmath>
 
-#include "core/error.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/variable.h"
+#include "core/engine/error.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/input/variable.h"
 
 namespace sable {
 

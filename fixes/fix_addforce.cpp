@@ -5,9 +5,9 @@
 // NULL is not allowed (as in LAMMPS). f_ID is the potential energy of the
 // added field, -sum F.x (unwrapped x), and f_ID[1..3] the group's total force
 // before the addition. The `energy` keyword (for minimisation) is not supported.
-#include "core/block_sum.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/block_sum.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "fixes/group_force.h"
 #include "tools/yade_script.h"
 

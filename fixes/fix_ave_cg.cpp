@@ -5,7 +5,7 @@
 // multiples of Nevery in (t - Nfreq, t]; fewer when a run starts inside a
 // window) is appended to F.h5 and the sum restarts. The group is not used
 // (the compute's group picks the grains).
-// HDF5 layout (core/h5_series.h: SWMR, a killed run leaves every complete
+// HDF5 layout (core/io/h5_series.h: SWMR, a killed run leaves every complete
 // window readable; `step` is written last, its length counts the windows):
 //   growing, one row per window: rho, phi [nx ny nz]; u [nx ny nz 3];
 //     stress, stress_contact, stress_kinetic [nx ny nz 6] (xx yy zz xy xz yz);
@@ -18,9 +18,9 @@
 #include <memory>
 
 #include "computes/compute_stress_cg.h"
-#include "core/h5_series.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/io/h5_series.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

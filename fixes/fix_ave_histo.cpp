@@ -14,10 +14,10 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/thermo.h"
-#include "core/variable.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/io/thermo.h"
+#include "core/input/variable.h"
 #include "fixes/fix_ave_time.h"
 
 namespace sable {

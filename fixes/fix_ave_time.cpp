@@ -23,11 +23,11 @@
 #include <memory>
 #include <type_traits>
 
-#include "core/error.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/thermo.h"
-#include "core/variable.h"
+#include "core/engine/error.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/io/thermo.h"
+#include "core/input/variable.h"
 #include "tools/yade_script.h"
 
 namespace sable {

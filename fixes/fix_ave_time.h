@@ -1,13 +1,13 @@
 #pragma once
 // Pieces shared by fix ave/time and fix ave/histo: the sampling schedule
-// (LIGGGHTS' nextvalid()) and the text file (the HDF5 series: core/h5_series.h). Both
+// (LIGGGHTS' nextvalid()) and the text file (the HDF5 series: core/io/h5_series.h). Both
 // outputs are kill-safe: a run killed at any instant leaves files that parse.
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/args.h"
-#include "core/h5_series.h"
+#include "core/input/args.h"
+#include "core/io/h5_series.h"
 
 namespace sable::ave {
 
@@ -59,6 +59,6 @@ class TextFile {
   void write_all(int fd, const std::string& s);
 };
 
-using sable::H5Series;  // core/h5_series.h
+using sable::H5Series;  // core/io/h5_series.h
 
 }  // namespace sable::ave

@@ -9,9 +9,9 @@
 // The average needs every grain's force first, so this is not a per-atom task:
 // two passes over the atoms after the force pass (a BlockSum, then the set),
 // which keeps the step off the pipelined plan (Simulation::run says so).
-#include "core/block_sum.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/block_sum.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "fixes/group_force.h"
 
 namespace sable {

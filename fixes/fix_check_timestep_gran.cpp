@@ -3,9 +3,9 @@
 // this fix repeats the check every N steps and warns (or stops) like LIGGGHTS.
 #include <cstdio>
 
-#include "core/error.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/error.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

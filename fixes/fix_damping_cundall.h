@@ -25,7 +25,7 @@
 // YADE's unbalancedForce() reads forces before the integrator damps them).
 #include <vector>
 
-#include "core/fix.h"
+#include "core/engine/fix.h"
 
 namespace sable {
 

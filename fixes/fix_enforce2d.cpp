@@ -2,9 +2,9 @@
 // and torque, so grains stay in their plane (LIGGGHTS post_force). It must
 // act after every other force: like LIGGGHTS, it runs in definition order, so
 // it should be the last fix defined; a post-force fix defined after it is warned about.
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 
 namespace sable {
 

@@ -7,10 +7,10 @@
 #include <cstring>
 #include <vector>
 
-#include "core/block_sum.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/block_sum.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "tools/yade_script.h"
 
 namespace sable {

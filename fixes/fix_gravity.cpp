@@ -1,9 +1,9 @@
 // fix ID group gravity magnitude vector x y z  (also: spherical/... not supported)
 #include <cmath>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "tools/yade_script.h"
 
 namespace sable {

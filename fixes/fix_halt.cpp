@@ -16,10 +16,10 @@
 #include <cstdio>
 #include <string>
 
-#include "core/expression.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/variable.h"
+#include "core/input/expression.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/input/variable.h"
 
 namespace sable {
 

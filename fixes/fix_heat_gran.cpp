@@ -25,8 +25,8 @@
 
 #include "contact_models/heat_conduction.h"
 #include "contact_models/materials.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 namespace {

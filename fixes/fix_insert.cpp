@@ -17,8 +17,8 @@
 #include <limits>
 #include <numbers>
 
-#include "core/restart.h"
-#include "core/simulation.h"
+#include "core/io/restart.h"
+#include "core/engine/simulation.h"
 #include "fixes/fix_multisphere.h"
 
 namespace sable {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/fix.h"
+#include "core/engine/fix.h"
 #include "fixes/fix_particledistribution_discrete.h"
 
 namespace sable {

@@ -8,9 +8,9 @@
 // all grains whose centre is in the region and insert the missing ones (the
 // placement rules are those of every region insertion: fixes/fix_insert.cpp).
 // sable extension: in 2D fractions are area fractions.
-#include "core/region.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/geometry/region.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_insert.h"
 
 namespace sable {

@@ -6,7 +6,7 @@
 // LIGGGHTS 3.8 semantics: every K steps from the start step (default: the
 // next step) int(n + u) grains, n = R K dt, in the region (the counts:
 // FixInsertRated in fixes/fix_insert.h; placement: fixes/fix_insert.cpp).
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_insert.h"
 
 namespace sable {

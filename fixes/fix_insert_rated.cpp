@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/simulation.h"
+#include "core/engine/simulation.h"
 #include "fixes/fix_insert.h"
 
 namespace sable {

@@ -33,9 +33,9 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/geometry/mesh.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_insert.h"
 #include "fixes/fix_particletemplate_multisphere.h"
 

@@ -3,9 +3,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "core/restart.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/io/restart.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "tools/yade_script.h"
 
 namespace sable {

@@ -19,8 +19,8 @@
 // wear finnie (LIGGGHTS' stress module; needs property/global k_finnie
 // peratomtypepair): per triangle, the eroded mass per area of Finnie's model as
 // LIGGGHTS 3.8 sums it (fix wall/gran mesh), for dump mesh/vtk and mesh/gran/VTK.
-#include "core/fix.h"
-#include "core/mesh.h"
+#include "core/engine/fix.h"
+#include "core/geometry/mesh.h"
 
 namespace sable {
 

@@ -7,8 +7,8 @@
 // same bits for any thread count.
 #include <cmath>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -18,10 +18,10 @@
 #include <limits>
 #include <numbers>
 
-#include "core/restart.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/variable.h"
+#include "core/io/restart.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/input/variable.h"
 #include "tools/yade_script.h"
 
 namespace sable {

@@ -12,8 +12,8 @@
 #include <memory>
 #include <numbers>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/fix_mesh_surface.h"
 #include "tools/yade_script.h"
 

@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/fix.h"
+#include "core/engine/fix.h"
 #include "fixes/fix_particletemplate_multisphere.h"
 #include "fixes/rigid_body_set.h"
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "core/simulation.h"
+#include "core/engine/simulation.h"
 #include "fixes/fix_multisphere.h"
 #include "tools/yade_script.h"
 

@@ -6,9 +6,9 @@
 //
 // Each atom is updated on its own, so the loops are threaded (large systems)
 // and vectorised: with group all the mask test is hoisted out of the loop.
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "tools/yade_script.h"
 
 namespace sable {

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 #include "fixes/rigid_body_set.h"
 
 namespace sable {

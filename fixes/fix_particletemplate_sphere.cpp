@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

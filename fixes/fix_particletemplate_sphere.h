@@ -5,12 +5,12 @@
 // later LIGGGHTS-PUBLIC), `radius uniform number MIN MAX`, `radius gaussian
 // number MU SIGMA [cut K]` (truncated at +-3 sigma, or at +-K sigma with sable's
 // `cut`) and `density uniform|gaussian A B [cut K]`.
-// Random numbers and distributions: core/random.h.
+// Random numbers and distributions: core/engine/random.h.
 #include <cstdint>
 #include <functional>
 
-#include "core/fix.h"
-#include "core/random.h"
+#include "core/engine/fix.h"
+#include "core/engine/random.h"
 
 namespace sable {
 

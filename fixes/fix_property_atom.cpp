@@ -9,8 +9,8 @@
 // several processes and are only checked; a vector's defaults must be equal.
 #include "fixes/fix_property_atom.h"
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

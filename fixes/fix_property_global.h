@@ -2,13 +2,13 @@
 // fix ID group property/global NAME style [nCols] values...   (LIGGGHTS fix_property.txt)
 //   style: scalar | vector | atomtype | peratomtype | matrix | atomtypepair | peratomtypepair
 // Holds named global values (material properties) that contact models read at
-// init through core/global_property.h. atomtypepair matrices must be
+// init through core/engine/global_property.h. atomtypepair matrices must be
 // square and symmetric, as in LIGGGHTS. f_ID / f_ID[i] give the scalar / vector.
 #include <string>
 #include <vector>
 
-#include "core/fix.h"
-#include "core/global_property.h"
+#include "core/engine/fix.h"
+#include "core/engine/global_property.h"
 
 namespace sable {
 

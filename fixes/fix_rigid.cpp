@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "core/restart.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/variable.h"
+#include "core/io/restart.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/input/variable.h"
 #include "fixes/rigid_body_set.h"
 #include "tools/yade_script.h"
 

@@ -4,9 +4,9 @@
 // component is a number, NULL or v_name (equal- or atom-style, evaluated every
 // step). Torques are left alone (LAMMPS). f_ID[1..3] is the group's total force
 // before it was set (the grains inside R).
-#include "core/block_sum.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/block_sum.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "fixes/group_force.h"
 
 namespace sable {

@@ -2,8 +2,8 @@
 // (LIGGGHTS/LAMMPS; gamma in force/velocity units, scaled per atom type).
 #include <vector>
 
-#include "core/simulation.h"
-#include "core/style_registry.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
 
 namespace sable {
 

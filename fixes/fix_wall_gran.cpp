@@ -8,9 +8,9 @@
 #include "contact_models/materials.h"
 #include "contact_models/pair_gran.h"
 #include "contact_models/registry.h"
-#include "core/simulation.h"
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/engine/simulation.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 
 namespace sable {
 

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
-#include "core/block_sum.h"
-#include "core/fix.h"
+#include "core/engine/block_sum.h"
+#include "core/engine/fix.h"
 
 namespace sable {
 

@@ -7,10 +7,10 @@
 #include "contact_models/materials.h"
 #include "contact_models/pair_gran.h"
 #include "contact_models/registry.h"
-#include "core/global_property.h"
-#include "core/restart.h"
-#include "core/simulation.h"
-#include "core/threads.h"
+#include "core/engine/global_property.h"
+#include "core/io/restart.h"
+#include "core/engine/simulation.h"
+#include "core/engine/threads.h"
 #include "fixes/fix_mesh_surface.h"
 
 namespace sable {

@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
-#include "core/fix.h"
-#include "core/mesh.h"
+#include "core/engine/fix.h"
+#include "core/geometry/mesh.h"
 
 namespace sable {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/simulation.h"
-#include "core/variable.h"
+#include "core/engine/simulation.h"
+#include "core/input/variable.h"
 
 namespace sable {
 

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "core/simulation.h"
-#include "core/threads.h"
+#include "core/engine/simulation.h"
+#include "core/engine/threads.h"
 #include "fixes/fix_damping_cundall.h"
 
 namespace sable::rigid {

@@ -24,7 +24,7 @@
 
 #include <Eigen/Dense>
 
-#include "core/fix.h"
+#include "core/engine/fix.h"
 
 namespace sable {
 

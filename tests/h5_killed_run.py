@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A run killed with SIGKILL leaves HDF5 output that h5py opens plainly (issue 24, item 3).
 
-sable keeps its HDF5 files closed between blocks of records (core/h5_series.h), so the
+sable keeps its HDF5 files closed between blocks of records (core/io/h5_series.h), so the
 file's superblock is marked consistent at every instant except inside a block's write.
 The deck records every step (issue 43: rows are buffered, blocks of 1, 2, 4, ... then
 4096 records); it is killed once the text file written alongside holds more than two

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "core/args.h"
-#include "core/dump.h"
-#include "core/error.h"
-#include "core/input.h"
-#include "core/simulation.h"
-#include "core/variable.h"
+#include "core/input/args.h"
+#include "core/io/dump.h"
+#include "core/engine/error.h"
+#include "core/input/input.h"
+#include "core/engine/simulation.h"
+#include "core/input/variable.h"
 #include "tools/yade_script.h"
 
 namespace sable {

@@ -7,8 +7,8 @@
 
 #include <Eigen/Dense>
 
-#include "core/args.h"
-#include "core/simulation.h"
+#include "core/input/args.h"
+#include "core/engine/simulation.h"
 
 namespace sable::yade {
 

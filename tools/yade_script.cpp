@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "core/atoms.h"
-#include "core/compute.h"
-#include "core/error.h"
-#include "core/global_property.h"
-#include "core/simulation.h"
-#include "core/variable.h"
+#include "core/engine/atoms.h"
+#include "core/engine/compute.h"
+#include "core/engine/error.h"
+#include "core/engine/global_property.h"
+#include "core/engine/simulation.h"
+#include "core/input/variable.h"
 
 namespace sable {
 
@@ -708,7 +708,7 @@ std::string YadeScript::head() const {
          "                v[s] += fw[axis]\n"
          "        c = _slice_cache[name] = (_step[0], v)\n"
          "    return c[1][k]\n"
-         "class _TextDump:  # a text dump's schedule (core/dump.h): one write per snapshot, '*' a file per step\n"
+         "class _TextDump:  # a text dump's schedule (core/io/dump.h): one write per snapshot, '*' a file per step\n"
          "    def __init__(self, name, path, every, box, head):\n"
          "        self.name, self.path, self.every, self.box, self.head = name, path, every, box, head\n"
          "        self.last, self.file = -1, None\n"
@@ -728,7 +728,7 @@ std::string YadeScript::head() const {
          "            self.file = open(self.path, 'w')\n"
          "        self.file.write(text)\n"
          "        self.file.flush()\n"
-         "class _DumpLocal(_TextDump):  # dump local of compute wall/gran/slices' rows: core/dump_local.cpp's text\n"
+         "class _DumpLocal(_TextDump):  # dump local of compute wall/gran/slices' rows: core/io/dump_local.cpp's text\n"
          "    def __init__(self, name, path, every, box, head, rows, cols):\n"
          "        _TextDump.__init__(self, name, path, every, box, head)\n"
          "        self.rows, self.cols = rows, cols\n"
@@ -848,7 +848,7 @@ std::string YadeScript::head() const {
          "            st.resize(st.shape[0] + 1, axis=0)\n"
          "            st[-1] = s  # last: the record is complete\n"
          "            self.h5.flush()\n"
-         "class _DumpCustom(_TextDump):  # dump custom: core/dump_custom.cpp's text\n"
+         "class _DumpCustom(_TextDump):  # dump custom: core/io/dump_custom.cpp's text\n"
          "    def __init__(self, name, path, every, ids, box, head, cols):\n"
          "        _TextDump.__init__(self, name, path, every, box, head)\n"
          "        self.ids, self.cols = ids, cols\n"
@@ -877,7 +877,7 @@ std::string YadeScript::head() const {
          "    print('Loop time of run %d steps (YADE)' % n, flush=True)\n";
 }
 
-// As core/dump_custom.cpp and dump_local.cpp write it.
+// As core/io/dump_custom.cpp and dump_local.cpp write it.
 std::string YadeScript::dump_box() const {
   const Domain& dom = sim.domain;
   char box[256];

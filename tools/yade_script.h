@@ -1,7 +1,7 @@
 #pragma once
 // The YADE script that sable --export-yade writes (tools/export_yade.h). The
 // writer knows no style names: each style adds its own translation through
-// its export_yade(YadeScript&) (core/fix.h, pair.h, dump.h, compute.h) next to
+// its export_yade(YadeScript&) (core/engine/fix.h, pair.h, dump.h, compute.h) next to
 // the style, or refuses at its deck line. Kept here: the Python helpers
 // (head()), the deck-order bookkeeping (variables, thermo, dumps), the
 // translation of equal-style expressions, and the scene's lists (materials,
@@ -15,8 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/args.h"
-#include "core/mesh.h"
+#include "core/input/args.h"
+#include "core/geometry/mesh.h"
 #include "tools/yade_clumps.h"
 
 namespace sable {

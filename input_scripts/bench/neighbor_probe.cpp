@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "core/atoms.h"
-#include "core/domain.h"
-#include "core/neighbor.h"
+#include "core/engine/atoms.h"
+#include "core/engine/domain.h"
+#include "core/engine/neighbor.h"
 
 using namespace sable;
 

@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/h5_series.h"
+#include "core/io/h5_series.h"
 #include "reference_runs/analysis/analysis.h"
 
 namespace sable::analysis {

@@ -46,7 +46,7 @@ MUTATIONS = [
        "        for (int j = 1; j <= ntypes_; ++j)\n"
        "          if (i != j) t[i * s + j] = 0.0;\n")]),
     ("restart_history", "write_restart stores zeros for the contact history (shear displacements lost)",
-     "core/restart.cpp",
+     "core/io/restart.cpp",
      [("p.put_vector(c.hist);", "p.put_vector(std::vector<double>(c.hist.size(), 0.0));")]),
     ("gravity_z_sign", "fix gravity's z component pulls the wrong way",
      "fixes/fix_gravity.cpp", [("f[3 * i + 2] += rmass[i] * a2;", "f[3 * i + 2] -= rmass[i] * a2;")]),

@@ -11,10 +11,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/input.h"
-#include "core/neighbor.h"
-#include "core/simulation.h"
+#include "core/engine/error.h"
+#include "core/input/input.h"
+#include "core/engine/neighbor.h"
+#include "core/engine/simulation.h"
 
 namespace sable::test {
 

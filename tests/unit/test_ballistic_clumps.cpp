@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "core/engine/error.h"
 #include "tests/unit/ballistic_scene.h"
 #include "tests/unit/deck_runner.h"
 

@@ -1,4 +1,4 @@
-// core/block_sum.h: the reduction core offers fixes (wall forces, frozen
+// core/engine/block_sum.h: the reduction core offers fixes (wall forces, frozen
 // grains' forces, later mesh and rigid-body sums) gives the bits of one serial
 // pass over the blocks for any split of the positions into thread ranges.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "core/block_sum.h"
+#include "core/engine/block_sum.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/variable.h"
+#include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -12,8 +12,8 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/variable.h"
+#include "core/engine/error.h"
+#include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

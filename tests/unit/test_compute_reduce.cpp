@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/style_registry.h"
-#include "core/thermo.h"
-#include "core/variable.h"
+#include "core/input/style_registry.h"
+#include "core/io/thermo.h"
+#include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

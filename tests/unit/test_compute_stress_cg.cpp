@@ -16,8 +16,8 @@
 
 #include "computes/cg_field.h"
 #include "computes/compute_stress_cg.h"
-#include "core/error.h"
-#include "core/mesh.h"
+#include "core/engine/error.h"
+#include "core/geometry/mesh.h"
 #include "fixes/fix_mesh_surface.h"
 #include "tests/unit/deck_runner.h"
 

@@ -22,7 +22,7 @@
 #include <numbers>
 #include <string>
 
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/compute.h"
+#include "core/engine/compute.h"
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/lattice_deck_2d.h"
 

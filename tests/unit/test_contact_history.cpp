@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "contact_models/pair_gran.h"
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

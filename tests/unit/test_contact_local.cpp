@@ -8,8 +8,8 @@
 #include <tuple>
 #include <vector>
 
-#include "core/compute.h"
-#include "core/error.h"
+#include "core/engine/compute.h"
+#include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

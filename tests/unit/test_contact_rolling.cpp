@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -14,8 +14,8 @@
 #include <sstream>
 #include <thread>
 
-#include "core/error.h"
-#include "core/style_registry.h"
+#include "core/engine/error.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/compute.h"
+#include "core/engine/compute.h"
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/right_wall_scene.h"
 

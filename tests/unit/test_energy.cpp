@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "core/thermo.h"
+#include "core/io/thermo.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -13,9 +13,9 @@
 #include <sstream>
 #include <string>
 
-#include "core/error.h"
-#include "core/input.h"
-#include "core/simulation.h"
+#include "core/engine/error.h"
+#include "core/input/input.h"
+#include "core/engine/simulation.h"
 #include "tests/unit/deck_runner.h"
 #include "tools/export_yade.h"
 
@@ -820,7 +820,7 @@ TEST(ExportYade, VectorModeAveTimeOfSlicesWritesTextAndHdf5) {
 }
 
 // The cavity's contact rows (input_scripts/cavity/README.md): dump local of compute
-// wall/gran/slices' columns as a _DumpLocal recorder (core/dump_local.cpp's text, rows
+// wall/gran/slices' columns as a _DumpLocal recorder (core/io/dump_local.cpp's text, rows
 // in grain id order). Checked in YADE 2023 on the cavity's shear (Hd 8, NU 1, seed 7):
 // 3020 records from step 8008 as sable's, rows' fx summing to f_right[1] within the %g
 // digits (5e-8 N). Another local compute is refused naming the dump line.

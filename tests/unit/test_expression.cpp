@@ -2,7 +2,7 @@
 // context, atom-style evaluation, the "if" Boolean and error messages.
 // Tolerances: EXPECT_EQ where the result is exact in binary floating point,
 // EXPECT_DOUBLE_EQ (4 ulp) for single libm calls, EXPECT_NEAR with the stated bound otherwise.
-#include "core/expression.h"
+#include "core/input/expression.h"
 
 #include <gtest/gtest.h>
 

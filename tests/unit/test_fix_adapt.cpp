@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
+#include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

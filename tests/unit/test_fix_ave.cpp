@@ -18,9 +18,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/compute.h"
-#include "core/error.h"
-#include "core/style_registry.h"
+#include "core/engine/compute.h"
+#include "core/engine/error.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <string>
 
-#include "core/error.h"
-#include "core/variable.h"
+#include "core/engine/error.h"
+#include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

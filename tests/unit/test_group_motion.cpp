@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

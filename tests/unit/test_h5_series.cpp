@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "core/h5_series.h"
+#include "core/io/h5_series.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::H5Series;

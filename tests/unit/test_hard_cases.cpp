@@ -14,8 +14,8 @@
 #include <tuple>
 #include <vector>
 
-#include "core/compute.h"
-#include "core/fix.h"
+#include "core/engine/compute.h"
+#include "core/engine/fix.h"
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/neighbor_pairs.h"
 

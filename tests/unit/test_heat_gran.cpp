@@ -12,8 +12,8 @@
 #endif
 
 #include "contact_models/heat_conduction.h"
-#include "core/error.h"
-#include "core/threads.h"
+#include "core/engine/error.h"
+#include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/number_format.h"
+#include "core/input/number_format.h"
 #include "tests/unit/deck_runner.h"
 
 namespace sable::test {

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "core/error.h"
+#include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
+#include "core/geometry/mesh.h"
 
 using sable::TriMesh;
 using sable::Vec3d;

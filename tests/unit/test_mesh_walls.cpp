@@ -19,10 +19,10 @@
 #include <omp.h>
 #endif
 
-#include "core/compute.h"
-#include "core/threads.h"
-#include "core/mesh.h"
-#include "core/style_registry.h"
+#include "core/engine/compute.h"
+#include "core/engine/threads.h"
+#include "core/geometry/mesh.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -8,8 +8,8 @@
 #include <numbers>
 #include <string>
 
-#include "core/error.h"
-#include "core/variable.h"
+#include "core/engine/error.h"
+#include "core/input/variable.h"
 #include "fixes/fix_multisphere.h"
 #include "fixes/fix_particletemplate_multisphere.h"
 #include "tests/unit/deck_runner.h"

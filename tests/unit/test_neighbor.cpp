@@ -11,9 +11,9 @@
 #include <set>
 #include <tuple>
 
-#include "core/atoms.h"
-#include "core/domain.h"
-#include "core/neighbor.h"
+#include "core/engine/atoms.h"
+#include "core/engine/domain.h"
+#include "core/engine/neighbor.h"
 #include "tests/unit/neighbor_pairs.h"
 
 #ifdef _OPENMP

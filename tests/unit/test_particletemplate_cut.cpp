@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
+#include "core/engine/error.h"
 #include "fixes/fix_particletemplate_sphere.h"
 #include "tests/unit/deck_runner.h"
 

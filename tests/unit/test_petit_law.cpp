@@ -19,7 +19,7 @@
 
 #include "contact_models/materials.h"
 #include "contact_models/normal/hertz.h"
-#include "core/args.h"
+#include "core/input/args.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -26,7 +26,7 @@
 
 #include <unistd.h>
 
-#include "core/style_registry.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/threads.h"
+#include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
 #ifdef _OPENMP

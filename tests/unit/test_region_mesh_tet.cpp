@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/region.h"
+#include "core/geometry/region.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -11,8 +11,8 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.h"
-#include "core/restart.h"
+#include "core/engine/error.h"
+#include "core/io/restart.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

@@ -1,4 +1,4 @@
-// The step plan (core/step_plan.h): the plain plan runs every hook as LIGGGHTS
+// The step plan (core/engine/step_plan.h): the plain plan runs every hook as LIGGGHTS
 // does; each rewrite (fuse, fold gravity, pipeline, prescan) must give the bits
 // of the plain plan, at 1 and 2 threads, and must change the plan it claims to
 // change (else the comparison shows nothing).
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/threads.h"
+#include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
 #ifdef _OPENMP

@@ -1,5 +1,5 @@
 // Deterministic threading: the same deck gives the same bits whatever the
-// thread count and whether the contact loops run as AVX-512, AVX2 or SSE2 (core/threads.h,
+// thread count and whether the contact loops run as AVX-512, AVX2 or SSE2 (core/engine/threads.h,
 // GranKernel::pair_forces). The size thresholds are lowered so a small system
 // takes every threaded path: the pair pass (ranges, cross entries and their
 // slots), the neighbour build, the integrator, gravity, the wall (in blocks of
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/style_registry.h"
-#include "core/threads.h"
+#include "core/input/style_registry.h"
+#include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

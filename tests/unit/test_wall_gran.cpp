@@ -9,8 +9,8 @@
 #include <numbers>
 #include <string>
 
-#include "core/compute.h"
-#include "core/style_registry.h"
+#include "core/engine/compute.h"
+#include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
 using sable::test::Deck;

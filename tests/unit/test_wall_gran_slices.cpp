@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/compute.h"
-#include "core/fix.h"
-#include "core/variable.h"
+#include "core/engine/compute.h"
+#include "core/engine/fix.h"
+#include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/right_wall_scene.h"
 

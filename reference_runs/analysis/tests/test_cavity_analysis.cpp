@@ -12,7 +12,7 @@
 #include <memory>
 #include <unistd.h>
 
-#include "core/h5_series.h"
+#include "core/io/h5_series.h"
 #include "reference_runs/analysis/analysis.h"
 
 using namespace sable::analysis;

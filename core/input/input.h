@@ -1,0 +1,62 @@
+#pragma once
+// Reads decks line by line as LIGGGHTS does: comments, '&' continuation,
+// quotes, ${name}/$x substitution, immediate $(expr), then dispatches the
+// command. Flow commands (include, label, jump, next, if, print, variable,
+// log, echo) live here; every other command is a registered style/command.
+#include <exception>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/input/args.h"
+
+namespace sable {
+
+class Simulation;
+
+class Input {
+ public:
+  explicit Input(Simulation& sim);
+  void file(const std::string& path);          // run a whole deck file
+  // Run deck text held in memory, located as `name` in messages (tests, -in -).
+  void text(const std::string& name, const std::string& deck);
+  void one(const std::string& line, const DeckLocation& where);  // run one command line
+  // Split a line into words after substitution (exposed for tests).
+  std::vector<std::string> parse(const std::string& line, const DeckLocation& where);
+  const DeckLocation& where() const { return where_; }
+  bool echo_screen = false;
+  // Sees each command line before substitution; returning true consumes it
+  // (sable --export-yade translates `run` and `print` instead of executing them).
+  std::function<bool(const std::string& line, const DeckLocation& where)> intercept;
+
+ private:
+  Simulation& sim_;
+  DeckLocation where_;
+  struct Frame {
+    std::string path;
+    std::vector<std::string> lines;  // physical lines
+    std::size_t next = 0;            // index of next physical line
+  };
+  std::vector<Frame> stack_;
+  std::string jump_label_;  // skip commands until this label
+  bool skip_jump_ = false;  // set when `next` exhausts a variable
+  void run_frame();
+  std::string substitute(const std::string& line, const DeckLocation& where);
+  void execute(const Args& args);
+  void cmd_jump(const Args& a);
+  void cmd_if(const Args& a);
+  void cmd_print(const Args& a);
+  void cmd_include(const Args& a);
+  [[noreturn]] void rethrow_located(const std::exception& e, const std::string& line, const DeckLocation& where);
+  static constexpr std::size_t kMaxIncludeDepth = 32;  // deeper is a file including itself
+  static constexpr int kMaxIdleJumps = 10000;
+  static constexpr int kMaxAtomOnlyJumps = 10000;
+  struct JumpSite {  // the state at a jump line's previous pass (see cmd_jump)
+    std::string state, but_atoms;
+    int same = 0, atom_only = 0;
+  };
+  std::map<std::string, JumpSite> jumps_;  // by file:line
+};
+
+}  // namespace sable
