@@ -458,15 +458,19 @@ void Simulation::explain_slow_path(const StepPlan& plan) {
   };
   if (!(plan_rewrites & kFuse)) return;
   std::vector<const Fix*> integrators, post;
+  int initial = 0, final = 0;  // fixes holding each integration hook
   bool pipelined = false;
   for (const Stage& s : plan.stages) {
-    if (s.kind == Stage::Hook && (s.hook == INITIAL_INTEGRATE || s.hook == FINAL_INTEGRATE)) integrators.push_back(s.fix);
+    if (s.kind == Stage::Hook && (s.hook == INITIAL_INTEGRATE || s.hook == FINAL_INTEGRATE)) {
+      integrators.push_back(s.fix);
+      (s.hook == INITIAL_INTEGRATE ? initial : final) += 1;
+    }
     if (s.kind == Stage::Hook && s.hook == POST_FORCE) post.push_back(s.fix);
     pipelined = pipelined || (s.kind == Stage::ForcePass && !s.ops.empty());
   }
   constexpr unsigned kBoth = INITIAL_INTEGRATE | FINAL_INTEGRATE;
   if (!plan.integrator) {
-    const bool several = integrators.size() > 2;
+    const bool several = initial > 1 || final > 1;  // as the plan's fuse() refuses
     for (const Fix* f : integrators)
       if (several || (f->atom_tasks & kBoth) != kBoth)
         note(f, std::string(several ? "is one of several integrating fixes" : "integrates outside the step plan") +
