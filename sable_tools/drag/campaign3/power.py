@@ -86,6 +86,7 @@ def planned_diff(sd, na, nb):
 
 
 def power(cv, runs):
+    from sable_tools.drag.campaign3 import cases as C
     """The tests' standard errors under the scatter measured, and their power."""
     print('\n3. Power of the pre-registered tests (alpha 0.05; the estimate normal, its estimated error'
           ' sampled as chi^2 over the Satterthwaite df: seedstats.tost_power)')
@@ -104,36 +105,76 @@ def power(cv, runs):
         r = S.ratio(S.interval(0.0, b.se, b.df), b0)  # the ratio's error at a true slope of 0
         return r.se, r.df, b0.est
 
+    n = {c['name']: {k: len(v) for k, v in c['seeds'].items()} for c in C.all_cases()}
+    ns, nw, nl = n['stiff_h5']['sable'], n['wall_h5']['sable'], n['stiff_h5']['liggghts']
+    fig3 = [n[f'{k}_h3.7']['sable'] for k in ('soft', 'E4e5', 'stiff', 'E3e6', 'E1e7')]
     print('| test | seeds | se | df | margin | power |')
     print('|---|---|---|---|---|---|')
-    for n in (4, 5):
-        se, df, b0 = r_se(n, cv['F_stat'])
+    for k in sorted({4, ns}):
+        se, df, b0 = r_se(k, cv['F_stat'])
         for true in (0.0, 0.05):
-            print(f'| T1 stiff: r inside +-0.15, true r {true} | {n} | {se:.3f} | {df:.1f} | 0.15 | '
+            print(f'| T1 stiff: r inside +-0.15, true r {true} | {k} | {se:.3f} | {df:.1f} | 0.15 | '
                   f'{S.tost_power(se, df, 0.15, true):.2f} |')
-    se, df, _ = r_se(4, cv['F_stat'])
-    print(f'| T2 soft: r > 0.15, true r 0.4 | 4 | {se:.3f} | {df:.1f} | - | {S.one_sided_power(se, df, 0.25):.2f} |')
-    se3, df3, _ = r_se(4, cv['F_stat'])
-    print(f'| T4 wall: r inside +-0.15, true r 0 | 4 | {se3:.3f} | {df3:.1f} | 0.15 | '
+    se, df, _ = r_se(n['soft_h5']['sable'], cv['F_stat'])
+    print(f"| T2 soft: r > 0.15, true r 0.4 | {n['soft_h5']['sable']} | {se:.3f} | {df:.1f} | - | "
+          f'{S.one_sided_power(se, df, 0.25):.2f} |')
+    se3, df3, _ = r_se(nw, cv['F_stat'])
+    print(f'| T4 wall: r inside +-0.15, true r 0 | {nw} | {se3:.3f} | {df3:.1f} | 0.15 | '
           f'{S.tost_power(se3, df3, 0.15):.2f} |')
     for key, marg in (('F_stat', 0.15), ('F_first', 0.20)):
-        for ns, nl in ((5, 3), (4, 2)):
-            se, df = planned_diff(cv[key], ns, nl)
-            print(f'| T6 sable - LIGGGHTS {key} (fraction of the mean), true 0 | {ns} vs {nl} | {se:.3f} | '
+        for a, b in ((ns, nl), (n['soft_h5']['sable'], n['soft_h5']['liggghts'])):
+            se, df = planned_diff(cv[key], a, b)
+            print(f'| T6 sable - LIGGGHTS {key} (fraction of the mean), true 0 | {a} vs {b} | {se:.3f} | '
                   f'{df:.1f} | {marg} | {S.tost_power(se, df, marg):.2f} |')
-    # Fig. 3: F_first slope against log10 E* over 1.36e5, 4e5, 1e6, 3e6, 1e7 (4, 2, 5, 2, 3 seeds)
+    # Fig. 3: F_first slope against log10 E* over 1.36e5, 4e5, 1e6, 3e6, 1e7
     x = [math.log10(e) for e in (1.36e5, 4e5, 1e6, 3e6, 1e7)]
-    gs = [S.planned(1.0, cv['F_first'], n) for n in (4, 2, 5, 2, 3)]
-    b = S.slope(x, gs)
-    print(f"| T7a F_first per decade of E* (fraction of the mean), true 0 | 4,2,5,2,3 | {b.se:.3f} | {b.df:.1f} | "
-          f"0.10 | {S.tost_power(b.se, b.df, 0.10):.2f} |")
-    for n in (2, 3):
-        se, df = planned_diff(cv['F_stat'], 5, n)
-        print(f"| T7c F_stat(1e7) - F_stat(1e6) (fraction), true 0 | 5 vs {n} | {se:.3f} | {df:.1f} | 0.15 | "
-              f"{S.tost_power(se, df, 0.15):.2f} |")
-    se, df = planned_diff(cv['F_stat'], 4, 5)
-    print(f"| T7b F_stat(1.4e5) - F_stat(1e6) > 0 (fraction), true 0.15 | 4 vs 5 | {se:.3f} | {df:.1f} | - | "
+    b = S.slope(x, [S.planned(1.0, cv['F_first'], k) for k in fig3])
+    print(f"| T7a F_first per decade of E* (fraction of the mean), true 0 | {','.join(map(str, fig3))} | {b.se:.3f} | "
+          f"{b.df:.1f} | 0.10 | {S.tost_power(b.se, b.df, 0.10):.2f} |")
+    se, df = planned_diff(cv['F_stat'], fig3[2], fig3[4])
+    print(f"| T7c F_stat(1e7) - F_stat(1e6) (fraction), true 0 | {fig3[2]} vs {fig3[4]} | {se:.3f} | {df:.1f} | 0.15 | "
+          f"{S.tost_power(se, df, 0.15):.2f} |")
+    se, df = planned_diff(cv['F_stat'], fig3[0], fig3[2])
+    print(f"| T7b F_stat(1.4e5) - F_stat(1e6) > 0 (fraction), true 0.15 | {fig3[0]} vs {fig3[2]} | {se:.3f} | {df:.1f} | - | "
           f"{S.one_sided_power(se, df, 0.15):.2f} |")
+
+
+def campaign_ledger():
+    """The ledger at the campaign's own CPU speed: core-hours spent so far (every record in runs/ and
+    runs_set_aside/, finished or not) plus the planned runs left, each at the speed measured on the
+    campaign's runs of the nearest bed size by the same code (CPU time and particle-steps only)."""
+    from sable_tools.drag.campaign3 import cases as C
+    recs = [json.load(open(f)) for d in ('runs', 'runs_set_aside')
+            for f in glob.glob(os.path.join(HERE, d, '*', '*', 'run.json'))]
+    cpu = lambda r: r.get('cpu_s') or sum(p.get('cpu_s', 0.0) for p in r.get('state', {}).get('pieces', []))
+    print("\n4. Ledger at the campaign's own CPU speed (runs/ and runs_set_aside/ so far)")
+    print('| code | bed (grains) | runs | particle-steps/s (CPU) |')
+    print('|---|---|---|---|')
+    rate = {}
+    for r in recs:
+        if r.get('status') == 'ok':
+            rate.setdefault((r['code'], r['estimate']['grains']), []).append((r['estimate']['particle_steps'], cpu(r)))
+    for (code, g), x in sorted(rate.items()):
+        rate[(code, g)] = sum(p for p, _ in x) / sum(t for _, t in x)
+        print(f'| {code} | {g} | {len(x)} | {rate[(code, g)]:.3g} |')
+    for code, budget in (('sable', 30), ('liggghts', 20)):
+        spent = sum(cpu(r) for r in recs if r['code'] == code) / 3600
+        done = {(r['case'], r['seed']) for r in recs if r['code'] == code and r.get('status') == 'ok'}
+        left, opt = 0.0, 0.0
+        for c in C.all_cases():
+            s = run_drag.scene(c['vars'])
+            sizes = [g for (k, g) in rate if k == code]
+            if not sizes:
+                continue
+            speed = rate[(code, min(sizes, key=lambda g: abs(g - s['grains'])))]
+            h = sum(s['particle_steps'] / speed / 3600 for seed in c['seeds'].get(code, [])
+                    if (c['name'], seed) not in done)
+            if c['name'] == 'E4e7_h3.7':
+                opt += h
+            else:
+                left += h
+        print(f'{code}: spent {spent:.2f} core-h, planned runs left {left:.2f}, projected {spent + left:.1f} '
+              f'(budget {budget}; optional E4e7 {opt:.2f} more)')
 
 
 def main():
@@ -142,6 +183,7 @@ def main():
     rate = speeds(runs)
     ledger(rate)
     power(cv, runs)
+    campaign_ledger()
 
 
 if __name__ == '__main__':
