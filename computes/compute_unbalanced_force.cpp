@@ -26,12 +26,11 @@
 #include <utility>
 #include <vector>
 
-#include "contact_models/pair_gran.h"
+#include "contact_models/pair_gran.h"  // frozen_groupbits
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "fixes/fix_damping_cundall.h"
-#include "fixes/fix_wall_gran.h"
-#include "fixes/fix_wall_gran_mesh.h"
 
 namespace sable {
 
@@ -118,15 +117,10 @@ class ComputeUnbalancedForce : public Compute {
         ++n;
       }
     };
-    if (auto* p = dynamic_cast<PairGran*>(sim.pair.get())) {
-      p->records(sim.groups.bit(0), rec_);  // every contact; the group test is "either grain"
-      add(true);
-    }
-    for (auto& f : sim.fixes) {
-      if (auto* w = dynamic_cast<FixWallGran*>(f.get())) w->records(groupbit, rec_);
-      else if (auto* w = dynamic_cast<FixWallGranMesh*>(f.get())) w->records(groupbit, rec_);
-      else continue;
-      add(false);
+    for (ContactSource* s : contact_sources(sim)) {
+      const bool pair = s->contact_kind() == ContactSource::Kind::Pairs;
+      s->records(pair ? sim.groups.bit(0) : groupbit, rec_);  // pairs: every contact; the group test is "either grain"
+      add(pair);
     }
   }
 };

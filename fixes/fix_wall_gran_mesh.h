@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
 #include "core/geometry/mesh.h"
 
@@ -34,7 +35,7 @@ namespace sable {
 
 class FixMeshSurface;
 
-class FixWallGranMesh : public Fix {
+class FixWallGranMesh : public Fix, public ContactSource {
  public:
   FixWallGranMesh(Simulation& sim, const Args& args);
   void export_yade(YadeScript& s) const override;  // fixes/fix_wall_gran_yade.cpp
@@ -55,13 +56,14 @@ class FixWallGranMesh : public Fix {
   bool shares_edge(int m, const Touchish& a, const Touchish& b) const;
   bool same_surface(int m, const Touchish& a, const Touchish& b) const;
   bool joined(int m, int t, int u) const;  // same surface, through any periodic image
-  // Per-contact records at the current state (no force or history change), as
-  // FixWallGran::records. Record r's wall point, wall velocity and triangle:
-  // point(r.shift), vwall(r.shift), triangle(r.shift); mesh(r.shift) its mesh's index in this fix.
-  void records(std::uint32_t groupbit, ContactRecords& out);
-  const double* vwall(int k) const { return &rec_.vwall[3 * k]; }
-  const double* point(int k) const { return &rec_.point[3 * k]; }
-  int triangle(int k) const { return rec_.tri[k]; }
+  // ContactSource. Record r's triangle is element(r.shift) (of the fix's mesh number mesh(r.shift)).
+  Kind contact_kind() const override { return Kind::Mesh; }
+  std::string law_name() const override { return kernel_->name(); }
+  const std::vector<HistorySlot>& history_slots() const override { return kernel_->history_slots(); }
+  void records(std::uint32_t groupbit, ContactRecords& out) override;
+  const double* wall_point(int k) const override { return &rec_.point[3 * k]; }
+  const double* wall_velocity(int k) const override { return &rec_.vwall[3 * k]; }
+  int element(int k) const override { return rec_.tri[k]; }
   int mesh(int k) const { return rec_.mesh[k]; }
 
   // One grain-triangle contact of a step.
