@@ -153,10 +153,16 @@ bool Dump::modify_param(const Args& a, std::size_t& i) {
     if (v == "id") sort_by_id = true;
     else if (v == "off") sort_by_id = false;
     else a.fail(i + 1, "id or off");
-    i += 2;
-    return true;
+  } else if (a[i] == "every") {
+    every = a.integer(i + 1, "the dump period N (v_name is not supported)");
+    if (every <= 0) a.fail(i + 1, "a period > 0");
+  } else if (a[i] == "first") {
+    if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (first yes is not supported)");
+  } else {
+    return false;
   }
-  return false;
+  i += 2;
+  return true;
 }
 
 std::vector<std::size_t> Dump::selected_atoms() const {
