@@ -28,6 +28,7 @@
 
 #include "contact_models/pair_gran.h"  // frozen_groupbits
 #include "core/engine/contact_source.h"
+#include "core/engine/rigid_bodies.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "fixes/fix_damping_cundall.h"
@@ -82,13 +83,13 @@ class ComputeUnbalancedForce : public Compute {
     for (auto& f : sim.fixes)
       if (auto* d = dynamic_cast<const FixDampingCundall*>(f.get())) damp.push_back(d);
     const std::uint32_t frozen = frozen_groupbits(sim);
-    std::set<std::pair<const Fix*, int>> bodies_seen;
+    std::set<std::pair<const RigidBodies*, int>> bodies_seen;
     for (std::size_t i = 0; i < at.n; ++i) {
       if (!(at.mask[i] & groupbit) || (at.mask[i] & frozen)) continue;
       double f[3] = {at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
-      if (const auto [fix, b] = body(i); fix) {
-        if (!bodies_seen.insert({fix, b}).second) continue;
-        std::copy(fix->body_force(b), fix->body_force(b) + 3, f);
+      if (const auto [rb, b] = sim.body_of(i); rb) {
+        if (!bodies_seen.insert({rb, b}).second) continue;
+        std::copy(rb->body_force(b), rb->body_force(b) + 3, f);
       }
       for (const FixDampingCundall* d : damp)
         if (const double* add = d->added(at.n, sim.step); add && (at.mask[i] & d->groupbit))
@@ -100,19 +101,12 @@ class ComputeUnbalancedForce : public Compute {
     }
   }
 
-  // The rigid body atom i belongs to, if any.
-  std::pair<const Fix*, int> body(std::size_t i) const {
-    for (auto& f : sim.fixes)
-      if (const int b = f->body_of(i); b >= 0) return {f.get(), b};
-    return {nullptr, -1};
-  }
-
   void contact_forces(double& sum, long& n) {
     const Atoms& at = sim.atoms;
     auto add = [&](bool pair) {
       for (const ContactRecord& c : rec_.rows) {
         if (pair && !((at.mask[c.i] | at.mask[c.j]) & groupbit)) continue;
-        if (pair && body(c.i).first && body(c.i) == body(c.j)) continue;  // inside one body
+        if (pair && sim.body_of(c.i).first && sim.body_of(c.i) == sim.body_of(c.j)) continue;  // inside one body
         sum += std::sqrt(c.f[0] * c.f[0] + c.f[1] * c.f[1] + c.f[2] * c.f[2]);
         ++n;
       }
