@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <deque>
 
 #include "core/engine/simulation.h"
 #include "core/engine/threads.h"
@@ -114,8 +115,11 @@ void run_phase(Simulation& sim, const std::vector<AtomOp>& ops, std::size_t a, s
       for (std::size_t x = lo; x < hi; x += kBlock)
         for (std::size_t k = a; k < e; ++k) run_op(sim, ops[k], t, x, std::min(hi, x + kBlock));
     } else if (fix_s && ops[a].kind == AtomOp::PostForce) {
+      // One clock pair for a run of post-force tasks: a clock read costs as much
+      // as a small fix's range, and small decks have many of them.
+      while (e < b && !blockwise(ops[e]) && ops[e].kind == AtomOp::PostForce) ++e;
       const auto t0 = clock::now();
-      run_op(sim, ops[a], t, lo, hi);
+      for (std::size_t k = a; k < e; ++k) run_op(sim, ops[k], t, lo, hi);
       *fix_s += std::chrono::duration<double>(clock::now() - t0).count();
     } else {
       run_op(sim, ops[a], t, lo, hi);
@@ -135,16 +139,39 @@ void run_ops_on_range(Simulation& sim, const std::vector<AtomOp>& ops, int t, st
   run_phase(sim, ops, split, ops.size(), t, lo, hi, fix_seconds);
 }
 
-// Each fix once, with the hook of its last op (a fused integrator: INITIAL_INTEGRATE).
-static std::vector<std::pair<Fix*, FixHook>> fixes_called(const std::vector<AtomOp>& ops) {
-  std::vector<std::pair<Fix*, FixHook>> out;
+// Each fix once, in the order of its first op, with the hook of its last op (a
+// fused integrator: INITIAL_INTEGRATE). Called twice per stage and step, so the
+// answer is kept per op list: found again by the (fix, hook) sequence it was
+// made from (one pass, no allocation), not by the list's address, which a
+// rebuilt plan may reuse.
+using FixCalls = std::vector<std::pair<Fix*, FixHook>>;
+static const FixCalls& fixes_called(const std::vector<AtomOp>& ops) {
+  struct Known {
+    FixCalls seq, calls;  // every op's (fix, hook) that calls a fix; each fix once
+  };
+  thread_local std::deque<Known> known;  // a deque: a fix whose begin() asks again leaves the answer in place
+  for (const Known& k : known) {
+    std::size_t n = 0;
+    bool same = true;
+    for (const AtomOp& op : ops) {
+      if (!calls_fix(op)) continue;
+      same = n < k.seq.size() && k.seq[n].first == op.fix && k.seq[n].second == hook_of(op);
+      if (!same) break;
+      ++n;
+    }
+    if (same && n == k.seq.size()) return k.calls;
+  }
+  if (known.size() >= 32) known.clear();  // plans rebuilt many times: start over
+  Known k;
   for (const AtomOp& op : ops) {
     if (!calls_fix(op)) continue;
-    auto it = std::find_if(out.begin(), out.end(), [&](auto& p) { return p.first == op.fix; });
-    if (it == out.end()) out.emplace_back(op.fix, hook_of(op));
+    k.seq.emplace_back(op.fix, hook_of(op));
+    auto it = std::find_if(k.calls.begin(), k.calls.end(), [&](auto& p) { return p.first == op.fix; });
+    if (it == k.calls.end()) k.calls.emplace_back(op.fix, hook_of(op));
     else it->second = hook_of(op);
   }
-  return out;
+  known.push_back(std::move(k));
+  return known.back().calls;
 }
 
 void begin_ops(const std::vector<AtomOp>& ops) {
