@@ -655,7 +655,7 @@ fix integr all nve/sphere)");
       found[r.i] = 1;
       const double* x = &s.atoms.x[3 * r.i];
       const double rad = s.atoms.radius[r.i];
-      EXPECT_LT(mesh.closest(walls->triangle(r.shift), mesh.to_body({x[0], x[1], x[2]})).dist2, rad * rad);
+      EXPECT_LT(mesh.closest(walls->element(r.shift), mesh.to_body({x[0], x[1], x[2]})).dist2, rad * rad);
     }
     for (std::size_t i = 0; i < s.atoms.n; ++i) {
       const double* x = &s.atoms.x[3 * i];
