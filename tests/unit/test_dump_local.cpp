@@ -16,6 +16,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/right_wall_scene.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_dump_local {
+
 using sable::test::Deck;
 using sable::test::error_of;
 using sable::test::TempDir;
@@ -219,3 +222,5 @@ TEST(DumpLocal, FormatFloatGivesFullPrecision) {
   EXPECT_NE(error_of(d, "dump_modify dl format 1 %g").find("'1'"), std::string::npos);  // index
   EXPECT_NE(error_of(d, "dump_modify dl sort id").find("'sort'"), std::string::npos);
 }
+
+}  // namespace test_dump_local

@@ -25,6 +25,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_mesh_walls {
+
 using sable::test::Deck;
 
 namespace {
@@ -590,3 +593,5 @@ run 4000)";
   EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(double)));
   EXPECT_LT(one[one.size() - 4], 0.0);  // the grains press on the drum: f_drum[3] < 0
 }
+
+}  // namespace test_mesh_walls
