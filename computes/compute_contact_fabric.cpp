@@ -48,7 +48,7 @@
 #include <vector>
 
 #include "computes/bound_arg.h"
-#include "contact_models/pair_gran.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 
@@ -87,7 +87,7 @@ class ComputeContactFabric : public Compute {
   }
   void init() override {
     if (sim.domain.dimension != 2) args.fail_line("compute contact/fabric is 2D: it needs 'dimension 2'");
-    pair_ = dynamic_cast<PairGran*>(sim.pair.get());
+    pair_ = pair_contacts(sim);
     if (!pair_) args.fail_line("compute contact/fabric needs 'pair_style gran' defined before it");
   }
   double compute_vector(int i) override {
@@ -115,7 +115,7 @@ class ComputeContactFabric : public Compute {
   int bins_ = 36, min_contacts_ = 2;
   bool has_area_ = false, any_ = false;
   BoundArg area_;
-  PairGran* pair_ = nullptr;
+  ContactSource* pair_ = nullptr;
   ContactRecords rec_;
   std::vector<Contact> con_;
   std::vector<double> out_;

@@ -31,7 +31,7 @@
 #include <string>
 
 #include "computes/bound_arg.h"
-#include "contact_models/pair_gran.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 
@@ -47,7 +47,7 @@ class ComputeForceMidline : public Compute {
   }
   void init() override {
     if (sim.domain.dimension != 2) args.fail_line("compute force/midline is 2D: it needs 'dimension 2'");
-    pair_ = dynamic_cast<PairGran*>(sim.pair.get());
+    pair_ = pair_contacts(sim);
     if (!pair_) args.fail_line("compute force/midline needs 'pair_style gran' defined before it");
   }
   double compute_scalar() override { return compute_vector(1); }
@@ -63,7 +63,7 @@ class ComputeForceMidline : public Compute {
   int ax_ = 0;  // the line is x[ax_] = X0; the span runs along the other axis
   BoundArg line_, lo_, hi_;
   bool bounded_ = false;
-  PairGran* pair_ = nullptr;
+  ContactSource* pair_ = nullptr;
   ContactRecords rec_;
   double out_[6] = {0, 0, 0, 0, 0, 0};
 

@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "contact_models/gran_local.h"
-#include "contact_models/pair_gran.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 
@@ -23,11 +23,11 @@ class ComputePairGranLocal : public Compute {
     init();
   }
   void init() override {
-    pair_ = dynamic_cast<PairGran*>(sim.pair.get());
+    pair_ = pair_contacts(sim);
     if (!pair_) args.fail_line("compute pair/gran/local needs 'pair_style gran' defined before it");
-    const auto& slots = pair_->kernel().history_slots();
+    const auto& slots = pair_->history_slots();
     if (cols_.history_explicit && slots.empty())
-      args.fail_line("'history' asked, but " + pair_->kernel().name() + " keeps no contact history");
+      args.fail_line("'history' asked, but " + pair_->law_name() + " keeps no contact history");
     if (slots.empty()) cols_.history = false;
     local_names = cols_.names(slots);
     local_cols = static_cast<int>(local_names.size());
@@ -59,7 +59,7 @@ class ComputePairGranLocal : public Compute {
 
  private:
   GranLocalColumns cols_;
-  PairGran* pair_ = nullptr;
+  ContactSource* pair_ = nullptr;
   ContactRecords rec_;
 };
 

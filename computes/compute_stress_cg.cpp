@@ -4,12 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "contact_models/pair_gran.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "fixes/fix_mesh_surface.h"
-#include "fixes/fix_wall_gran.h"
-#include "fixes/fix_wall_gran_mesh.h"
 
 namespace sable {
 
@@ -194,27 +192,16 @@ void ComputeStressCG::evaluate() {
     });
   };
   ContactRecords rec;
-  // Pair branches x_i - x_j = en (r_i + r_j - delta): the image partner's centre without its shift code.
-  if (auto* pair = dynamic_cast<PairGran*>(sim.pair.get())) {
-    pair->records(groupbit, rec);
+  // Pair branches x_i - x_j = en (r_i + r_j - delta): the image partner's centre without its shift code;
+  // wall branches from the contact point to the centre: en (r_i - delta).
+  for (ContactSource* s : contact_sources(sim)) {
+    const bool pair = s->contact_kind() == ContactSource::Kind::Pairs;
+    s->records(groupbit, rec);
     for (const ContactRecord& c : rec.rows) {
-      const double len = at.radius[c.i] + at.radius[c.j] - c.delta;
+      const double len = at.radius[c.i] + (pair ? at.radius[c.j] : 0.0) - c.delta;
       const double b[3] = {c.en[0] * len, c.en[1] * len, c.en[2] * len};
       contact(c.i, b, c.f);
     }
-  }
-  // Wall branches from the contact point to the centre: en (r_i - delta).
-  auto walls = [&](auto* wall) {
-    wall->records(groupbit, rec);
-    for (const ContactRecord& c : rec.rows) {
-      const double len = at.radius[c.i] - c.delta;
-      const double b[3] = {c.en[0] * len, c.en[1] * len, c.en[2] * len};
-      contact(c.i, b, c.f);
-    }
-  };
-  for (auto& f : sim.fixes) {
-    if (auto* w = dynamic_cast<FixWallGran*>(f.get())) walls(w);
-    if (auto* w = dynamic_cast<FixWallGranMesh*>(f.get())) walls(w);
   }
   g.finish(out_);  // in frame mode b, f and v were turned into body axes: R^T s R already
 }

@@ -26,12 +26,12 @@
 #include <utility>
 #include <vector>
 
-#include "contact_models/pair_gran.h"
+#include "contact_models/pair_gran.h"  // frozen_groupbits
+#include "core/engine/contact_source.h"
+#include "core/engine/rigid_bodies.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "fixes/fix_damping_cundall.h"
-#include "fixes/fix_wall_gran.h"
-#include "fixes/fix_wall_gran_mesh.h"
 
 namespace sable {
 
@@ -83,13 +83,13 @@ class ComputeUnbalancedForce : public Compute {
     for (auto& f : sim.fixes)
       if (auto* d = dynamic_cast<const FixDampingCundall*>(f.get())) damp.push_back(d);
     const std::uint32_t frozen = frozen_groupbits(sim);
-    std::set<std::pair<const Fix*, int>> bodies_seen;
+    std::set<std::pair<const RigidBodies*, int>> bodies_seen;
     for (std::size_t i = 0; i < at.n; ++i) {
       if (!(at.mask[i] & groupbit) || (at.mask[i] & frozen)) continue;
       double f[3] = {at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2]};
-      if (const auto [fix, b] = body(i); fix) {
-        if (!bodies_seen.insert({fix, b}).second) continue;
-        std::copy(fix->body_force(b), fix->body_force(b) + 3, f);
+      if (const auto [rb, b] = sim.body_of(i); rb) {
+        if (!bodies_seen.insert({rb, b}).second) continue;
+        std::copy(rb->body_force(b), rb->body_force(b) + 3, f);
       }
       for (const FixDampingCundall* d : damp)
         if (const double* add = d->added(at.n, sim.step); add && (at.mask[i] & d->groupbit))
@@ -101,32 +101,20 @@ class ComputeUnbalancedForce : public Compute {
     }
   }
 
-  // The rigid body atom i belongs to, if any.
-  std::pair<const Fix*, int> body(std::size_t i) const {
-    for (auto& f : sim.fixes)
-      if (const int b = f->body_of(i); b >= 0) return {f.get(), b};
-    return {nullptr, -1};
-  }
-
   void contact_forces(double& sum, long& n) {
     const Atoms& at = sim.atoms;
     auto add = [&](bool pair) {
       for (const ContactRecord& c : rec_.rows) {
         if (pair && !((at.mask[c.i] | at.mask[c.j]) & groupbit)) continue;
-        if (pair && body(c.i).first && body(c.i) == body(c.j)) continue;  // inside one body
+        if (pair && sim.body_of(c.i).first && sim.body_of(c.i) == sim.body_of(c.j)) continue;  // inside one body
         sum += std::sqrt(c.f[0] * c.f[0] + c.f[1] * c.f[1] + c.f[2] * c.f[2]);
         ++n;
       }
     };
-    if (auto* p = dynamic_cast<PairGran*>(sim.pair.get())) {
-      p->records(sim.groups.bit(0), rec_);  // every contact; the group test is "either grain"
-      add(true);
-    }
-    for (auto& f : sim.fixes) {
-      if (auto* w = dynamic_cast<FixWallGran*>(f.get())) w->records(groupbit, rec_);
-      else if (auto* w = dynamic_cast<FixWallGranMesh*>(f.get())) w->records(groupbit, rec_);
-      else continue;
-      add(false);
+    for (ContactSource* s : contact_sources(sim)) {
+      const bool pair = s->contact_kind() == ContactSource::Kind::Pairs;
+      s->records(pair ? sim.groups.bit(0) : groupbit, rec_);  // pairs: every contact; the group test is "either grain"
+      add(pair);
     }
   }
 };

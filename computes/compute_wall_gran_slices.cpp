@@ -29,25 +29,15 @@
 #include "computes/bound_arg.h"
 #include "core/engine/atoms.h"
 #include "core/engine/compute.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "core/input/variable.h"
-#include "fixes/fix_wall_gran.h"
 #include "tools/yade_script.h"
 
 namespace sable {
 
 namespace {
-
-// The plane's normal axis from its fix's words (xplane -> 0); -1 for no plane.
-int plane_axis(const Args& fix_args) {
-  for (const std::string& w : fix_args.words()) {
-    if (w == "xplane") return 0;
-    if (w == "yplane") return 1;
-    if (w == "zplane") return 2;
-  }
-  return -1;
-}
 
 int slice_axis_of(const std::string& w) { return w == "x" ? 0 : w == "y" ? 1 : w == "z" ? 2 : -1; }
 
@@ -82,10 +72,9 @@ class ComputeWallGranSlices : public Compute {
   }
 
   void init() override {
-    Fix* f = sim.find_fix(wall_id_);
-    wall_ = f ? dynamic_cast<FixWallGran*>(f) : nullptr;
+    wall_ = contact_source_of_fix(sim, wall_id_);
     if (!wall_) args.fail(4, "the ID of a fix wall/gran ... primitive plane defined before this compute");
-    axis_ = plane_axis(wall_->args);
+    axis_ = wall_->plane_axis();
     if (axis_ < 0) args.fail(4, "a fix wall/gran with a primitive xplane, yplane or zplane (fix " + wall_id_ + " is not one)");
   }
 
@@ -117,14 +106,12 @@ class ComputeWallGranSlices : public Compute {
   void contacts(Fn&& fn) {
     init();  // the wall may have been redefined since
     const Atoms& at = sim.atoms;
-    if (wall_->last_pass_atoms() == at.n) {
-      wall_->last_pass([&](int i, const double* p, const double* f) {
-        if (at.mask[i] & groupbit) fn(i, p, f);
-      });
+    if (wall_->last_pass([&](int i, const double* p, const double* f) {
+          if (at.mask[i] & groupbit) fn(i, p, f);
+        }))
       return;
-    }
     wall_->records(groupbit, rec_);  // atoms changed since the pass: its indices no longer hold
-    for (const ContactRecord& c : rec_.rows) fn(c.i, wall_->point(c.shift), c.f);
+    for (const ContactRecord& c : rec_.rows) fn(c.i, wall_->wall_point(c.shift), c.f);
   }
 
   void fill() {
@@ -152,7 +139,7 @@ class ComputeWallGranSlices : public Compute {
 
  private:
   std::string wall_id_;
-  FixWallGran* wall_ = nullptr;
+  ContactSource* wall_ = nullptr;
   int axis_ = 0, dim_ = 1;
   BoundArg lo_, hi_;
   bool clamp_ = true;

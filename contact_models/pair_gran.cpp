@@ -14,7 +14,7 @@ namespace sable {
 std::uint32_t frozen_groupbits(const Simulation& sim) {
   std::uint32_t bits = 0;
   for (auto& f : sim.fixes)
-    if (f->freezes_group()) bits |= f->groupbit;
+    if (f->traits.freezes_group) bits |= f->groupbit;
   return bits;
 }
 

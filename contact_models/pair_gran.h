@@ -19,12 +19,13 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/neighbor.h"
 #include "core/engine/pair.h"
 
 namespace sable {
 
-class PairGran : public Pair {
+class PairGran : public Pair, public ContactSource {
  public:
   PairGran(Simulation& sim, const Args& args);
   void coeff(const Args& args) override;
@@ -38,8 +39,11 @@ class PairGran : public Pair {
   std::string describe() const override;
 
   ContactKernel& kernel() { return *kernel_; }
-  // Per-contact records at the current state for grains of `groupbit` (no force or history change).
-  void records(std::uint32_t groupbit, ContactRecords& out);
+  // ContactSource: both grains of a record in `groupbit`.
+  Kind contact_kind() const override { return Kind::Pairs; }
+  std::string law_name() const override { return kernel_->name(); }
+  const std::vector<HistorySlot>& history_slots() const override { return kernel_->history_slots(); }
+  void records(std::uint32_t groupbit, ContactRecords& out) override;
 
  private:
   std::unique_ptr<ContactKernel> kernel_;

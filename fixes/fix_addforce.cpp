@@ -7,7 +7,6 @@
 // before the addition. The `energy` keyword (for minimisation) is not supported.
 #include "core/engine/block_sum.h"
 #include "core/input/style_registry.h"
-#include "core/engine/threads.h"
 #include "fixes/group_force.h"
 #include "tools/yade_script.h"
 
@@ -21,6 +20,7 @@ class FixAddforce : public Fix {
     vector_size = 3;
     if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz after 'addforce'");
     force_.parse(a, 4, false, true);
+    traits.keeps_plane = force_.keeps_plane();
     for (std::size_t i = 7; i < a.size(); i += 2) {
       if (a[i] == "every") {
         every_ = a.integer(i + 1, "a step interval > 0");
@@ -38,19 +38,18 @@ class FixAddforce : public Fix {
     force_.check(sim, args);
     region_.init(sim, args);
   }
-  bool keeps_plane() const override { return force_.keeps_plane(); }
   void export_yade(YadeScript& s) const override;  // each grain's force, added each step
 
   void begin(FixHook) override {
     active_ = sim.step % every_ == 0;
     if (!active_) return;
     force_.evaluate(sim, args);
-    sum_.begin(sim.atoms.n, kBlock, atom_pass_threads());
+    sum_.begin(sim.atoms.n);
   }
   void range(FixHook, const AtomRange& r) override {
     if (!active_) return;
     Atoms& at = sim.atoms;
-    sum_.range(r.thread, r.lo);
+    sum_.range(r);
     for (std::size_t i = r.lo; i < r.hi; ++i) {
       if (!(at.mask[i] & groupbit) || !region_.admits(&at.x[3 * i])) continue;
       double* f = &at.f[3 * i];
@@ -63,22 +62,21 @@ class FixAddforce : public Fix {
         add[k + 1] = f[k];
         f[k] += F;
       }
-      sum_.add(r.thread, i, add);
+      sum_.add(r, i, add);
     }
   }
   void end(FixHook) override {
-    if (active_) sum_.finish(total_);
+    if (active_) sum_.total(total_);
   }
   double compute_scalar() override { return total_[0]; }
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i] : 0.0; }
 
  private:
-  static constexpr std::size_t kBlock = 1024;
   ForceComponents force_;
   RegionOption region_;
   long every_ = 1;
   bool active_ = false;
-  BlockSum<4> sum_;
+  AtomSum<4> sum_;
   double total_[4] = {0, 0, 0, 0};  // energy, force before
 };
 

@@ -6,12 +6,12 @@
 // force on the group becomes sum F + N (fx, fy, fz) for its N grains, as in
 // LAMMPS (the value is per grain). f_ID[1..3] is the total force before.
 //
-// The average needs every grain's force first, so this is not a per-atom task:
-// two passes over the atoms after the force pass (a BlockSum, then the set),
-// which keeps the step off the pipelined plan (Simulation::run says so).
+// The average needs every grain's force first: a two-phase atom task. Phase 0
+// adds each member's force into core's AtomSum; phase 1 (once every range has
+// added) reads the total on each thread and sets the members. A two-phase
+// post_force keeps the step off the pipelined plan (Simulation::run says so).
 #include "core/engine/block_sum.h"
 #include "core/input/style_registry.h"
-#include "core/engine/threads.h"
 #include "fixes/group_force.h"
 
 namespace sable {
@@ -19,10 +19,12 @@ namespace sable {
 class FixAveforce : public Fix {
  public:
   FixAveforce(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = POST_FORCE;
+    hooks = atom_tasks = two_phase_tasks = POST_FORCE;
     vector_size = 3;
     if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz (number, v_name or NULL) after 'aveforce'");
     force_.parse(a, 4, true, false);
+    traits.constraint = true;
+    traits.keeps_plane = force_.keeps_plane();
     for (std::size_t i = 7; i < a.size(); i += 2) {
       if (a[i] != "region") a.fail(i, "region");
       region_.parse(s, a, i + 1);
@@ -32,41 +34,40 @@ class FixAveforce : public Fix {
     force_.check(sim, args);
     region_.init(sim, args);
   }
-  bool keeps_plane() const override { return force_.keeps_plane(); }
   void export_yade(YadeScript& s) const override { export_yade_set_forces(s, *this, true); }
 
-  void post_force() override {
-    Atoms& at = sim.atoms;
-    sum_.begin(at.n, kBlock, atom_pass_threads());
-    at.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
-      sum_.range(t, lo);
-      for (std::size_t i = lo; i < hi; ++i) {
-        if (!member(i)) continue;
-        const double v[4] = {at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2], 1.0};
-        sum_.add(t, i, v);
-      }
-    });
-    sum_.finish(total_);
-    const double count = total_[3];
-    if (count == 0) return;
+  // The given values (equal-style variables: this step's) before the sum.
+  void begin(FixHook) override {
     force_.evaluate(sim, args);
-    double ave[3];
-    for (int k = 0; k < 3; ++k) ave[k] = total_[k] / count + (force_.active(k) ? force_.value(k) : 0.0);
-    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        if (!member(i)) continue;
+    sum_.begin(sim.atoms.n);
+  }
+  void range(FixHook, const AtomRange& r) override {
+    Atoms& at = sim.atoms;
+    if (r.phase == 0) {
+      sum_.range(r);
+      for (std::size_t i = r.lo; i < r.hi; ++i)
+        if (member(i)) {
+          const double v[4] = {at.f[3 * i], at.f[3 * i + 1], at.f[3 * i + 2], 1.0};
+          sum_.add(r, i, v);
+        }
+      return;
+    }
+    double total[4], ave[3];
+    sum_.total(total);  // every thread the same bits
+    if (total[3] == 0) return;
+    for (int k = 0; k < 3; ++k) ave[k] = total[k] / total[3] + (force_.active(k) ? force_.value(k) : 0.0);
+    for (std::size_t i = r.lo; i < r.hi; ++i)
+      if (member(i))
         for (int k = 0; k < 3; ++k)
           if (force_.active(k)) at.f[3 * i + k] = ave[k];
-      }
-    });
   }
+  void end(FixHook) override { sum_.total(total_); }
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i - 1] : 0.0; }
 
  private:
-  static constexpr std::size_t kBlock = 1024;
   ForceComponents force_;
   RegionOption region_;
-  BlockSum<4> sum_;
+  AtomSum<4> sum_;
   double total_[4] = {0, 0, 0, 0};  // force before, grain count
 
   bool member(std::size_t i) const {

@@ -11,6 +11,7 @@ namespace sable {
 
 FixDampingCundall::FixDampingCundall(Simulation& s, const Args& a) : Fix(s, a) {
   hooks = atom_tasks = POST_FORCE;
+  traits.keeps_plane = true;  // a zero component stays zero
   alpha_ = a.num(4, "the damping coefficient alpha (0 <= alpha < 1)");
   if (!(alpha_ >= 0 && alpha_ < 1)) a.fail(4, "a damping coefficient alpha with 0 <= alpha < 1");
   if (a.size() > 5) a.fail(5, "nothing after alpha");
@@ -19,7 +20,7 @@ FixDampingCundall::FixDampingCundall(Simulation& s, const Args& a) : Fix(s, a) {
 void FixDampingCundall::init() {
   bool after = false;
   for (auto& f : sim.fixes) {
-    if (after && (f->hooks & POST_FORCE) && !f->keeps_plane())
+    if (after && (f->hooks & POST_FORCE) && !f->traits.keeps_plane)
       sim.warn("fix damping/cundall " + id + ": fix " + f->style + " '" + f->id +
                "' is defined after it, so its force is not damped; define fix damping/cundall after every fix "
                "that adds force (gravity, walls) and before enforce2d and freeze");

@@ -39,7 +39,6 @@ class FixDampingCundall : public Fix {
   FixDampingCundall(Simulation& s, const Args& a);
   double alpha() const { return alpha_; }
   void init() override;
-  bool keeps_plane() const override { return true; }  // a zero component stays zero
   void begin(FixHook) override;
   void range(FixHook, const AtomRange& r) override;
 

@@ -14,14 +14,14 @@ class FixEnforce2d : public Fix {
   void export_yade(YadeScript&) const override {}
   FixEnforce2d(Simulation& s, const Args& a) : Fix(s, a) {
     hooks = atom_tasks = POST_FORCE;
+    traits.constraint = traits.keeps_plane = true;  // it only zeroes components
     if (a.size() > 4) a.fail(4, "nothing after 'enforce2d'");
     if (s.domain.dimension != 2) a.fail(3, "a 2D simulation for fix enforce2d ('dimension 2' before create_box)");
   }
-  bool keeps_plane() const override { return true; }  // it only zeroes components
   void init() override {
     bool after = false;
     for (auto& f : sim.fixes) {
-      if (after && (f->hooks & POST_FORCE) && !f->keeps_plane())
+      if (after && (f->hooks & POST_FORCE) && !f->traits.keeps_plane)
         sim.warn("fix enforce2d " + id + ": fix " + f->style + " '" + f->id +
                  "' is defined after it and may add out-of-plane force after enforce2d has run; "
                  "define fix enforce2d last (as LIGGGHTS requires)");

@@ -10,7 +10,6 @@
 #include "core/engine/block_sum.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
-#include "core/engine/threads.h"
 #include "tools/yade_script.h"
 
 namespace sable {
@@ -19,11 +18,11 @@ class FixFreeze : public Fix {
  public:
   FixFreeze(Simulation& s, const Args& a) : Fix(s, a) {
     hooks = atom_tasks = POST_FORCE;
+    traits.constraint = traits.freezes_group = true;
+    traits.keeps_plane = true;  // zeroes forces
     vector_size = 3;
     if (a.size() > 4) a.fail(4, "nothing after 'freeze'");
   }
-  bool freezes_group() const override { return true; }
-  bool keeps_plane() const override { return true; }  // zeroes forces
   void export_yade(YadeScript& s) const override { s.freeze(*this); }  // fixed YADE bodies
   void init() override {
     bool after = false;
@@ -32,9 +31,9 @@ class FixFreeze : public Fix {
         after = true;
         continue;
       }
-      if (f->freezes_group())
+      if (f->traits.freezes_group)
         args.fail_line("more than one fix freeze (LIGGGHTS allows one; also fix '" + f->id + "')");
-      if (after && (f->hooks & POST_FORCE) && f->acceleration() > 0)
+      if (after && (f->hooks & POST_FORCE) && f->traits.acceleration_norm() > 0)
         sim.warn("fix freeze " + id + ": fix " + f->style + " '" + f->id +
                  "' is defined after it and adds force to frozen grains after they are frozen (as in LIGGGHTS); "
                  "define fix freeze after it to keep them still");
@@ -53,23 +52,22 @@ class FixFreeze : public Fix {
                " frozen grains have a velocity or spin and keep it (as in LIGGGHTS); use 'velocity " +
                sim.groups.name(group) + " set 0 0 0' to hold them still");
   }
-  // f_ID: the frozen grains' forces summed by core's BlockSum (the same bits for any thread count).
-  void begin(FixHook) override { sum_.begin(sim.atoms.n, kBlock, atom_pass_threads()); }
+  // f_ID: the frozen grains' forces summed by core's AtomSum (the same bits for any thread count).
+  void begin(FixHook) override { sum_.begin(sim.atoms.n); }
   void range(FixHook, const AtomRange& r) override {
     Atoms& at = sim.atoms;
-    sum_.range(r.thread, r.lo);
+    sum_.range(r);
     for (std::size_t i = r.lo; i < r.hi; ++i) {
       if (!(at.mask[i] & groupbit)) continue;
-      sum_.add(r.thread, i, &at.f[3 * i]);
+      sum_.add(r, i, &at.f[3 * i]);
       for (int k = 0; k < 3; ++k) at.f[3 * i + k] = at.torque[3 * i + k] = 0;
     }
   }
-  void end(FixHook) override { sum_.finish(f0_); }
+  void end(FixHook) override { sum_.total(f0_); }
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? f0_[i - 1] : 0.0; }
 
  private:
-  static constexpr std::size_t kBlock = 1024;
-  BlockSum<3> sum_;
+  AtomSum<3> sum_;
   double f0_[3] = {0, 0, 0};
 };
 

@@ -1,4 +1,5 @@
 // fix ID group gravity magnitude vector x y z  (also: spherical/... not supported)
+#include <algorithm>
 #include <cmath>
 
 #include "core/engine/simulation.h"
@@ -21,6 +22,8 @@ class FixGravity : public Fix {
     }
     if (n == 0) a.fail(6, "a non-zero direction vector");
     for (int k = 0; k < 3; ++k) acc_[k] = g_ * d[k] / std::sqrt(n);
+    traits.accelerates = true;
+    std::copy(acc_, acc_ + 3, traits.acceleration);
   }
   void range(FixHook, const AtomRange& r) override {
     const std::size_t lo = r.lo, hi = r.hi;
@@ -38,15 +41,10 @@ class FixGravity : public Fix {
       f[3 * i + 2] += rmass[i] * a2;
     }
   }
-  double acceleration() const override { return std::fabs(g_); }
   // YADE's NewtonIntegrator gravity, which acts on every body.
   void export_yade(YadeScript& s) const override {
     if (groupbit != 1u) args.tail(1).fail(1, "all (YADE's gravity acts on every body)");
     s.add_gravity(acc_);
-  }
-  bool fold_acceleration(double a[3]) const override {
-    for (int k = 0; k < 3; ++k) a[k] = acc_[k];
-    return groupbit == 1u;
   }
 
  private:

@@ -151,6 +151,7 @@ void FixInsert::parse(const Args& a) {
   if (uses_region() && !every_given_)
     a.fail(a.size(), once_allowed_ ? "'insert_every N' or 'insert_every once'" : "'insert_every N'");
   check_own(a);
+  traits.turns_grains = w_[0] != 0 || w_[1] != 0 || w_[2] != 0;  // `omega`: inserted grains spin
   if (!sim.domain.box_exists) a.fail(0, "a box first (create_box before fix " + style + ")");
   if (dist_->max_type > sim.atoms.ntypes)
     a.fail_line("template atom_type " + std::to_string(dist_->max_type) + " exceeds the " +
@@ -498,7 +499,7 @@ void FixInsert::region_content(long& np, double& vol, double& mass) const {
   const FixMultisphere* ms = sim.find_fix_style<FixMultisphere>();
   std::vector<double> rho(ms ? ms->bodies().size() : 0, 0.0);  // a clump's density, from its spheres
   for (std::size_t i = 0; i < at.n; ++i) {
-    if (const int k = ms ? ms->body_of(i) : -1; k >= 0) {
+    if (const int k = ms ? ms->rigid_bodies()->body_of(i) : -1; k >= 0) {
       rho[k] = at.density[i];
     } else if (region_->match(&at.x[3 * i])) {
       ++np;

@@ -26,7 +26,6 @@ class FixInsert : public Fix {
   void init() override;
   void post_integrate() override;
   void post_run() override;
-  bool turns_grains() const override { return w_[0] != 0 || w_[1] != 0 || w_[2] != 0; }  // `omega`
   double compute_vector(int i) override;
   bool write_state(std::string& out) const override;
   void read_state(const std::string& in) override;

@@ -13,6 +13,9 @@
 // another integrator's group too: like LAMMPS, both then update them, in
 // definition order (a warning says how many). X0 and the time origin are
 // restart state: a restarted deck that defines the fix again continues it.
+//
+// Both halves are per-atom tasks; the first reads the step's time (begin()), so
+// the fix prescribes motion (FixTraits): the plan never runs it ahead of its step.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,7 +32,8 @@ namespace sable {
 class FixMove : public Fix {
  public:
   FixMove(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+    hooks = atom_tasks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+    traits.prescribes_motion = true;
     const std::string& st = a.word(4, "a move style: linear, wiggle, rotate or variable");
     std::size_t next = 0;
     if (st == "linear") {
@@ -58,6 +62,7 @@ class FixMove : public Fix {
       if (u != "box") a.fail(i + 1, "box");
     }
     check_2d(a);
+    traits.turns_grains = style_ == Rotate;  // it sets each grain's spin
     col_ = s.atoms.add_column("move " + id, 3, kUnset);
     // After read_restart the column came back with the atoms: the state continues it.
     auto st_it = s.restart.fix_states.find(id);
@@ -75,37 +80,25 @@ class FixMove : public Fix {
     warn_double_integration();
   }
 
-  void initial_integrate() override {
+  // First half: this step's time and variables, serially; then each grain from its X0.
+  void begin(FixHook h) override {
+    if (h != INITIAL_INTEGRATE) return;
     Atoms& at = sim.atoms;
     if (at.n != seen_n_ || at.max_id != seen_id_) backfill(delta_at(sim.step - 1));  // new grains
-    const double t = delta_at(sim.step);
+    t_ = delta_at(sim.step);
     if (style_ == Variable) evaluate_variables();
-    const double c = std::cos(omega_ * t), sn = std::sin(omega_ * t);
-    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
-      const double* x0 = at.column(col_).data();
-      for (std::size_t i = lo; i < hi; ++i) {
-        if (!(at.mask[i] & groupbit)) continue;
-        double shift[3];
-        for (int k = 0; k < 3; ++k) shift[k] = at.image[3 * i + k] * sim.domain.length(k);
-        if (style_ == Rotate)
-          rotate(i, x0 + 3 * i, shift, c, sn);
-        else
-          for (int k = 0; k < 3; ++k) move(i, k, x0[3 * i + k] - shift[k], t, c, sn);
-      }
-    });
+    cos_ = std::cos(omega_ * t_), sin_ = std::sin(omega_ * t_);
   }
-
-  void final_integrate() override {
+  void range(FixHook h, const AtomRange& r) override {
+    if (h == INITIAL_INTEGRATE) return first_half(r);
     if (style_ == Rotate || (set_[0] && set_[1] && set_[2])) return;
-    Atoms& at = sim.atoms;
-    const double h = 0.5 * sim.dt;
-    at.for_ranges([&](int, std::size_t lo, std::size_t hi) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        if (!(at.mask[i] & groupbit)) continue;
-        for (int k = 0; k < 3; ++k)
-          if (!set_[k]) at.v[3 * i + k] += h / at.rmass[i] * at.f[3 * i + k];
-      }
-    });
+    Atoms& at = sim.atoms;  // second half: fix nve's kick of the free components
+    const double half = 0.5 * sim.dt;
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
+      if (!(at.mask[i] & groupbit)) continue;
+      for (int k = 0; k < 3; ++k)
+        if (!set_[k]) at.v[3 * i + k] += half / at.rmass[i] * at.f[3 * i + k];
+    }
   }
 
   bool write_state(std::string& out) const override {
@@ -118,7 +111,6 @@ class FixMove : public Fix {
     restart::Unpacker u(in, "fix move " + id + " state");
     origin_ = u.get<std::int64_t>();
   }
-  bool turns_grains() const override { return style_ == Rotate; }  // it sets each grain's spin
   void export_yade(YadeScript& s) const override;
   double max_speed() const override {
     if (style_ == Linear) return std::sqrt(sq(set_[0] ? vel_[0] : 0) + sq(set_[1] ? vel_[1] : 0) + sq(set_[2] ? vel_[2] : 0));
@@ -152,6 +144,21 @@ class FixMove : public Fix {
   std::size_t seen_n_ = 0;
   long seen_id_ = 0;
   bool warned_ = false;
+  double t_ = 0, cos_ = 1, sin_ = 0;  // this step's time since the origin, cos and sin of omega t
+
+  void first_half(const AtomRange& r) {
+    Atoms& at = sim.atoms;
+    const double* x0 = at.column(col_).data();
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
+      if (!(at.mask[i] & groupbit)) continue;
+      double shift[3];
+      for (int k = 0; k < 3; ++k) shift[k] = at.image[3 * i + k] * sim.domain.length(k);
+      if (style_ == Rotate)
+        rotate(i, x0 + 3 * i, shift, cos_, sin_);
+      else
+        for (int k = 0; k < 3; ++k) move(i, k, x0[3 * i + k] - shift[k], t_, cos_, sin_);
+    }
+  }
 
   static bool number_or_null(const Args& a, std::size_t i, const std::string& what, double& out) {
     if (a.word(i, what) == "NULL") return false;

@@ -41,6 +41,8 @@ std::vector<V3> clump_offsets(const ClumpShape& shape, const Q4& q_ins, Q4& q_bo
 
 FixMultisphere::FixMultisphere(Simulation& s, const Args& a) : Fix(s, a), set_(s) {
   hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+  traits.turns_grains = true;     // bodies inserted later may turn
+  set_.members_carry_mass = true;  // LIGGGHTS' convention (fixes/fix_multisphere.h)
   for (std::size_t i = 4; i < a.size(); i += 2) {
     if (a[i] == "allow_group_and_set" || a[i] == "allow_heatsource") {
       a.yes_no(i + 1, "yes or no");  // sable has neither restriction nor heat transfer
@@ -85,8 +87,8 @@ void FixMultisphere::sum_forces() {
   const Atoms& at = sim.atoms;
   const auto& c = at.column(set_.col);
   for (auto& f : sim.fixes) {
-    double g[3] = {0, 0, 0};
-    if (f->acceleration() == 0 || (!f->fold_acceleration(g) && g[0] == 0 && g[1] == 0 && g[2] == 0)) continue;
+    if (f->traits.acceleration_norm() == 0) continue;
+    const double* g = f->traits.acceleration;
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = set_.body_of_atom(i);
       if (k < 0 || !(at.mask[i] & f->groupbit)) continue;
@@ -145,7 +147,7 @@ void FixMultisphere::add_body(const ClumpShape& shape, const double xcm[3], cons
 void FixMultisphere::check_integrators(std::size_t first, std::size_t n) const {
   const Atoms& at = sim.atoms;
   for (auto& f : sim.fixes) {
-    if (!(f->atom_tasks & INITIAL_INTEGRATE) || f->body_integrator()) continue;
+    if (f->role(INITIAL_INTEGRATE) != FixRole::Integrator) continue;
     for (std::size_t i = first; i < first + n; ++i)
       if (at.mask[i] & f->groupbit)
         args.fail_line("a multisphere clump's sphere (atom " + std::to_string(at.id[i]) + ") is also integrated by fix " +
@@ -154,11 +156,7 @@ void FixMultisphere::check_integrators(std::size_t first, std::size_t n) const {
   }
 }
 
-double FixMultisphere::kinetic_energy() const {
-  double e = 0;
-  for (const Body& b : set_.bodies) e += b.mass * rigid::dot(b.vcm, b.vcm);
-  return 0.5 * e;
-}
+double FixMultisphere::kinetic_energy() const { return set_.translational_energy(); }
 
 double FixMultisphere::rotational_energy() const {
   double e = 0;

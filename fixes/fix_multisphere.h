@@ -29,11 +29,7 @@ class FixMultisphere : public Fix {
   void setup() override;
   void initial_integrate() override;
   void final_integrate() override;
-  int body_of(std::size_t i) const override { return set_.number_of_atom(i); }
-  bool body_integrator() const override { return true; }
-  const double* body_force(int b) const override { return set_.by_number(b).force.data(); }
-  bool turns_grains() const override { return true; }  // bodies inserted later may turn
-  bool body_kinetic_energy(double& ke) const override { ke = kinetic_energy(); return true; }
+  const RigidBodies* rigid_bodies() const override { return &set_; }
   bool write_state(std::string& out) const override;
   void read_state(const std::string& in) override;
 

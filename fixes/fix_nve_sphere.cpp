@@ -20,6 +20,7 @@ class FixNveSphere : public Fix {
   FixNveSphere(Simulation& s, const Args& a, bool spin) : Fix(s, a), spin_(spin) {
     hooks = INITIAL_INTEGRATE | FINAL_INTEGRATE;
     atom_tasks = hooks | FINAL_THEN_INITIAL;
+    traits.turns_grains = spin_;
     if (!spin_ && a.size() > 4) a.fail(4, "nothing after 'nve'");
     for (std::size_t i = 4; i < a.size(); ++i)
       if (a[i] != "update" && a[i] != "dipole" && a[i] != "disc") a.fail(i, "nothing (or update dipole/disc)");
@@ -29,7 +30,6 @@ class FixNveSphere : public Fix {
         s.atoms.inertia_factor = 0.5;
       }
   }
-  bool turns_grains() const override { return spin_; }
   // Initial: half kick, then drift, in one pass over the atoms. Final: the half
   // kick. Both, across a step boundary: one loop, the per-atom factors once.
   // The step plan composes them with its other per-atom work.

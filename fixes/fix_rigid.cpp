@@ -66,6 +66,7 @@ class FixRigid : public Fix {
     set_.find_damping();
     set_.place_members(false);
     refresh_contact_mass(true);
+    traits.turns_grains = set_.any_rotates();  // the bodies' torque flags and spin, known now
   }
   void pre_force() override { refresh_contact_mass(false); }
 
@@ -79,9 +80,7 @@ class FixRigid : public Fix {
 
   void setup() override { set_.sum_forces(); }
 
-  int body_of(std::size_t i) const override { return set_.number_of_atom(i); }
-  bool body_integrator() const override { return true; }
-  const double* body_force(int b) const override { return set_.by_number(b).force.data(); }
+  const RigidBodies* rigid_bodies() const override { return &set_; }
 
   double compute_array(int i, int j) override {
     if (i < 1 || i > static_cast<int>(bodies_.size()) || j < 1 || j > 15)
@@ -150,11 +149,12 @@ class FixRigid : public Fix {
     const auto& c = at.column(col_);
     for (auto& f : sim.fixes) {
       if (f.get() == this) continue;
-      for (std::size_t i = 0; i < at.n; ++i)
-        if (c[kStride * i] != 0 && f->body_of(i) >= 0)
+      const RigidBodies* rb = f->rigid_bodies();
+      for (std::size_t i = 0; i < at.n && rb; ++i)
+        if (c[kStride * i] != 0 && rb->body_of(i) >= 0)
           args.fail_line("atom " + std::to_string(at.id[i]) + " belongs to a body of fix " + f->id +
                          " too: a grain is in one rigid body at most");
-      if (!(f->atom_tasks & INITIAL_INTEGRATE) || f->body_integrator()) continue;
+      if (f->role(INITIAL_INTEGRATE) != FixRole::Integrator) continue;
       for (std::size_t i = 0; i < at.n; ++i)
         if (c[kStride * i] != 0 && (at.mask[i] & f->groupbit))
           args.fail_line("atom " + std::to_string(at.id[i]) + " of a rigid body is also integrated by fix " + f->id +
@@ -162,8 +162,6 @@ class FixRigid : public Fix {
                          "them twice)");
     }
   }
-
-  bool turns_grains() const override { return set_.any_rotates(); }
 
   void parse(const Args& a) {
     const std::string& bs = a.word(4, "a body style (single, group, custom; molecule)");

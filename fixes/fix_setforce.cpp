@@ -6,7 +6,6 @@
 // before it was set (the grains inside R).
 #include "core/engine/block_sum.h"
 #include "core/input/style_registry.h"
-#include "core/engine/threads.h"
 #include "fixes/group_force.h"
 
 namespace sable {
@@ -18,6 +17,8 @@ class FixSetforce : public Fix {
     vector_size = 3;
     if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz (number, v_name or NULL) after 'setforce'");
     force_.parse(a, 4, true, true);
+    traits.constraint = true;
+    traits.keeps_plane = force_.keeps_plane();
     for (std::size_t i = 7; i < a.size(); i += 2) {
       if (a[i] != "region") a.fail(i, "region");
       region_.parse(s, a, i + 1);
@@ -27,32 +28,30 @@ class FixSetforce : public Fix {
     force_.check(sim, args);
     region_.init(sim, args);
   }
-  bool keeps_plane() const override { return force_.keeps_plane(); }
   void export_yade(YadeScript& s) const override { export_yade_set_forces(s, *this, false); }
 
   void begin(FixHook) override {
     force_.evaluate(sim, args);
-    sum_.begin(sim.atoms.n, kBlock, atom_pass_threads());
+    sum_.begin(sim.atoms.n);
   }
   void range(FixHook, const AtomRange& r) override {
     Atoms& at = sim.atoms;
-    sum_.range(r.thread, r.lo);
+    sum_.range(r);
     for (std::size_t i = r.lo; i < r.hi; ++i) {
       if (!(at.mask[i] & groupbit) || !region_.admits(&at.x[3 * i])) continue;
       double* f = &at.f[3 * i];
-      sum_.add(r.thread, i, f);
+      sum_.add(r, i, f);
       for (int k = 0; k < 3; ++k)
         if (force_.active(k)) f[k] = force_.value(k, i);
     }
   }
-  void end(FixHook) override { sum_.finish(total_); }
+  void end(FixHook) override { sum_.total(total_); }
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i - 1] : 0.0; }
 
  private:
-  static constexpr std::size_t kBlock = 1024;
   ForceComponents force_;
   RegionOption region_;
-  BlockSum<3> sum_;
+  AtomSum<3> sum_;
   double total_[3] = {0, 0, 0};
 };
 

@@ -9,9 +9,9 @@ namespace sable {
 
 class FixViscous : public Fix {
  public:
-  bool keeps_plane() const override { return true; }  // -gamma v: v_z is already 0
   FixViscous(Simulation& s, const Args& a) : Fix(s, a) {
     hooks = atom_tasks = POST_FORCE;
+    traits.keeps_plane = true;  // -gamma v: v_z is already 0
     const double g = a.num(4, "the damping coefficient gamma (N s/m)");
     if (g < 0) a.fail(4, "gamma >= 0");
     gamma_.assign(s.atoms.ntypes + 1, g);

@@ -359,6 +359,13 @@ void FixWallGran::end(FixHook) {
   for (int d = 0; d < 3; ++d) force_[d] = 0.0 - total[d];  // (0.0 - x, not -x: no "-0" in thermo output)
 }
 
+bool FixWallGran::last_pass(const PassFn& fn) const {
+  if (pass_atoms_ != sim.atoms.n) return false;  // sorted or deleted since: the indices no longer hold
+  for (const Staged& p : parts_)
+    for (std::size_t c = 0; c < p.atom.size(); ++c) fn(p.atom[c], &p.point[3 * c], &p.force[3 * c]);
+  return true;
+}
+
 void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {
   refresh_near();
   records_.clear();

@@ -19,11 +19,12 @@
 
 #include "contact_models/kernel.h"
 #include "core/engine/block_sum.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
 
 namespace sable {
 
-class FixWallGran : public Fix {
+class FixWallGran : public Fix, public ContactSource {
  public:
   FixWallGran(Simulation& sim, const Args& args);
   void export_yade(YadeScript& s) const override;  // fixes/fix_wall_gran_yade.cpp
@@ -36,20 +37,16 @@ class FixWallGran : public Fix {
 
   ContactKernel& kernel() { return *kernel_; }
   int wall_type() const { return type_; }
-  // Per-contact records at the current state (no force or history change). The
-  // wall velocity and the wall point of record r are vwall(r.shift), point(r.shift).
-  void records(std::uint32_t groupbit, ContactRecords& out);
-  const double* vwall(int k) const { return &records_.vwall[3 * k]; }
-  const double* point(int k) const { return &records_.point[3 * k]; }
-  // The contacts of the last force pass (the one f_ID reports), in its order:
-  // fn(atom index, wall point, force on the grain). The indices hold while the
-  // atoms are not sorted or deleted: last_pass_atoms() is Atoms::n at that pass.
-  template <class Fn>
-  void last_pass(Fn&& fn) const {
-    for (const Staged& p : parts_)
-      for (std::size_t c = 0; c < p.atom.size(); ++c) fn(p.atom[c], &p.point[3 * c], &p.force[3 * c]);
-  }
-  std::size_t last_pass_atoms() const { return pass_atoms_; }
+  // ContactSource. last_pass: the contacts of the last force pass (the one f_ID
+  // reports), in its order, while the atoms are not sorted or deleted since.
+  Kind contact_kind() const override { return Kind::Wall; }
+  std::string law_name() const override { return kernel_->name(); }
+  const std::vector<HistorySlot>& history_slots() const override { return kernel_->history_slots(); }
+  void records(std::uint32_t groupbit, ContactRecords& out) override;
+  const double* wall_point(int k) const override { return &records_.point[3 * k]; }
+  const double* wall_velocity(int k) const override { return &records_.vwall[3 * k]; }
+  bool last_pass(const PassFn& fn) const override;
+  int plane_axis() const override { return shape_ == Shape::Plane ? axis_ : -1; }
 
  private:
   std::unique_ptr<ContactKernel> kernel_;

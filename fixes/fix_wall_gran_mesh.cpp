@@ -78,6 +78,7 @@ void FixWallGranMesh::init() {
     for (int d = 0; d < 3; ++d) shifts_[q][d] = c[d] == 0 ? 0.0 : (c[d] == 1 ? -1.0 : 1.0) * sim.domain.length(d);
   }
   near_.assign(meshes_.size(), NearList{});  // the deck may have moved grains since the last run
+  xref_builds_ = -1;
   glue_.assign(meshes_.size(), Glue{});
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     meshes_[m]->update_pose();
@@ -171,6 +172,10 @@ static void reduce_touches(const FixWallGranMesh& f, int m, const TriMesh& mesh,
                            std::vector<int>& out) {
   out.clear();
   const std::size_t n = ts.size();
+  if (n == 1) {  // one triangle within reach (most grains): nothing to drop or join
+    out.push_back(0);
+    return;
+  }
   const double eps = 1e-12 * r * r, same2 = 1e-16 * r * r;  // far above round-off, far below any overlap
   for (std::size_t a = 0; a < n; ++a) {
     const TriMesh::Closest& c = ts[a].c;
@@ -267,14 +272,8 @@ static void world_box(const TriMesh& mesh, Vec3d& wlo, Vec3d& whi) {
   }
 }
 
-// The triangles within `reach` of grain i's images (itself and, on periodic
-// axes, one box length either way) that can reach the mesh's box.
-void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p) {
-  std::vector<Touch>& touched = p.touched;
-  touched.clear();
-  const TriMesh& mesh = meshes_[mi]->mesh();
+int FixWallGranMesh::images(const double* x, double reach, const Vec3d& wlo, const Vec3d& whi, int* img) const {
   const Domain& dom = sim.domain;
-  const double* x = &sim.atoms.x[3 * i];
   int code[3][3], ns[3];
   for (int d = 0; d < 3; ++d) {
     ns[d] = 0;
@@ -283,26 +282,25 @@ void FixWallGranMesh::touches(int mi, std::size_t i, double reach, const Vec3d& 
       const double s = (q == 0 ? 0.0 : q == 1 ? -L : L);
       if (x[d] + s + reach > wlo[d] && x[d] + s - reach < whi[d]) code[d][ns[d]++] = q;
     }
-    if (ns[d] == 0) return;
+    if (ns[d] == 0) return 0;
   }
+  int n = 0;  // in increasing code
   for (int a = 0; a < ns[0]; ++a)
     for (int b = 0; b < ns[1]; ++b)
-      for (int c = 0; c < ns[2]; ++c) {
-        const int img = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
-        const Vec3d& sh = shifts_[img];
-        const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
-        mesh.near_closest(xb, reach, p.cand, p.seen);
-        for (const TriMesh::Near& nc : p.cand) {
-          if (nc.c.dist2 == 0.0) continue;  // a centre on the surface has no normal
-          touched.push_back({nc.tri, img, nc.c, sub3(mesh.to_world(nc.c.p), sh)});
-        }
-      }
+      for (int c = 0; c < ns[2]; ++c) img[n++] = code[0][a] * 9 + code[1][b] * 3 + code[2][c];
+  return n;
 }
 
-// Grains of the group that can touch mesh m before the list is refreshed: at
-// the last refresh within r + skin of it. Refreshed at each neighbour rebuild
-// (grains move at most skin/2 between) and when a point of the mesh has moved
-// more than skin/2 since (rigid motion: a corner of its box moves most).
+// Grains of the group that can touch mesh m before the next refresh, with
+// their candidate triangles: those within r + skin of the grain's position at
+// the last neighbour build. Until the next build a grain moves (and grows) at
+// most skin/2 from there (the rebuild rule), and until the next refresh the
+// mesh moves at most skin/2 from its pose now (refreshed, candidates searched
+// again from the same grain positions, once a point of it has moved more:
+// rigid motion, a corner of its box moves most). So a triangle that comes
+// within r of a grain before the next refresh is among its candidates.
+// LIGGGHTS instead counts a moving mesh's node displacement in its rebuild
+// check and rebuilds every list; here only the mesh's lists are refreshed.
 void FixWallGranMesh::refresh_near(int mi) {
   const TriMesh& mesh = meshes_[mi]->mesh();
   const Atoms& at = sim.atoms;
@@ -319,17 +317,65 @@ void FixWallGranMesh::refresh_near(int mi) {
     moved2 = std::max(moved2, dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]);
   }
   if (nl.builds == sim.neighbor.builds && nl.n == at.n && moved2 <= half_skin * half_skin) return;
+  // The positions the rebuild rule measures from: the first refresh after a build
+  // comes in that step's force pass, before any grain moves again.
+  if (xref_builds_ != sim.neighbor.builds || xref_.size() != 3 * at.n) {
+    xref_.assign(at.x.begin(), at.x.begin() + 3 * static_cast<std::ptrdiff_t>(at.n));
+    xref_builds_ = sim.neighbor.builds;
+  }
   nl.builds = sim.neighbor.builds;
   nl.n = at.n;
   std::copy(mesh.R, mesh.R + 9, nl.R);
   nl.T = mesh.T;
   nl.atoms.clear();
+  nl.first.clear();
+  nl.cand.clear();
   Vec3d wlo, whi;
   world_box(mesh, wlo, whi);
+  int img[27];
   for (std::size_t i = 0; i < at.n; ++i) {
     if (!(at.mask[i] & groupbit)) continue;
-    touches(mi, i, at.radius[i] + 2 * half_skin, wlo, whi, serial_);
-    if (!serial_.touched.empty()) nl.atoms.push_back(static_cast<int>(i));
+    const double* x = &xref_[3 * i];
+    const double reach = at.radius[i] + 2 * half_skin;
+    const std::size_t before = nl.cand.size();
+    const int ni = images(x, reach, wlo, whi, img);
+    for (int q = 0; q < ni; ++q) {
+      const Vec3d& sh = shifts_[img[q]];
+      mesh.near_closest(mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]}), reach, serial_.cand, serial_.seen);
+      for (const TriMesh::Near& nc : serial_.cand) nl.cand.push_back({nc.tri, img[q]});
+    }
+    if (nl.cand.size() == before) continue;
+    nl.atoms.push_back(static_cast<int>(i));
+    nl.first.push_back(static_cast<int>(before));
+  }
+  nl.first.push_back(static_cast<int>(nl.cand.size()));
+}
+
+// The triangles within r of grain i's images now, among its candidates: the
+// same tests, in the same order, as a search of the mesh's bin grid would make.
+void FixWallGranMesh::touches(int mi, std::size_t c, std::size_t i, double r, const Vec3d& wlo, const Vec3d& whi,
+                              Part& p) {
+  std::vector<Touch>& touched = p.touched;
+  touched.clear();
+  const TriMesh& mesh = meshes_[mi]->mesh();
+  const NearList& nl = near_[mi];
+  const double* x = &sim.atoms.x[3 * i];
+  int img[27];
+  const int ni = images(x, r, wlo, whi, img);
+  int k = nl.first[c];
+  const int end = nl.first[c + 1];
+  for (int q = 0; q < ni; ++q) {
+    while (k < end && nl.cand[k].img < img[q]) ++k;
+    if (k == end) break;
+    if (nl.cand[k].img != img[q]) continue;
+    const Vec3d& sh = shifts_[img[q]];
+    const Vec3d xb = mesh.to_body({x[0] + sh[0], x[1] + sh[1], x[2] + sh[2]});
+    if (!mesh.box_reaches(xb, r)) continue;
+    for (; k < end && nl.cand[k].img == img[q]; ++k) {
+      TriMesh::Closest cl;
+      if (!mesh.closest_within(nl.cand[k].tri, xb, r, cl) || cl.dist2 == 0.0) continue;  // a centre on the surface has no normal
+      touched.push_back({nl.cand[k].tri, img[q], cl, sub3(mesh.to_world(cl.p), sh)});
+    }
   }
 }
 
@@ -346,7 +392,7 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
     const std::size_t i = static_cast<std::size_t>(near_[mi].atoms[c]);
     if (!(at.mask[i] & also)) continue;
     const double r = at.radius[i], *x = &at.x[3 * i];
-    touches(mi, i, r, wlo, whi, p);
+    touches(mi, c, i, r, wlo, whi, p);
     if (touched.empty()) continue;
     reduce_touches(*this, mi, mesh, touched, r, contacts);
     for (const int rep : contacts) {

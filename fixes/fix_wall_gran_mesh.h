@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
 #include "core/geometry/mesh.h"
 
@@ -34,7 +35,7 @@ namespace sable {
 
 class FixMeshSurface;
 
-class FixWallGranMesh : public Fix {
+class FixWallGranMesh : public Fix, public ContactSource {
  public:
   FixWallGranMesh(Simulation& sim, const Args& args);
   void export_yade(YadeScript& s) const override;  // fixes/fix_wall_gran_yade.cpp
@@ -55,13 +56,14 @@ class FixWallGranMesh : public Fix {
   bool shares_edge(int m, const Touchish& a, const Touchish& b) const;
   bool same_surface(int m, const Touchish& a, const Touchish& b) const;
   bool joined(int m, int t, int u) const;  // same surface, through any periodic image
-  // Per-contact records at the current state (no force or history change), as
-  // FixWallGran::records. Record r's wall point, wall velocity and triangle:
-  // point(r.shift), vwall(r.shift), triangle(r.shift); mesh(r.shift) its mesh's index in this fix.
-  void records(std::uint32_t groupbit, ContactRecords& out);
-  const double* vwall(int k) const { return &rec_.vwall[3 * k]; }
-  const double* point(int k) const { return &rec_.point[3 * k]; }
-  int triangle(int k) const { return rec_.tri[k]; }
+  // ContactSource. Record r's triangle is element(r.shift) (of the fix's mesh number mesh(r.shift)).
+  Kind contact_kind() const override { return Kind::Mesh; }
+  std::string law_name() const override { return kernel_->name(); }
+  const std::vector<HistorySlot>& history_slots() const override { return kernel_->history_slots(); }
+  void records(std::uint32_t groupbit, ContactRecords& out) override;
+  const double* wall_point(int k) const override { return &rec_.point[3 * k]; }
+  const double* wall_velocity(int k) const override { return &rec_.vwall[3 * k]; }
+  int element(int k) const override { return rec_.tri[k]; }
   int mesh(int k) const { return rec_.mesh[k]; }
 
   // One grain-triangle contact of a step.
@@ -131,17 +133,31 @@ class FixWallGranMesh : public Fix {
   void contact_wear(int m, Part::PerMesh& pm);
   Part serial_;  // refresh_near and records
   bool pass_update_ = true;
-  void touches(int m, std::size_t i, double reach, const Vec3d& wlo, const Vec3d& whi, Part& p);
-  // Grains that can reach mesh m until the next refresh (see refresh_near).
+  // The image codes of a grain at x whose image comes within reach of the mesh's
+  // world box [wlo, whi] (itself and, on periodic axes, one box length either way).
+  int images(const double* x, double reach, const Vec3d& wlo, const Vec3d& whi, int* img) const;
+  // Grains that can reach mesh m until the next refresh, and their candidate
+  // triangles (see refresh_near): per step only these are tested.
+  struct Cand {
+    int tri, img;
+  };
   struct NearList {
-    std::vector<int> atoms;
+    std::vector<int> atoms;   // by atom index
+    std::vector<int> first;   // atoms[c]'s candidates: cand[first[c], first[c + 1]), by image then triangle
+    std::vector<Cand> cand;
     long builds = -1;
     std::size_t n = 0;
     double R[9];
     Vec3d T;
   };
   std::vector<NearList> near_;
+  // The grains' positions at the last neighbour build (taken at the first refresh
+  // after it): candidates are searched from there (see refresh_near).
+  std::vector<double> xref_;
+  long xref_builds_ = -1;
   void refresh_near(int m);
+  // The candidates of near_[m].atoms[c] within distance r of grain i now, into p.touched.
+  void touches(int m, std::size_t c, std::size_t i, double r, const Vec3d& wlo, const Vec3d& whi, Part& p);
   // Contacts with mesh m of the grains of near_[m].atoms[c0, c1) in groupbit & also, sorted by (tag, triangle).
   void collect(int m, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p, std::vector<Hit>& out);
   // History rows for the hits from prev_[m] (same triangle, else the same surface).

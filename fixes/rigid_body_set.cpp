@@ -240,6 +240,17 @@ int BodySet::body_of_atom(std::size_t i) const {
 
 bool BodySet::any_rotates() const { return std::any_of(bodies.begin(), bodies.end(), rotates); }
 
+double BodySet::translational_energy() const {
+  double e = 0;
+  for (const Body& b : bodies) e += b.mass * dot(b.vcm, b.vcm);
+  return 0.5 * e;
+}
+
+bool BodySet::body_kinetic_energy(double& ke) const {
+  if (members_carry_mass) ke = translational_energy();
+  return members_carry_mass;
+}
+
 namespace {
 void kick(Body& b, double dtf) {
   for (int k = 0; k < 3; ++k) {

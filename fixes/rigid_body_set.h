@@ -25,6 +25,7 @@
 #include <Eigen/Dense>
 
 #include "core/engine/fix.h"
+#include "core/engine/rigid_bodies.h"
 
 namespace sable {
 
@@ -67,7 +68,8 @@ struct alignas(64) Body {
 // that axis, as LAMMPS) and the orientation quaternion of the right-handed principal axes.
 void principal_axes(Body& b, const Eigen::Matrix3d& inertia);
 
-class BodySet {
+// The owning fix's rigid_bodies(): bodies by the deck's numbers.
+class BodySet : public RigidBodies {
  public:
   static constexpr int kStride = 7;
   // Bodies are kept in the order the (bin-sorted) atoms first meet them,
@@ -89,7 +91,15 @@ class BodySet {
   void damp_again();     // after the owner changed the sums (multisphere's gravity)
 
   explicit BodySet(Simulation& s) : sim_(s) {}
-  int body_of_atom(std::size_t i) const;  // -1: in no body
+  // RigidBodies: the deck's number of atom i's body, a body's force, and (members
+  // that carry the body's mass: fix multisphere) the bodies' 1/2 M vcm^2.
+  int body_of(std::size_t i) const override { return number_of_atom(i); }
+  const double* body_force(int n) const override { return by_number(n).force.data(); }
+  bool body_kinetic_energy(double& ke) const override;
+  bool members_carry_mass = false;
+  double translational_energy() const;  // 1/2 M vcm^2 over all bodies
+
+  int body_of_atom(std::size_t i) const;  // its slot in `bodies`; -1: in no body
   int number_of_atom(std::size_t i) const {  // the deck's number of its body; -1: in no body
     const int k = body_of_atom(i);
     return k < 0 ? -1 : number_of(k);

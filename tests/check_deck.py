@@ -41,6 +41,8 @@ import re
 import subprocess
 import sys
 
+from sable_tools.readers.screen import merged_keys  # PYTHONPATH: the repository (tests/CMakeLists.txt)
+
 OPS = {
     "=": lambda a, b: a == b,
     "==": lambda a, b: a == b,
@@ -136,18 +138,10 @@ def halt_checks(deck_text):
 
 
 def results_of(output):
-    res = {}
-    for line in output.splitlines():
-        if not line.startswith("RESULT"):
-            continue
-        for word in line[len("RESULT"):].split():
-            if "=" not in word:
-                continue
-            k, v = word.split("=", 1)
-            if k in res and res[k] != v:
-                raise Fail("RESULT key '%s' printed twice with different values (%s, %s)" % (k, res[k], v))
-            res[k] = v
-    return res
+    try:
+        return merged_keys(output, "RESULT")
+    except ValueError as e:
+        raise Fail(str(e))
 
 
 def judge(args):

@@ -7,15 +7,17 @@
 
 #include <Eigen/Dense>
 
-#include "core/input/args.h"
+#include "core/engine/rigid_bodies.h"
 #include "core/engine/simulation.h"
+#include "core/input/args.h"
 
 namespace sable::yade {
 
 std::vector<std::vector<std::size_t>> members(const Simulation& sim, const Fix& fix) {
   std::vector<std::vector<std::size_t>> m;
+  const RigidBodies& rb = *fix.rigid_bodies();
   for (std::size_t i = 0; i < sim.atoms.n; ++i) {
-    const int k = fix.body_of(i);
+    const int k = rb.body_of(i);
     if (k < 0) continue;
     if (static_cast<std::size_t>(k) >= m.size()) m.resize(k + 1);
     m[k].push_back(i);

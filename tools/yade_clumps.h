@@ -33,7 +33,7 @@ struct Clump {
 // fix's `force` / `torque` keywords.
 std::vector<Clump> rigid_clumps(const Simulation& sim, const Fix& fix);
 
-// Members of each body of `fix` (Fix::body_of), by atom index, bodies in the fix's order.
+// Members of each body of `fix` (its rigid_bodies()), by atom index, bodies in the fix's order.
 std::vector<std::vector<std::size_t>> members(const Simulation& sim, const Fix& fix);
 // blockedDOFs from flags: a force flag off keeps that velocity component, as YADE's blocked DOF does.
 std::string dofs_of(const std::array<bool, 3>& force, const std::array<bool, 3>& torque);

@@ -17,6 +17,7 @@
 #include "core/engine/compute.h"
 #include "core/engine/error.h"
 #include "core/engine/global_property.h"
+#include "core/engine/rigid_bodies.h"
 #include "core/engine/simulation.h"
 #include "core/input/variable.h"
 
@@ -944,8 +945,9 @@ bool YadeScript::wall_uses_mesh(const std::string& id) const {
 void YadeScript::add_clumps(const Fix& f, const std::vector<yade::Clump>& bodies) {
   clumps_of_[f.id] = {clumps_.size(), bodies.size()};
   clumps_.insert(clumps_.end(), bodies.begin(), bodies.end());
+  const RigidBodies& rb = *f.rigid_bodies();
   for (std::size_t i = 0; i < sim.atoms.n; ++i)
-    if (f.body_of(i) >= 0) in_body_[i] = 1;
+    if (rb.body_of(i) >= 0) in_body_[i] = 1;
 }
 
 void YadeScript::add_recorder(const Fix& f, std::function<void(YadeScript&)> write) {

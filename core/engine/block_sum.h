@@ -10,10 +10,17 @@
 //   sum.begin(npos, block, nranges);                          serial
 //   sum.range(r, lo); sum.add(r, pos, v) ...                  range r, positions from lo, increasing
 //   sum.finish(total);                                        serial
+//   sum.total(total);                                         or on any thread, once every range is added
+//
+// AtomSum below is the form a fix's per-atom task asks for: positions are atom
+// indices, the ranges the task's (Fix::AtomRange), block and range count core's.
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
+
+#include "core/engine/fix.h"
+#include "core/engine/threads.h"
 
 namespace sable {
 
@@ -42,12 +49,18 @@ class BlockSum {
       for (int k = 0; k < N; ++k) sums_[b][k] += v[k];
     }
   }
-  void finish(double* total) {
-    for (const Carry& c : carry_)  // ranges in position order
-      for (std::size_t q = 0; q < c.v.size(); ++q) sums_[c.block][q % N] += c.v[q];
-    for (int k = 0; k < N; ++k) total[k] = 0.0;
-    for (const auto& s : sums_)
-      for (int k = 0; k < N; ++k) total[k] += s[k];
+  void finish(double* out) const { total(out); }
+  // Each block's own items, then its carried ones (ranges in position order), then
+  // the blocks in order. Reads only: every thread may take it in a second phase.
+  void total(double* out) const {
+    for (int k = 0; k < N; ++k) out[k] = 0.0;
+    for (std::size_t b = 0; b < sums_.size(); ++b) {
+      std::array<double, N> s = sums_[b];
+      for (const Carry& c : carry_)
+        if (c.block == b)
+          for (std::size_t q = 0; q < c.v.size(); ++q) s[q % N] += c.v[q];
+      for (int k = 0; k < N; ++k) out[k] += s[k];
+    }
   }
 
  private:
@@ -63,6 +76,22 @@ class BlockSum {
   std::size_t block_ = 1;
   std::vector<std::array<double, N>> sums_;
   std::vector<Carry> carry_;
+};
+
+// A sum of N-vectors over atoms, for a fix's per-atom task: begin() in the
+// task's begin(), range() first in each range(), add() per atom, total() in
+// end() or in phase 1 of a two-phase task. The same bits for any thread count.
+template <int N>
+class AtomSum {
+ public:
+  void begin(std::size_t natoms) { sum_.begin(natoms, kBlock, atom_pass_threads()); }
+  void range(const Fix::AtomRange& r) { sum_.range(r.thread, r.lo); }
+  void add(const Fix::AtomRange& r, std::size_t i, const double* v) { sum_.add(r.thread, i, v); }
+  void total(double* out) const { sum_.total(out); }
+
+ private:
+  static constexpr std::size_t kBlock = 1024;
+  BlockSum<N> sum_;
 };
 
 }  // namespace sable

@@ -1,16 +1,22 @@
 #pragma once
 // Base of all fixes (LIGGGHTS `fix ID group style args`). A fix overrides the
-// hooks it needs and says so in `hooks`, so the step loop calls only those.
+// hooks it needs and says so in `hooks`, so the step loop calls only those;
+// what it is (its traits) it fills in once as data; the roles it may hold
+// beyond that are small interfaces: global output (core/engine/global_output.h,
+// every fix's base) and rigid bodies (rigid_bodies(), core/engine/rigid_bodies.h).
 #include <cstddef>
+#include <optional>
 #include <string>
 
+#include "core/engine/global_output.h"
 #include "core/input/args.h"
 #include "core/engine/threads.h"
 
 namespace sable {
 
 class Simulation;
-class YadeScript;  // tools/yade_script.h
+class RigidBodies;  // core/engine/rigid_bodies.h
+class YadeScript;   // tools/yade_script.h
 
 enum FixHook : unsigned {
   INITIAL_INTEGRATE = 1u << 0,
@@ -25,7 +31,37 @@ enum FixHook : unsigned {
   FINAL_THEN_INITIAL = 1u << 6,
 };
 
-class Fix {
+// The role a fix plays at a hook: a named bundle of hooks and tasks that the
+// traits qualify. `info plan` names it; core asks it instead of a style name.
+enum class FixRole : unsigned char {
+  None,              // pre_force, post_integrate, end_of_step: the fix's own work
+  Integrator,        // initial/final_integrate: grains advanced from their forces (nve/sphere)
+  RigidBodies,       // the same for whole bodies (rigid_bodies() is set)
+  PrescribedMotion,  // the same, the motion imposed from the step's time (traits.prescribes_motion)
+  ForceContributor,  // post_force adding to the forces (gravity, addforce, walls, damping)
+  Constraint,        // post_force setting or removing force components (traits.constraint)
+};
+const char* role_name(FixRole r);
+
+// What a fix is, filled in once (constructor, or init for what the deck decides
+// later) and read by core instead of asking the fix. Speeds that change during a
+// run (Fix::max_speed) stay functions.
+struct FixTraits {
+  bool constraint = false;         // post_force sets or zeroes force components (freeze, setforce, aveforce, enforce2d)
+  bool prescribes_motion = false;  // integrates by the step's time (fix move): the plan keeps it on its own step
+  bool freezes_group = false;      // its group's grains count as infinitely heavy in contacts (fix freeze)
+  bool keeps_plane = false;        // its post_force never puts force or spin out of a 2D plane
+  // May it make a grain turn (integrate or set omega)? If no fix may and every omega
+  // is 0 at setup, contacts skip rotation (Atoms::rotation). Unset: if it integrates.
+  std::optional<bool> turns_grains;
+  // Its post_force only adds m a to each grain of its group (fix gravity): the time
+  // step's speed estimate, multisphere's body gravity and the plan's folding read a.
+  bool accelerates = false;
+  double acceleration[3] = {0, 0, 0};
+  double acceleration_norm() const;  // |a|; 0 when it does not accelerate
+};
+
+class Fix : public GlobalOutput {
  public:
   Fix(Simulation& sim, const Args& args);  // args: ID group style ...
   virtual ~Fix() = default;
@@ -39,6 +75,8 @@ class Fix {
   std::uint32_t groupbit = 1;
   unsigned hooks = 0;
   int nevery = 1;          // end_of_step period
+  FixTraits traits;
+  FixRole role(FixHook h) const;  // at hook h (None where it holds no hook h)
 
   virtual void init() {}        // before each run (after all commands are known)
   virtual void setup() {}       // after the first force evaluation of a run
@@ -54,13 +92,8 @@ class Fix {
   // `fix_modify` keywords this fix understands; return false to reject.
   virtual bool modify_param(const Args&, std::size_t&) { return false; }
 
-  // Global outputs referenced as f_ID and f_ID[i] (1-based).
-  int scalar_flag = 0, vector_size = 0;
-  virtual double compute_scalar() { return 0.0; }
-  virtual double compute_vector(int /*i*/) { return 0.0; }
-  // A global array, f_ID[i][j] (1-based; LAMMPS' fix rigid: one row per body).
-  int array_rows = 0, array_cols = 0;
-  virtual double compute_array(int /*i*/, int /*j*/) { return 0.0; }
+  // The rigid-body role: set by a fix that moves grains as members of bodies.
+  virtual const RigidBodies* rigid_bodies() const { return nullptr; }
 
   // sable --export-yade: this fix's part of the YADE script, from its parsed
   // members (tools/yade_script.h). A style with no translation refuses at its line.
@@ -84,12 +117,14 @@ class Fix {
   // plan may run them in one pass with other tasks (the force clear, a folded
   // gravity, the rebuild check's scan) or inside the force pass. Each atom sees
   // the operations of the plain plan in the same order: the same bits for any
-  // thread count and any rewrite. A fix writes no threading.
+  // thread count and any rewrite. A fix writes no threading: a sum over its
+  // atoms is core's AtomSum (core/engine/block_sum.h), the same bits for any split.
   unsigned atom_tasks = 0;  // FixHook bits
   // Tasks (of atom_tasks) in two phases: range() runs with phase 0 on every
   // thread's range, then, once all have finished, with phase 1. For work that
   // first gathers over atoms of other ranges (rigid bodies: each body summed and
-  // advanced by one thread, then every member placed from its body). Phase 0 of
+  // advanced by one thread, then every member placed from its body; fix aveforce:
+  // the group's force summed, then every member set from the total). Phase 0 of
   // the second half kick must leave the bodies ready for the first half: the plan
   // may skip its phase 1 (placing the members) when the first half follows.
   unsigned two_phase_tasks = 0;  // FixHook bits
@@ -101,37 +136,12 @@ class Fix {
   virtual void begin(FixHook) {}
   virtual void range(FixHook, const AtomRange&) {}
   virtual void end(FixHook) {}
-  // A POST_FORCE task that only adds m a to every grain (gravity on all) gives
-  // a here: the plan may fold it into the integrator's pass (fold_gravity).
-  virtual bool fold_acceleration(double /*a*/[3]) const { return false; }
-
-  // Rigid bodies: the body of atom i (-1: in none of this fix's bodies) and a
-  // body's summed force (as the last step applied it), for per-body statistics.
-  // Bodies by the deck's numbers (from 0; f_ID row - 1), stable over the run.
-  virtual int body_of(std::size_t /*i*/) const { return -1; }
-  // An integrator of rigid bodies: its group's grains move only as members of its bodies.
-  virtual bool body_integrator() const { return false; }
-  virtual const double* body_force(int /*body*/) const { return nullptr; }
-  // Bodies whose member grains carry the body's mass (fix multisphere): true and
-  // their 1/2 M vcm^2, which thermo ke counts once per body in place of the members'.
-  virtual bool body_kinetic_energy(double& /*ke*/) const { return false; }
-
-  // Grains of this fix's group count as infinitely heavy in contacts (LIGGGHTS fix freeze).
-  virtual bool freezes_group() const { return false; }
-  // A post_force that never puts force or spin out of a 2D plane (may follow enforce2d).
-  virtual bool keeps_plane() const { return false; }
-  // May this fix make a grain turn (integrate or set omega)? If no fix does and
-  // every omega is 0 at setup, contacts skip rotation (Atoms::rotation). Any
-  // integrator is assumed to, unless it says otherwise.
-  virtual bool turns_grains() const { return (hooks & (INITIAL_INTEGRATE | FINAL_INTEGRATE)) != 0; }
-
   // Runs the task declared for hook h (if any) over all atoms: begin, the ranges, end.
   void run_task(FixHook h);
 
-  // Fastest speed this fix imposes (moving walls), for the time-step check.
+  // Fastest speed this fix imposes (moving walls), for the time-step check: a
+  // function, as it may change during a run (a wiggle, a mover's farthest grain).
   virtual double max_speed() const { return 0.0; }
-  // Acceleration this fix imposes on free grains (gravity), for the speed estimate.
-  virtual double acceleration() const { return 0.0; }
 };
 
 }  // namespace sable

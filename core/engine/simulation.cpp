@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/engine/error.h"
+#include "core/engine/rigid_bodies.h"
 #include "core/io/h5_series.h"
 #include "core/input/input.h"
 #include "core/engine/shrink_wrap.h"
@@ -58,6 +59,13 @@ Fix* Simulation::find_fix(const std::string& id) const {
   for (auto& f : fixes)
     if (f->id == id) return f.get();
   return nullptr;
+}
+
+std::pair<const RigidBodies*, int> Simulation::body_of(std::size_t i) const {
+  for (auto& f : fixes)
+    if (const RigidBodies* rb = f->rigid_bodies())
+      if (const int b = rb->body_of(i); b >= 0) return {rb, b};
+  return {nullptr, -1};
 }
 
 Compute* Simulation::find_compute(const std::string& id) const {
@@ -330,7 +338,7 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
   }
   for (auto& f : fixes) {
     vmax = std::max(vmax, f->max_speed());
-    g = std::max(g, f->acceleration());
+    g = std::max(g, f->traits.acceleration_norm());
   }
   double hmax = 0.0;
   for (int k = 0; k < domain.dimension; ++k)
@@ -429,12 +437,13 @@ void Simulation::setup() {
 }
 
 // "Model only what the scene needs": a 2D run's contacts are in the plane; no
-// grain turns when no fix may turn one (Fix::turns_grains) and every spin is 0
+// grain turns when no fix may turn one (FixTraits::turns_grains) and every spin is 0
 // (omega then stays 0, and contacts need neither spin nor torque).
 void Simulation::choose_kinematics() {
   atoms.plane_2d = reduced_kernels && domain.dimension == 2;
   bool turns = !reduced_kernels;
-  for (auto& f : fixes) turns = turns || f->turns_grains();
+  for (auto& f : fixes)
+    turns = turns || f->traits.turns_grains.value_or((f->hooks & (INITIAL_INTEGRATE | FINAL_INTEGRATE)) != 0);
   for (std::size_t k = 0; k < 3 * atoms.n && !turns; ++k) turns = atoms.omega[k] != 0.0;
   atoms.rotation = turns;
 }
@@ -472,16 +481,20 @@ void Simulation::explain_slow_path(const StepPlan& plan) {
   if (!plan.integrator) {
     const bool several = initial > 1 || final > 1;  // as the plan's fuse() refuses
     for (const Fix* f : integrators)
-      if (several || (f->atom_tasks & kBoth) != kBoth)
-        note(f, std::string(several ? "is one of several integrating fixes" : "integrates outside the step plan") +
+      if (several || (f->atom_tasks & kBoth) != kBoth || f->traits.prescribes_motion)
+        note(f, std::string(several                         ? "is one of several integrating fixes"
+                            : f->traits.prescribes_motion ? "prescribes motion by the step's time"
+                                                          : "integrates outside the step plan") +
                     ": the two half steps and the force clear run as separate passes over every grain, and "
                     "the post-force fixes after the force pass (3-4 parallel regions a step instead of 1)");
     return;
   }
   if (pipelined || !pair) return;
   for (const Fix* f : post)
-    if (!(f->atom_tasks & POST_FORCE))
-      note(f, "has a post_force that is not a per-atom task: the force pass, the post-force fixes and the "
+    if (!(f->atom_tasks & POST_FORCE) || (f->two_phase_tasks & POST_FORCE))
+      note(f, std::string(f->atom_tasks & POST_FORCE ? "has a post_force in two phases (every grain's force first)"
+                                                     : "has a post_force that is not a per-atom task") +
+                  ": the force pass, the post-force fixes and the "
               "integrator run as separate passes over every grain (3 parallel regions a step instead of 1)");
 }
 

@@ -107,6 +107,9 @@ class Simulation {
       if (auto* p = dynamic_cast<T*>(f.get())) return p;
     return nullptr;
   }
+  // The rigid body atom i belongs to, over every fix with bodies: its set and its
+  // number there; {nullptr, -1} for a free grain.
+  std::pair<const RigidBodies*, int> body_of(std::size_t i) const;
   void add_fix(std::unique_ptr<Fix> f);
   void remove_fix(const std::string& id);
   void add_compute(std::unique_ptr<Compute> c);

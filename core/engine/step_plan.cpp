@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <deque>
 
 #include "core/engine/simulation.h"
 #include "core/engine/threads.h"
@@ -34,7 +35,11 @@ const char* when_name(When w) {
   return "";
 }
 
-std::string fix_name(const Fix* f) { return "fix " + f->id + " (" + f->style + ")"; }
+// "fix ID (style, role)": the role it plays at hook h (Fix::role).
+std::string fix_name(const Fix* f, FixHook h) {
+  const std::string role = role_name(f->role(h));
+  return "fix " + f->id + " (" + f->style + (role.empty() ? "" : ", " + role) + ")";
+}
 
 bool two_phase(const AtomOp& op) {
   return (op.kind == AtomOp::FirstHalf && (op.fix->two_phase_tasks & INITIAL_INTEGRATE)) ||
@@ -110,8 +115,11 @@ void run_phase(Simulation& sim, const std::vector<AtomOp>& ops, std::size_t a, s
       for (std::size_t x = lo; x < hi; x += kBlock)
         for (std::size_t k = a; k < e; ++k) run_op(sim, ops[k], t, x, std::min(hi, x + kBlock));
     } else if (fix_s && ops[a].kind == AtomOp::PostForce) {
+      // One clock pair for a run of post-force tasks: a clock read costs as much
+      // as a small fix's range, and small decks have many of them.
+      while (e < b && !blockwise(ops[e]) && ops[e].kind == AtomOp::PostForce) ++e;
       const auto t0 = clock::now();
-      run_op(sim, ops[a], t, lo, hi);
+      for (std::size_t k = a; k < e; ++k) run_op(sim, ops[k], t, lo, hi);
       *fix_s += std::chrono::duration<double>(clock::now() - t0).count();
     } else {
       run_op(sim, ops[a], t, lo, hi);
@@ -131,16 +139,39 @@ void run_ops_on_range(Simulation& sim, const std::vector<AtomOp>& ops, int t, st
   run_phase(sim, ops, split, ops.size(), t, lo, hi, fix_seconds);
 }
 
-// Each fix once, with the hook of its last op (a fused integrator: INITIAL_INTEGRATE).
-static std::vector<std::pair<Fix*, FixHook>> fixes_called(const std::vector<AtomOp>& ops) {
-  std::vector<std::pair<Fix*, FixHook>> out;
+// Each fix once, in the order of its first op, with the hook of its last op (a
+// fused integrator: INITIAL_INTEGRATE). Called twice per stage and step, so the
+// answer is kept per op list: found again by the (fix, hook) sequence it was
+// made from (one pass, no allocation), not by the list's address, which a
+// rebuilt plan may reuse.
+using FixCalls = std::vector<std::pair<Fix*, FixHook>>;
+static const FixCalls& fixes_called(const std::vector<AtomOp>& ops) {
+  struct Known {
+    FixCalls seq, calls;  // every op's (fix, hook) that calls a fix; each fix once
+  };
+  thread_local std::deque<Known> known;  // a deque: a fix whose begin() asks again leaves the answer in place
+  for (const Known& k : known) {
+    std::size_t n = 0;
+    bool same = true;
+    for (const AtomOp& op : ops) {
+      if (!calls_fix(op)) continue;
+      same = n < k.seq.size() && k.seq[n].first == op.fix && k.seq[n].second == hook_of(op);
+      if (!same) break;
+      ++n;
+    }
+    if (same && n == k.seq.size()) return k.calls;
+  }
+  if (known.size() >= 32) known.clear();  // plans rebuilt many times: start over
+  Known k;
   for (const AtomOp& op : ops) {
     if (!calls_fix(op)) continue;
-    auto it = std::find_if(out.begin(), out.end(), [&](auto& p) { return p.first == op.fix; });
-    if (it == out.end()) out.emplace_back(op.fix, hook_of(op));
+    k.seq.emplace_back(op.fix, hook_of(op));
+    auto it = std::find_if(k.calls.begin(), k.calls.end(), [&](auto& p) { return p.first == op.fix; });
+    if (it == k.calls.end()) k.calls.emplace_back(op.fix, hook_of(op));
     else it->second = hook_of(op);
   }
-  return out;
+  known.push_back(std::move(k));
+  return known.back().calls;
 }
 
 void begin_ops(const std::vector<AtomOp>& ops) {
@@ -208,8 +239,9 @@ void add_first_half(std::vector<AtomOp>& ops, Fix* f) {
 }
 }  // namespace
 
-// One integrator holding both halves as atom tasks: its first half runs as an atom
-// pass; on quiet steps its second half waits for that pass of the next step (only
+// One integrator holding both halves as atom tasks (not one that prescribes motion
+// by the step's time: its first half cannot run ahead in the last step's pass):
+// its first half runs as an atom pass; on quiet steps its second half waits for that pass of the next step (only
 // the bodies' phase: the first half places the members again), and, when no fix runs
 // between it and the force pass, the pass zeroes the forces too.
 StepPlan fuse(StepPlan p) {
@@ -217,7 +249,7 @@ StepPlan fuse(StepPlan p) {
   if (first.size() != 1 || last.size() != 1 || first[0]->fix != last[0]->fix) return p;
   Fix* f = first[0]->fix;
   constexpr unsigned kBoth = INITIAL_INTEGRATE | FINAL_INTEGRATE;
-  if ((f->atom_tasks & kBoth) != kBoth) return p;
+  if ((f->atom_tasks & kBoth) != kBoth || f->traits.prescribes_motion) return p;
   p.integrator = f;
   p.defers = true;
   last[0]->when = When::Loud;
@@ -252,26 +284,28 @@ StepPlan fuse(StepPlan p) {
 StepPlan fold_gravity(StepPlan p) {
   if (!p.integrator || two_phase_integrator(p)) return p;
   auto post = hook_stages(p, POST_FORCE);
-  double a[3];
-  if (post.empty() || !post.back()->fix->fold_acceleration(a)) return p;
+  if (post.empty()) return p;
+  const Fix* g = post.back()->fix;
+  if (!g->traits.accelerates || g->groupbit != 1u) return p;  // m a on every grain, nothing else
   post.back()->when = When::Loud;
   p.folded = post.back()->fix;
   AtomOp add{AtomOp::AddMassAccel, p.folded};
-  std::copy(a, a + 3, add.accel);
+  std::copy(g->traits.acceleration, g->traits.acceleration + 3, add.accel);
   auto& ops = find_pass(p, Stage::AtomPass, When::AfterQuiet)->ops;
   ops.insert(ops.begin(), add);
   p.rewrites.push_back("fold gravity");
   return p;
 }
 
-// When every post_force fix is an atom task, each thread runs them on its atoms inside
+// When every post_force fix is a single-phase atom task (a two-phase one needs every
+// grain's force before its second phase), each thread runs them on its atoms inside
 // the force pass as soon as their pair forces are final, and on quiet steps the next
 // step's first pass too (single-phase integrators): one parallel region a step.
 StepPlan pipeline(StepPlan p, bool has_pair) {
   if (!p.integrator || !has_pair) return p;
   auto post = hook_stages(p, POST_FORCE);
   for (Stage* s : post)
-    if (!(s->fix->atom_tasks & POST_FORCE)) return p;
+    if (!(s->fix->atom_tasks & POST_FORCE) || (s->fix->two_phase_tasks & POST_FORCE)) return p;
   Stage loud{Stage::ForcePass, When::Loud}, quiet{Stage::ForcePass, When::Quiet};
   for (Stage* s : post) {
     loud.ops.push_back(AtomOp{AtomOp::PostForce, s->fix});
@@ -330,12 +364,12 @@ StepPlan build_plan(const Simulation& sim, unsigned mask) {
 std::string AtomOp::describe() const {
   const std::string ph = phase ? " (phase 2)" : "";
   switch (kind) {
-    case AddMassAccel: return "add m a of " + fix_name(fix);
-    case SecondHalf: return fix_name(fix) + ": second half kick" + ph;
-    case FirstHalf: return fix_name(fix) + ": first half kick and drift" + ph;
-    case BothHalves: return fix_name(fix) + ": second half kick, first half kick and drift (one loop)";
+    case AddMassAccel: return "add m a of " + fix_name(fix, POST_FORCE);
+    case SecondHalf: return fix_name(fix, FINAL_INTEGRATE) + ": second half kick" + ph;
+    case FirstHalf: return fix_name(fix, INITIAL_INTEGRATE) + ": first half kick and drift" + ph;
+    case BothHalves: return fix_name(fix, FINAL_THEN_INITIAL) + ": second half kick, first half kick and drift (one loop)";
     case ClearForces: return "clear forces";
-    case PostForce: return fix_name(fix) + ": post_force";
+    case PostForce: return fix_name(fix, POST_FORCE) + ": post_force";
     case Prescan: return "scan displacements for the rebuild check";
   }
   return "?";
@@ -349,7 +383,7 @@ std::string Stage::describe() const {
     return o;
   };
   switch (kind) {
-    case Hook: return s + hook_name(hook) + ": " + fix_name(fix);
+    case Hook: return s + hook_name(hook) + ": " + fix_name(fix, hook);
     case AtomPass: return s + "atom pass: " + list();
     case Rebuild: return s + "neighbour list check (rebuild when due)";
     case ForcePass: return s + "force pass" + (ops.empty() ? "" : ", then on each range: " + list());

@@ -1,5 +1,6 @@
 // Constructors and shared helpers of the style base classes.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -40,6 +41,33 @@ void Fix::run_task(FixHook h) {
     }
   });
   end(h);
+}
+
+const char* role_name(FixRole r) {
+  switch (r) {
+    case FixRole::None: return "";
+    case FixRole::Integrator: return "integrator";
+    case FixRole::RigidBodies: return "rigid-body integrator";
+    case FixRole::PrescribedMotion: return "prescribed motion";
+    case FixRole::ForceContributor: return "force contributor";
+    case FixRole::Constraint: return "constraint";
+  }
+  return "";
+}
+
+double FixTraits::acceleration_norm() const {
+  const double* a = acceleration;
+  return accelerates ? std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) : 0.0;
+}
+
+FixRole Fix::role(FixHook h) const {
+  if (!((hooks | atom_tasks) & h)) return FixRole::None;
+  if (h & (INITIAL_INTEGRATE | FINAL_INTEGRATE | FINAL_THEN_INITIAL)) {
+    if (rigid_bodies()) return FixRole::RigidBodies;
+    return traits.prescribes_motion ? FixRole::PrescribedMotion : FixRole::Integrator;
+  }
+  if (h == POST_FORCE) return traits.constraint ? FixRole::Constraint : FixRole::ForceContributor;
+  return FixRole::None;
 }
 
 double Region::depth(const double*, int) const { return std::numeric_limits<double>::quiet_NaN(); }
@@ -153,10 +181,16 @@ bool Dump::modify_param(const Args& a, std::size_t& i) {
     if (v == "id") sort_by_id = true;
     else if (v == "off") sort_by_id = false;
     else a.fail(i + 1, "id or off");
-    i += 2;
-    return true;
+  } else if (a[i] == "every") {
+    every = a.integer(i + 1, "the dump period N (v_name is not supported)");
+    if (every <= 0) a.fail(i + 1, "a period > 0");
+  } else if (a[i] == "first") {
+    if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (first yes is not supported)");
+  } else {
+    return false;
   }
-  return false;
+  i += 2;
+  return true;
 }
 
 std::vector<std::size_t> Dump::selected_atoms() const {

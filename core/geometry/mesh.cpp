@@ -313,8 +313,8 @@ void TriMesh::bin() {
 void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out, Scratch& sc) const {
   out.clear();
   int lo[3], hi[3];
+  if (!box_reaches(x, r)) return;
   for (int q = 0; q < 3; ++q) {
-    if (x[q] + r < bbox_lo[q] || x[q] - r > bbox_hi[q]) return;
     lo[q] = std::clamp(static_cast<int>((x[q] - r - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
     hi[q] = std::clamp(static_cast<int>((x[q] + r - bbox_lo[q]) / cell_), 0, nb_[q] - 1);
   }
@@ -329,10 +329,8 @@ void TriMesh::near_closest(const Vec3d& x, double r, std::vector<Near>& out, Scr
           const int t = cell_tri_[q];
           if (seen[t] == sc.stamp) continue;
           seen[t] = sc.stamp;
-          const double* n = &normal[3 * t];
-          if (std::fabs(n[0] * x[0] + n[1] * x[1] + n[2] * x[2] - plane_[t]) >= r) continue;  // its plane is out of reach
-          const Closest cl = closest(t, x);
-          if (cl.dist2 < r * r) out.push_back({t, cl});
+          Closest cl;
+          if (closest_within(t, x, r, cl)) out.push_back({t, cl});
         }
       }
   std::sort(out.begin(), out.end(), [](const Near& a, const Near& b) { return a.tri < b.tri; });

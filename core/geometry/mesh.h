@@ -8,6 +8,7 @@
 // load); the rigid pose x_world = R x_body + T moves it. Searches transform
 // the query point into the body frame, so a moving mesh never re-bins.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -68,6 +69,21 @@ class TriMesh {
     std::uint32_t stamp = 0;
   };
   void near_closest(const Vec3d& x, double r, std::vector<Near>& out, Scratch& seen) const;
+  // The two tests near_closest makes, for callers that keep their own candidate
+  // triangles (fix wall/gran): the same arithmetic, so they find the same contacts.
+  // x within r of the body box on every axis (else no triangle is):
+  bool box_reaches(const Vec3d& x, double r) const {
+    for (int q = 0; q < 3; ++q)
+      if (x[q] + r < bbox_lo[q] || x[q] - r > bbox_hi[q]) return false;
+    return true;
+  }
+  // Triangle t within r of x (strictly), its plane tested first; `out` its closest point.
+  bool closest_within(int t, const Vec3d& x, double r, Closest& out) const {
+    const double* n = &normal[3 * t];
+    if (std::fabs(n[0] * x[0] + n[1] * x[1] + n[2] * x[2] - plane_[t]) >= r) return false;  // its plane is out of reach
+    out = closest(t, x);
+    return out.dist2 < r * r;
+  }
   void near_brute(const Vec3d& x, double r, std::vector<int>& out) const;
   Vec3d bbox_lo{}, bbox_hi{};        // body frame
 

@@ -127,11 +127,7 @@ inline void gather_atom_column(Simulation& sim, const AtomColumn& c, const std::
     case AtomColumn::DIAMETER: each([&](std::size_t i) { return 2.0 * a.radius[i]; }); break;
     case AtomColumn::DENSITY: each([&](std::size_t i) { return a.density[i]; }); break;
     case AtomColumn::MOL: {  // granular atoms have no molecule ID: a grain's rigid body (1, 2, ...; 0: none), as LIGGGHTS' multisphere
-      each([&](std::size_t i) {
-        for (auto& f : sim.fixes)
-          if (const int b = f->body_of(i); b >= 0) return b + 1.0;
-        return 0.0;
-      });
+      each([&](std::size_t i) { return sim.body_of(i).second + 1.0; });
       break;
     }
     case AtomColumn::COMPUTE: {

@@ -85,11 +85,6 @@ class DumpCustom : public Dump {
       append_file_ = a.yes_no(i + 1, "yes or no");
     } else if (k == "flush" || k == "buffer") {
       a.yes_no(i + 1, "yes or no");  // every snapshot is written and flushed in one write() anyway
-    } else if (k == "every") {
-      every = a.integer(i + 1, "the dump period N (v_name is not supported)");
-      if (every <= 0) a.fail(i + 1, "a period > 0");
-    } else if (k == "first") {
-      if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (first yes is not supported)");
     } else {
       return false;
     }
@@ -121,15 +116,7 @@ class DumpCustom : public Dump {
     std::string out;
     out.reserve(200 + n * nc * 14);
     char buf[256];
-    const Domain& d = sim.domain;
-    // Domain keeps only periodic flags, so LIGGGHTS' m/s letters print as f.
-    std::snprintf(buf, sizeof buf, "ITEM: TIMESTEP\n%ld\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS %s %s %s\n", step,
-                  n, d.periodic[0] ? "pp" : "ff", d.periodic[1] ? "pp" : "ff", d.periodic[2] ? "pp" : "ff");
-    out += buf;
-    for (int k = 0; k < 3; ++k) {
-      std::snprintf(buf, sizeof buf, "%g %g\n", d.lo[k], d.hi[k]);
-      out += buf;
-    }
+    append_snapshot_head(out, sim.domain, step, "NUMBER OF ATOMS", n);
     out += "ITEM: ATOMS " + header_ + "\n";
     for (std::size_t r : order) {
       for (std::size_t c = 0; c < nc; ++c) {

@@ -87,11 +87,6 @@ class DumpCustomVTK : public Dump {
       if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (sable writes ASCII VTK only)");
     } else if (k == "compressor") {
       if (a.word(i + 1, "none") != "none") a.fail(i + 1, "'none' (sable writes ASCII VTK only)");
-    } else if (k == "every") {
-      every = a.integer(i + 1, "the dump period N (v_name is not supported)");
-      if (every <= 0) a.fail(i + 1, "a period > 0");
-    } else if (k == "first") {
-      if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (first yes is not supported)");
     } else {
       return false;
     }

@@ -1,16 +1,33 @@
 #pragma once
 // The file of a text dump: each snapshot goes out in one write(), so a kill
 // never cuts an earlier one; single-file dumps keep it open between snapshots.
+// And the head of a LAMMPS text snapshot (dump custom, dump local).
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
+#include "core/engine/domain.h"
 #include "core/engine/error.h"
 
 namespace sable {
+
+// ITEM: TIMESTEP, ITEM: <count_item> ("NUMBER OF ATOMS", "NUMBER OF ENTRIES") and
+// ITEM: BOX BOUNDS with the box; the ITEM line of the rows is the caller's.
+inline void append_snapshot_head(std::string& out, const Domain& d, long step, const char* count_item, std::size_t n) {
+  char buf[256];
+  // Domain keeps only periodic flags, so LIGGGHTS' m/s letters print as f.
+  std::snprintf(buf, sizeof buf, "ITEM: TIMESTEP\n%ld\nITEM: %s\n%zu\nITEM: BOX BOUNDS %s %s %s\n", step, count_item, n,
+                d.periodic[0] ? "pp" : "ff", d.periodic[1] ? "pp" : "ff", d.periodic[2] ? "pp" : "ff");
+  out += buf;
+  for (int k = 0; k < 3; ++k) {
+    std::snprintf(buf, sizeof buf, "%g %g\n", d.lo[k], d.hi[k]);
+    out += buf;
+  }
+}
 
 class DumpFile {
  public:

@@ -49,7 +49,7 @@ class DumpLocal : public Dump {
   // c_ID[k] values: one e/f/g conversion, e.g. %.17g for full precision).
   bool modify_param(const Args& a, std::size_t& i) override {
     if (a[i] == "sort") a.fail(i, "a dump_modify keyword dump local supports (format); LAMMPS cannot sort it by id either");
-    if (a[i] != "format") return false;
+    if (a[i] != "format") return Dump::modify_param(a, i);
     const std::string& w = a.word(i + 1, "float, a column number or none");
     if (w == "none") {
       for (Column& c : cols_) c.format.clear();
@@ -78,14 +78,7 @@ class DumpLocal : public Dump {
     std::string out;
     out.reserve(256 + n * cols_.size() * 14);
     char buf[256];
-    const Domain& d = sim.domain;
-    std::snprintf(buf, sizeof buf, "ITEM: TIMESTEP\n%ld\nITEM: NUMBER OF ENTRIES\n%zu\nITEM: BOX BOUNDS %s %s %s\n", step,
-                  n, d.periodic[0] ? "pp" : "ff", d.periodic[1] ? "pp" : "ff", d.periodic[2] ? "pp" : "ff");
-    out += buf;
-    for (int k = 0; k < 3; ++k) {
-      std::snprintf(buf, sizeof buf, "%g %g\n", d.lo[k], d.hi[k]);
-      out += buf;
-    }
+    append_snapshot_head(out, sim.domain, step, "NUMBER OF ENTRIES", n);
     out += "ITEM: ENTRIES " + header_ + "\n";
     for (std::size_t r = 0; r < n; ++r) {
       for (const Column& c : cols_) {

@@ -5,6 +5,7 @@
 #include <ctime>
 
 #include "core/engine/error.h"
+#include "core/engine/rigid_bodies.h"
 #include "core/input/number_format.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
@@ -43,16 +44,17 @@ Thermo::Thermo(Simulation& sim) : sim_(sim) {}
 double Thermo::kinetic_energy() const {
   const Atoms& a = sim_.atoms;
   double ke = 0.0;
-  std::vector<const Fix*> owners;
+  std::vector<const RigidBodies*> owners;
   for (const auto& f : sim_.fixes) {
     double k;
-    if (f->body_kinetic_energy(k)) {
+    if (const RigidBodies* rb = f->rigid_bodies(); rb && rb->body_kinetic_energy(k)) {
       ke += k;
-      owners.push_back(f.get());
+      owners.push_back(rb);
     }
   }
   for (std::size_t i = 0; i < a.n; ++i) {
-    if (std::any_of(owners.begin(), owners.end(), [i](const Fix* f) { return f->body_of(i) >= 0; })) continue;
+    if (std::any_of(owners.begin(), owners.end(), [i](const RigidBodies* rb) { return rb->body_of(i) >= 0; }))
+      continue;
     const double* v = &a.v[3 * i];
     ke += 0.5 * a.rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }

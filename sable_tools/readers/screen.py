@@ -58,6 +58,18 @@ def key_lines(text, key):
     return [dict(w.split('=', 1) for w in rest.split() if '=' in w) for rest in tagged(text, key)]
 
 
+def merged_keys(text, key):
+    """The k=v words of all lines that start with KEY, merged into one dict of strings (a deck's
+    RESULT lines); a key printed twice with different values raises ValueError."""
+    out = {}
+    for kv in key_lines(text, key):
+        for k, v in kv.items():
+            if out.get(k, v) != v:
+                raise ValueError("%s key '%s' printed twice with different values (%s, %s)" % (key, k, out[k], v))
+            out[k] = v
+    return out
+
+
 def numeric_keys(text, key):
     """The k=v words of all lines that start with KEY whose values are numbers, as floats (a key
     given twice: the last line's value), e.g. the RESULT lines of a deck."""

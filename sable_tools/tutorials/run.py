@@ -2,7 +2,7 @@
 """Run LIGGGHTS-PUBLIC's tutorial decks unchanged in sable and LIGGGHTS, over seeds.
 
     /usr/bin/python3 -m sable_tools.tutorials.run [--out DIR] [--only NAME ...]
-        [--codes sable,liggghts] [--seeds N] [-j N] [--timeout S] [--sable PATH] [--list]
+        [--codes sable,liggghts] [--seeds N] [-j N] [--timeout S] [--sable PATH] [--speed] [--list]
 
 Each tutorial (Debian liggghts-doc: TUTORIALS below) is copied with its data
 folder into OUT/<name>/<code>_s<seed>/ and run there as written, except for:
@@ -26,7 +26,9 @@ SE = sqrt(sd_s^2/n_s + sd_l^2/n_l), and pass when |difference| <= K SE (K 2:
 with K 1 two codes with the same physics would fail about a third of the
 time) or both codes give the same value to 1e-9 (deterministic counts).
 Writes OUT/tutorials.md and OUT/tutorials.json. Runs whose result.json exists
-are reused: a cut campaign resumes.
+are reused: a cut campaign resumes. Each run records its CPU time (cpu_s: user +
+system of the code's processes alone, os.wait4); --speed also writes OUT/speed.md,
+the CPU time per code and their ratio (a speed table: run it with --threads 1).
 """
 import argparse, concurrent.futures, json, math, os, re, shutil, sys, time
 
@@ -210,10 +212,17 @@ def run_one(name, code, seed, args):
     rec = {'tutorial': name, 'code': code, 'seed': seed, 'ok': True, 'error': None, 'wall_s': 0.0}
     text = ''
     env = {**os.environ, 'OMP_NUM_THREADS': str(args.threads)}
-    for deck in decks:
-        t0 = time.time()
-        out, rc = runner.execute(runner.code_command(code, args.sable) + ['-in', deck], run, args.timeout, env)
-        rec['wall_s'] += time.time() - t0
+    rec['cpu_s'] = 0.0
+    for k, deck in enumerate(decks):
+        # os.wait4 (runner.measured): the process's own CPU time, whatever else runs beside it.
+        try:
+            m = runner.measured(runner.code_command(code, args.sable) + ['-in', deck], run,
+                                os.path.join(run, f'screen{k}.txt'), env, args.timeout)
+            out, rc = m.text + ('\n(timed out)' if m.timed_out else ''), m.rc
+            rec['wall_s'] += m.wall
+            rec['cpu_s'] += m.cpu
+        except OSError as e:
+            out, rc = str(e), -1
         text += out
         if rc != 0 or 'ERROR' in out:
             rec['ok'] = False
@@ -271,6 +280,31 @@ def table(results, codes, k):
     return lines, summary
 
 
+def speed_table(results, codes):
+    """Markdown: per tutorial the whole process's CPU time per code (mean over its seeds,
+    one core: OMP_NUM_THREADS=1) and the ratio of the second code's to the first's."""
+    a, b = codes[:2]
+    rows = ['| tutorial | seeds | %s CPU s | %s CPU s | %s / %s |' % (a, b, b, a), '|---|---|---|---|---|']
+    ratios = []
+    for name in TUTORIALS:
+        t = {}
+        for c in (a, b):
+            recs = [r for r in results if r['tutorial'] == name and r['code'] == c and r['ok'] and 'cpu_s' in r]
+            t[c] = (np.mean([r['cpu_s'] for r in recs]), len(recs)) if recs else None
+        if not t[a] and not t[b]:
+            continue
+        cell = lambda c: f'{t[c][0]:.2f}' if t[c] else 'n/a'
+        ratio = t[b][0] / t[a][0] if t[a] and t[b] and t[a][0] > 0 else None
+        if ratio:
+            ratios.append(ratio)
+        n = min(x[1] for x in t.values() if x)
+        rows.append(f'| {name} | {n} | {cell(a)} | {cell(b)} | ' + (f'{ratio:.2f}' if ratio else 'n/a') + ' |')
+    if ratios:
+        rows += ['', f'median {b} / {a}: {float(np.median(ratios)):.2f} over {len(ratios)} tutorials '
+                 f'(min {min(ratios):.2f}, max {max(ratios):.2f})']
+    return rows
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('--out', default=os.path.join(REPO, 'build-tutorials'))
@@ -283,6 +317,8 @@ def main():
     p.add_argument('--sigma', type=float, default=2.0, help='K in |difference| <= K SE')
     p.add_argument('--sable', default=runner.built('sable'))
     p.add_argument('--list', action='store_true', help='list the tutorials and stop')
+    p.add_argument('--speed', action='store_true',
+                   help='also write OUT/speed.md: CPU time per code and their ratio (run with --threads 1)')
     args = p.parse_args()
     if args.list:
         for n, (f, d) in TUTORIALS.items():
@@ -305,6 +341,14 @@ def main():
     open(os.path.join(args.out, 'tutorials.md'), 'w').write('\n'.join(head + lines) + '\n')
     json.dump({'summary': summary, 'runs': results}, open(os.path.join(args.out, 'tutorials.json'), 'w'),
               indent=1, allow_nan=True)
+    if args.speed and len(codes) >= 2:
+        load = os.getloadavg()
+        speed = [f'# Tutorials: CPU time of the whole process, {codes[1]} / {codes[0]}', '',
+                 f'{time.strftime("%Y-%m-%d %H:%M")}, {runner.code_command(codes[0], args.sable)[0]}, '
+                 f'OMP_NUM_THREADS={args.threads}, load average at the end {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}', '']
+        speed += speed_table(results, codes)
+        open(os.path.join(args.out, 'speed.md'), 'w').write('\n'.join(speed) + '\n')
+        print('\n'.join(speed))
     print('\n'.join(head).strip())
     print(f'table: {os.path.join(args.out, "tutorials.md")}')
     return 0 if len(agree) == len(both) else 1

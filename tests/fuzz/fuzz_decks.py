@@ -40,6 +40,8 @@ import sys
 import tempfile
 import time
 
+from sable_tools.readers.screen import loop_times  # PYTHONPATH: the repository (tests/CMakeLists.txt)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SEED_GLOBS = ["tests/decks/*.in", "input_scripts/compare/*.in"]
 LOCATED = re.compile(r"[\w./-]+:\d+[:)]")  # FILE:LINE: ... or (during 'run N' at FILE:LINE)
@@ -233,11 +235,11 @@ def cpu_seconds(pid):
 
 
 def finished_runs(log):
-    """The `run`s a killed mutant finished (its log's 'Loop time of' lines; one
-    the log's buffer still held may be missing)."""
+    """The `run`s a killed mutant finished (its log's timing blocks; one the log's buffer still
+    held may be missing)."""
     try:
         with open(log, errors="replace") as f:
-            return sum(1 for line in f if line.startswith("Loop time of"))
+            return len(loop_times(f.read()))
     except OSError:
         return 0
 

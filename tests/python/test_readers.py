@@ -382,3 +382,16 @@ def test_error_lines():
                                         "RuntimeError: compute sl: hi is not above lo",
                                         "ERROR on proc 0: Cannot open file x (../input.cpp:12)"]
     assert screen.error_lines("all fine\n") == []
+
+
+def test_merged_keys_and_a_conflict():
+    text = "RESULT a=1 b=x\nnoise RESULT c=3\nRESULT a=1 c=2.5\nRESULTS d=4\n"
+    assert screen.merged_keys(text, "RESULT") == {"a": "1", "b": "x", "c": "2.5"}
+    with pytest.raises(ValueError, match="'a' printed twice"):
+        screen.merged_keys("RESULT a=1\nRESULT a=2\n", "RESULT")
+
+
+def test_loop_times_of_both_codes():
+    text = ("Loop time of 0.25 s on 1 process for 10 steps with 2 atoms: 80 particle-steps/s, 1 neighbor builds\n"
+            "Loop time of 1.5 on 1 procs for 100 steps with 2 atoms\nLoop time of ? s\n")
+    assert screen.loop_times(text) == [0.25, 1.5]

@@ -223,4 +223,18 @@ TEST(DumpLocal, FormatFloatGivesFullPrecision) {
   EXPECT_NE(error_of(d, "dump_modify dl sort id").find("'sort'"), std::string::npos);
 }
 
+// dump_modify every N (LAMMPS: any dump) sets dump local's period: run 6 with every 3
+// writes the snapshots of steps 0, 3 and 6; a period of 0 names its word.
+TEST(DumpLocal, ModifyEverySetsThePeriod) {
+  TempDir tmp;
+  Deck d;
+  setup(d);
+  d("compute sl all wall/gran/slices right 10 dim y lo 0 hi 0.01");
+  d("dump dl all local 1 " + (tmp / "rows.txt") + " index c_sl[1]");
+  d("dump_modify dl every 3 first no");
+  d("run 6");
+  EXPECT_EQ(parse(tmp / "rows.txt").size(), 3u);
+  EXPECT_NE(error_of(d, "dump_modify dl every 0").find("'0'"), std::string::npos);
+}
+
 }  // namespace test_dump_local

@@ -23,6 +23,7 @@
 #include "core/engine/threads.h"
 #include "core/geometry/mesh.h"
 #include "core/input/style_registry.h"
+#include "fixes/fix_wall_gran_mesh.h"
 #include "tests/unit/deck_runner.h"
 
 // A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
@@ -592,6 +593,90 @@ run 4000)";
   ASSERT_EQ(one.size(), two.size());
   EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(double)));
   EXPECT_LT(one[one.size() - 4], 0.0);  // the grains press on the drum: f_drum[3] < 0
+}
+
+// The mesh's candidate triangles are found at neighbour builds and refreshed
+// when the mesh has moved half a skin. A plate rising at 2 m/s (one skin per
+// 250 steps) onto a grain that never moves (no integrator: no rebuild after
+// set-up) touches it at exactly the step where it reaches the grain.
+TEST(MeshWall, MovingMeshFasterThanTheSkinIsStillCaught) {
+  Deck d;
+  d(head());
+  d("fix plate all mesh/surface file " + stl("rise.stl", floor2(0.005)) + " type 1");
+  d("create_atoms 1 single 0.001 0.0005 0.004 units box\n"
+    "fix lift all move/mesh mesh plate linear 0 0 2\n"
+    "fix w all wall/gran model hertz tangential history mesh n_meshes 1 meshes plate");
+  grains(d);
+  long builds = -1, touching = 0;
+  g_probe = [&](sable::Simulation& s) {
+    if (builds < 0) builds = s.neighbor.builds;
+    const double overlap = dynamic_cast<sable::MeshHolder*>(s.find_fix("plate"))->mesh().T[2] - 0.003;
+    const double fz = s.find_fix("w")->compute_vector(3);
+    if (overlap > 1e-12) {
+      EXPECT_LT(fz, 0.0) << "overlap " << overlap;
+    } else if (overlap < -1e-12) {
+      EXPECT_EQ(fz, 0.0) << "overlap " << overlap;
+    }
+    touching += fz != 0.0;
+  };
+  d("fix p all test/probe_mesh\nrun 1700");
+  g_probe = nullptr;
+  EXPECT_EQ(builds, d->neighbor.builds);  // the grain's list was never rebuilt
+  EXPECT_GE(touching, 199);
+  EXPECT_LE(touching, 201);
+}
+
+// Every step the contacts found among the candidates are those of a brute-force
+// search over all triangles: grains thrown into a drum turning 40 times faster
+// than in DrumIsBitIdenticalOnOneAndTwoThreads (the mesh refreshes its lists
+// every ~60 steps), checked every 5 steps. A grain is in contact iff some
+// triangle lies within its radius (brute force), and each contact's triangle does.
+TEST(MeshWall, CandidatesFindWhatABruteForceSearchFinds) {
+  Deck d;
+  d(head("f f f", "-0.035 0.035 -0.015 0.015 -0.035 0.035") + "fix drum all mesh/surface/stress file " +
+    SABLE_SOURCE_DIR + "/tests/decks/mesh_drum.stl" +
+    R"( type 1 curvature 1
+fix turn all move/mesh mesh drum rotate origin 0 0 0 axis 0 1 0 period 0.05
+fix walls all wall/gran model hertz tangential history mesh n_meshes 1 meshes drum
+group grains initialize
+region ins block -0.006 0.006 -0.008 0.008 -0.028 -0.018 units box
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.0012
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins grains insert/pack seed 32452867 distributiontemplate pdd insert_every once overlapcheck yes all_in yes vel constant 0 0 -1 particles_in_region 80 region ins
+fix grav all gravity 9.81 vector 0 0 -1
+fix integr all nve/sphere)");
+  auto* walls = dynamic_cast<sable::FixWallGranMesh*>(d->find_fix("walls"));
+  ASSERT_NE(walls, nullptr);
+  long checks = 0, contacts = 0;
+  g_probe = [&](sable::Simulation& s) {
+    if (s.step % 5) return;
+    const sable::TriMesh& mesh = dynamic_cast<sable::MeshHolder*>(s.find_fix("drum"))->mesh();
+    sable::ContactRecords recs;
+    walls->records(~0u, recs);
+    std::vector<char> found(s.atoms.n, 0);
+    for (const sable::ContactRecord& r : recs.rows) {
+      found[r.i] = 1;
+      const double* x = &s.atoms.x[3 * r.i];
+      const double rad = s.atoms.radius[r.i];
+      EXPECT_LT(mesh.closest(walls->triangle(r.shift), mesh.to_body({x[0], x[1], x[2]})).dist2, rad * rad);
+    }
+    for (std::size_t i = 0; i < s.atoms.n; ++i) {
+      const double* x = &s.atoms.x[3 * i];
+      const sable::Vec3d xb = mesh.to_body({x[0], x[1], x[2]});
+      bool touch = false;
+      for (std::size_t t = 0; t < mesh.ntri() && !touch; ++t) {
+        const double d2 = mesh.closest(static_cast<int>(t), xb).dist2;
+        touch = d2 < s.atoms.radius[i] * s.atoms.radius[i] && d2 > 0;
+      }
+      EXPECT_EQ(touch, found[i] != 0) << "grain " << s.atoms.id[i] << " step " << s.step;
+      contacts += touch;
+    }
+    ++checks;
+  };
+  d("fix p all test/probe_mesh\nrun 4000");
+  g_probe = nullptr;
+  EXPECT_EQ(checks, 800);
+  EXPECT_GT(contacts, 1000);  // the grains reached the drum
 }
 
 }  // namespace test_mesh_walls

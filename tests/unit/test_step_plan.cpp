@@ -124,7 +124,7 @@ TEST(StepPlan, EachRewriteGivesTheBitsOfThePlainPlan) {
   const std::string steps = "run 1200\n";
   const Result plain = run(kFree, steps, 0);
   const Result fused = run(kFree, steps, kFuse);
-  EXPECT_NE(fused.plan.find("[after a quiet step] atom pass: fix integr (nve/sphere): second half kick, first half "
+  EXPECT_NE(fused.plan.find("[after a quiet step] atom pass: fix integr (nve/sphere, integrator): second half kick, first half "
                             "kick and drift (one loop); clear forces"),
             std::string::npos)
       << fused.plan;
@@ -136,8 +136,9 @@ TEST(StepPlan, EachRewriteGivesTheBitsOfThePlainPlan) {
   EXPECT_EQ(folded.folded, 1197);
   EXPECT_TRUE(folded.same_bits(plain)) << "fuse + fold";
   const Result piped = run(kFree, steps, kFuse | kPipeline);
-  EXPECT_NE(piped.plan.find("[quiet steps] force pass, then on each range: fix floor (wall/gran): post_force; fix grav "
-                            "(gravity): post_force; fix integr (nve/sphere): second half kick, first"),
+  EXPECT_NE(piped.plan.find("[quiet steps] force pass, then on each range: fix floor (wall/gran, force contributor): "
+                            "post_force; fix grav (gravity, force contributor): post_force; fix integr (nve/sphere, "
+                            "integrator): second half kick, first"),
             std::string::npos)
       << piped.plan;
   EXPECT_TRUE(piped.same_bits(plain)) << "fuse + pipeline";
@@ -159,8 +160,9 @@ TEST(StepPlan, RigidBodiesFusedInTwoPhasesWithTheBitsOfThePlainPlan) {
   const Result plain = run(clumps(), steps, 0);
   const Result fused = run(clumps(), steps, kFuse);
   const Result all = run(clumps(), steps, kAllRewrites);
-  EXPECT_NE(all.plan.find("second half kick; fix rb (rigid/small): first half kick and drift; fix rb (rigid/small): "
-                          "first half kick and drift (phase 2); clear forces; scan displacements"),
+  EXPECT_NE(all.plan.find("second half kick; fix rb (rigid/small, rigid-body integrator): first half kick and drift; fix rb "
+                          "(rigid/small, rigid-body integrator): first half kick and drift (phase 2); clear forces; scan "
+                          "displacements"),
             std::string::npos)
       << all.plan;
   EXPECT_EQ(all.plan.find("add m a"), std::string::npos) << all.plan;
