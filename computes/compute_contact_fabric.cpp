@@ -56,20 +56,20 @@ namespace sable {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiFabric = std::numbers::pi;
 
 // atan2(lx, ly) folded by pi into [-pi/2, pi/2).
 double fold_phi(double lx, double ly) {
   double phi = std::atan2(lx, ly);
-  if (phi >= kPi / 2) phi -= kPi;
-  if (phi < -kPi / 2) phi += kPi;
+  if (phi >= kPiFabric / 2) phi -= kPiFabric;
+  if (phi < -kPiFabric / 2) phi += kPiFabric;
   return phi;
 }
 
 // The bin of phi among n centred on -pi/2 + k pi/n (periodic).
 int phi_bin(double phi, int n) {
   if (!std::isfinite(phi)) return 0;  // coincident centres: no direction (the force is not finite either)
-  const long k = std::lround(std::floor((phi + kPi / 2) / (kPi / n) + 0.5));
+  const long k = std::lround(std::floor((phi + kPiFabric / 2) / (kPiFabric / n) + 0.5));
   return static_cast<int>(((k % n) + n) % n);
 }
 

@@ -39,7 +39,7 @@ namespace sable {
 
 namespace {
 
-int axis_of(const std::string& w) { return w == "x" ? 0 : w == "y" ? 1 : w == "z" ? 2 : -1; }
+int slice_axis_of(const std::string& w) { return w == "x" ? 0 : w == "y" ? 1 : w == "z" ? 2 : -1; }
 
 }  // namespace
 
@@ -53,7 +53,7 @@ class ComputeWallGranSlices : public Compute {
     if (n < 1 || n > 100000) a.fail(5, "a number of slices in 1..100000");
     vector_size = static_cast<int>(n);
     expect(a, 6, "dim");
-    dim_ = axis_of(a.word(7, "x, y or z"));
+    dim_ = slice_axis_of(a.word(7, "x, y or z"));
     if (dim_ < 0) a.fail(7, "x, y or z");
     expect(a, 8, "lo");
     lo_ = BoundArg::parse(s, a, 9, "a lower bound (a number or v_name)");

@@ -164,7 +164,7 @@ std::unique_ptr<ContactKernel> make_kernel(const ModelSelection& sel, const Args
 }  // namespace sable
 
 #define SABLE_GRAN_MODEL(N, T, R)                                                       \
-  static const bool SABLE_CAT(sable_gran_model_, __LINE__) =                            \
+  static const bool SABLE_CAT(sable_gran_model_, __COUNTER__) =                            \
       ::sable::register_gran_model<N, ::sable::DampingLiggghts, T, R, ::sable::CohesionOff>()
 #define SABLE_GRAN_NORMAL(N) \
-  static const bool SABLE_CAT(sable_gran_normal_, __LINE__) = ::sable::register_normal<N>(::sable::builtin::Dampings{})
+  static const bool SABLE_CAT(sable_gran_normal_, __COUNTER__) = ::sable::register_normal<N>(::sable::builtin::Dampings{})

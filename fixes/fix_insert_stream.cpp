@@ -48,7 +48,7 @@ constexpr double kTiny = 1e-14;  // LIGGGHTS: round-off guard in step counts
 constexpr int kStride = 8;
 const char* const kColumn = "release_fix_insert_stream";  // LIGGGHTS' name; one for all such fixes
 
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot_v(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 class FixInsertStream : public FixInsertRated {
  public:
@@ -176,23 +176,23 @@ void FixInsertStream::face_geometry() {
     const Vec3d e1{c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
     const Vec3d e2{c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]};
     const Vec3d cr{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    total += 0.5 * std::sqrt(dot(cr, cr));
+    total += 0.5 * std::sqrt(dot_v(cr, cr));
     cum_area_.push_back(total);
-    size = std::max({size, std::sqrt(dot(e1, e1)), std::sqrt(dot(e2, e2))});
+    size = std::max({size, std::sqrt(dot_v(e1, e1)), std::sqrt(dot_v(e2, e2))});
   }
   n_ = m.dir_to_world({m.normal[0], m.normal[1], m.normal[2]});
   pref_ = corners_[0];
   // Planar: every corner on the first triangle's plane (to 1e-6 of the face's size).
   for (const Vec3d& c : corners_) {
     const Vec3d d{c[0] - pref_[0], c[1] - pref_[1], c[2] - pref_[2]};
-    if (std::fabs(dot(d, n_)) > 1e-6 * size)
+    if (std::fabs(dot_v(d, n_)) > 1e-6 * size)
       args.fail_line("the insertion face '" + face_id_ + "' is not planar (LIGGGHTS needs a planar face)");
   }
   const Vec3d v{v_[0], v_[1], v_[2]};
-  if (std::sqrt(dot(v, v)) < 1e-5) args.fail_line("the insertion velocity (vel) is zero: insert/stream needs one");
-  if (dot(v, n_) < 0)
+  if (std::sqrt(dot_v(v, v)) < 1e-5) args.fail_line("the insertion velocity (vel) is zero: insert/stream needs one");
+  if (dot_v(v, n_) < 0)
     for (double& c : n_) c = -c;
-  speed_n_ = dot(v, n_);
+  speed_n_ = dot_v(v, n_);
   if (speed_n_ < 1e-3)
     args.fail_line("the insertion velocity projected on the face normal is below 1e-3 (LIGGGHTS' bound): "
                    "vel must cross face '" + face_id_ + "'");
@@ -249,7 +249,7 @@ void FixInsertStream::inserted(std::size_t first) {
   auto& c = at.column(col_);
   for (std::size_t i = first; i < at.n; ++i) {
     const Vec3d x{at.x[3 * i], at.x[3 * i + 1], at.x[3 * i + 2]};
-    const double d = dot({pref_[0] - x[0], pref_[1] - x[1], pref_[2] - x[2]}, n_);
+    const double d = dot_v({pref_[0] - x[0], pref_[1] - x[1], pref_[2] - x[2]}, n_);
     const long release = sim.step + static_cast<long>((d + kTiny) / (speed_n_ * sim.dt));
     double* rec = &c[kStride * i];
     for (int k = 0; k < 3; ++k) rec[k] = x[k], rec[5 + k] = vn_[k];

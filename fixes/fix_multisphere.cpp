@@ -9,7 +9,11 @@
 
 namespace sable {
 
-using namespace rigid;
+// declarations, not `using namespace rigid`: in a unity batch a directive would reach the next files
+using rigid::Body;
+using rigid::BodySet;
+using rigid::Q4;
+using rigid::V3;
 
 namespace {
 
@@ -25,9 +29,9 @@ constexpr double kExclusionBase = 0x1.0p44;
 
 std::vector<V3> clump_offsets(const ClumpShape& shape, const Q4& q_ins, Q4& q_body) {
   q_body = product(q_ins, shape.q);
-  normalize(q_body);
+  rigid::normalize(q_body);
   V3 ex, ey, ez;
-  axes(q_body, ex, ey, ez);
+  rigid::axes(q_body, ex, ey, ez);
   std::vector<V3> d;
   for (const auto& o : shape.displace)
     d.push_back({o[0] * ex[0] + o[1] * ey[0] + o[2] * ez[0], o[0] * ex[1] + o[1] * ey[1] + o[2] * ez[1],
@@ -90,7 +94,7 @@ void FixMultisphere::sum_forces() {
       if (k < 0 || !(at.mask[i] & f->groupbit)) continue;
       Body& b = set_.bodies[k];
       const V3 mg{at.rmass[i] * g[0], at.rmass[i] * g[1], at.rmass[i] * g[2]};
-      const V3 t = cross(V3{c[BodySet::kStride * i + 4], c[BodySet::kStride * i + 5], c[BodySet::kStride * i + 6]}, mg);
+      const V3 t = rigid::cross(V3{c[BodySet::kStride * i + 4], c[BodySet::kStride * i + 5], c[BodySet::kStride * i + 6]}, mg);
       for (int e = 0; e < 3; ++e) b.force[e] -= mg[e], b.torque[e] -= t[e];
     }
     for (Body& b : set_.bodies)
@@ -114,10 +118,10 @@ void FixMultisphere::add_body(const ClumpShape& shape, const double xcm[3], cons
     b.omega[k] = w[k];
   }
   const std::vector<V3> d = clump_offsets(shape, q_ins, b.q);
-  axes(b.q, b.ex, b.ey, b.ez);
+  rigid::axes(b.q, b.ex, b.ey, b.ez);
   const V3 wv{w[0], w[1], w[2]};
-  const double l[3] = {shape.moments[0] * dot(wv, b.ex), shape.moments[1] * dot(wv, b.ey),
-                       shape.moments[2] * dot(wv, b.ez)};
+  const double l[3] = {shape.moments[0] * rigid::dot(wv, b.ex), shape.moments[1] * rigid::dot(wv, b.ey),
+                       shape.moments[2] * rigid::dot(wv, b.ez)};
   for (int e = 0; e < 3; ++e) b.angmom[e] = l[0] * b.ex[e] + l[1] * b.ey[e] + l[2] * b.ez[e];
   b.fflag = shape.fflag;
   b.tflag = shape.tflag;
@@ -157,7 +161,7 @@ double FixMultisphere::kinetic_energy() const { return set_.translational_energy
 double FixMultisphere::rotational_energy() const {
   double e = 0;
   for (const Body& b : set_.bodies) {
-    const double w[3] = {dot(b.omega, b.ex), dot(b.omega, b.ey), dot(b.omega, b.ez)};
+    const double w[3] = {rigid::dot(b.omega, b.ex), rigid::dot(b.omega, b.ey), rigid::dot(b.omega, b.ez)};
     for (int k = 0; k < 3; ++k) e += b.moments[k] * w[k] * w[k];
   }
   return 0.5 * e;

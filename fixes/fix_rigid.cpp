@@ -32,7 +32,11 @@
 
 namespace sable {
 
-using namespace rigid;
+// declarations, not `using namespace rigid`: in a unity batch a directive would reach the next files
+using rigid::Body;
+using rigid::BodySet;
+using rigid::Q4;
+using rigid::V3;
 
 class FixRigid : public Fix {
  public:
@@ -323,14 +327,14 @@ class FixRigid : public Fix {
       inertia[k] += (at.inertia(i) + m * e.squaredNorm()) * Eigen::Matrix3d::Identity() - m * e * e.transpose();
     }
     for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (which[b]) principal_axes(bodies_[b], inertia[b]);
+      if (which[b]) rigid::principal_axes(bodies_[b], inertia[b]);
     for (std::size_t i = 0; i < at.n; ++i) {
       const int k = body_of_atom(i);
       if (k < 0) continue;
       const Body& b = bodies_[k];
       const V3 d = offset(i, b);
       double* o = &c[kStride * i];
-      o[1] = dot(d, b.ex), o[2] = dot(d, b.ey), o[3] = dot(d, b.ez);
+      o[1] = rigid::dot(d, b.ex), o[2] = rigid::dot(d, b.ey), o[3] = rigid::dot(d, b.ez);
       o[4] = d[0], o[5] = d[1], o[6] = d[2];
     }
   }
@@ -353,7 +357,7 @@ class FixRigid : public Fix {
       const double m = at.rmass[i];
       const V3 v{at.v[3 * i], at.v[3 * i + 1], at.v[3 * i + 2]};
       const V3 d{c[kStride * i + 4], c[kStride * i + 5], c[kStride * i + 6]};
-      const V3 l = cross(d, v);
+      const V3 l = rigid::cross(d, v);
       for (int e = 0; e < 3; ++e) {
         b.vcm[e] += m * v[e];
         b.angmom[e] += m * l[e] + at.inertia(i) * at.omega[3 * i + e];
@@ -361,7 +365,7 @@ class FixRigid : public Fix {
     }
     for (Body& b : bodies_) {
       for (double& v : b.vcm) v /= b.mass;
-      b.omega = omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
+      b.omega = rigid::omega_of(b.angmom, b.ex, b.ey, b.ez, b.inv_moments);
     }
   }
 

@@ -22,9 +22,6 @@
 namespace sable {
 namespace {
 
-std::string num(double v) { return yade_num(v); }
-std::string quoted(const std::string& s) { return yade_quoted(s); }
-
 std::string first_word(const std::string& line) {
   std::istringstream ss(line);
   std::string w;
@@ -79,7 +76,7 @@ bool YadeDeck::intercept(const std::string& line, const DeckLocation& where) {
   if (is_snap) {
     s_.formulas.erase(m[1]);
     s_.snaps.insert(m[1]);
-    s_.py << "_snap[" << quoted(m[1]) << "] = _cpu()  # " << where.file << ":" << where.line << "\n";
+    s_.py << "_snap[" << yade_quoted(m[1]) << "] = _cpu()  # " << where.file << ":" << where.line << "\n";
   }
   return false;
 }
@@ -107,7 +104,7 @@ void YadeDeck::record(const Args& a) {
   if (c == "dump_modify" && a.size() >= 2) s_.dump_mods[a[1]].push_back(a);
   if (c == "undump" && a.size() >= 2) s_.dump_mods.erase(a[1]);  // a dump of that ID defined again starts afresh
   if (c == "undump" && a.size() >= 2 && s_.dumps_done.erase(a[1]))
-    s_.py << "_recorders = [r for r in _recorders if getattr(r, 'name', None) != " << quoted(a[1]) << "]  # "
+    s_.py << "_recorders = [r for r in _recorders if getattr(r, 'name', None) != " << yade_quoted(a[1]) << "]  # "
         << a.where().file << ":" << a.where().line << ": undump\n";
   static const std::set<std::string> after_ok{"variable", "thermo_style", "thermo", "thermo_modify", "dump",
                                               "dump_modify", "undump"};
@@ -127,7 +124,7 @@ void YadeDeck::cmd_run(const Args& a) {
   s_.py << "\n# " << a.where().file << ":" << a.where().line << ": run " << n << "\n";
   s_.py << "_thermo_cols = [" ;
   for (const auto& c : cols) s_.py << c << ", ";
-  s_.py << "]\n_run(" << n << ", " << s_.thermo_every << ", " << quoted(a.where().file) << ")\n";
+  s_.py << "]\n_run(" << n << ", " << s_.thermo_every << ", " << yade_quoted(a.where().file) << ")\n";
 }
 
 // print "TEXT": equal-style variables become Python evaluated after YADE's run.
@@ -143,10 +140,10 @@ void YadeDeck::cmd_print(const std::string& line, const DeckLocation& where) {
   std::size_t from = 0;
   for (std::size_t k; (k = text.find('\x01', from)) != std::string::npos;) {
     const std::size_t e = text.find('\x01', k + 1);
-    s_.py << " + " << quoted(text.substr(from, k - from)) << " + " << exprs[std::stoi(text.substr(k + 1, e - k - 1))];
+    s_.py << " + " << yade_quoted(text.substr(from, k - from)) << " + " << exprs[std::stoi(text.substr(k + 1, e - k - 1))];
     from = e + 1;
   }
-  s_.py << " + " << quoted(text.substr(from)) << ")\n";
+  s_.py << " + " << yade_quoted(text.substr(from)) << ")\n";
 }
 
 // ${name} and $x: equal-style variables become placeholders \x01k\x01 for
@@ -176,7 +173,7 @@ std::string YadeDeck::substitute(const std::string& line, const Args& at, std::v
       if (close == ')') {
         const std::size_t f = name.find(":%");  // $(expr:%fmt)
         if (f != std::string::npos)
-          hold("(" + quoted(yade_python_format(name.substr(f + 1))) + " % (" + s_.translate(name.substr(0, f), at) + "))");
+          hold("(" + yade_quoted(yade_python_format(name.substr(f + 1))) + " % (" + s_.translate(name.substr(0, f), at) + "))");
         else
           hold("_fmt(" + s_.translate(name, at) + ")");
         i = e;
@@ -201,7 +198,7 @@ void YadeDeck::scene(const Args& run) {
   s_.first_run = &run;
   // sable's step and time where YADE's O.iter is 0 (a restart's step, reset_timestep):
   // the recorders' schedules and step/time values count from there.
-  s_.py << "_step0[0], _step[0], _time0[0] = " << sim.step << ", " << sim.step << ", " << num(sim.time) << "\n";
+  s_.py << "_step0[0], _step[0], _time0[0] = " << sim.step << ", " << sim.step << ", " << yade_num(sim.time) << "\n";
   sim.pair->export_yade(s_);
   s_.periodic_cell();
   s_.begin_fixes();

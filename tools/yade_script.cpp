@@ -58,12 +58,6 @@ std::string yade_python_format(const std::string& spec) {
   return out;
 }
 
-namespace {
-// Short names inside the writer.
-std::string num(double v) { return yade_num(v); }
-std::string quoted(const std::string& s) { return yade_quoted(s); }
-}  // namespace
-
 // ------------------------------------------------------------------ expressions
 // A LAMMPS equal-style formula as a Python expression evaluated in YADE.
 std::string YadeScript::translate(const std::string& e, const Args& at, int depth) const {
@@ -165,7 +159,7 @@ std::string YadeScript::group_function(const std::string& name, const std::strin
   double n = 0, m = 0;
   for (std::size_t i = 0; i < sim.atoms.n; ++i)
     if (sim.atoms.mask[i] & bit) n += 1, m += sim.atoms.rmass[i];
-  return num(name == "count" ? n : m);
+  return yade_num(name == "count" ? n : m);
 }
 
 // An equal-style formula of numbers, arithmetic, math functions and variables
@@ -231,16 +225,16 @@ std::string YadeScript::term(const std::string& name, const std::string& index, 
   if (name.rfind("c_", 0) == 0 && !index.empty() && index.find(']') == std::string::npos)
     if (const Compute* c = sim.find_compute(name.substr(2)))
       if (std::string t = c->export_yade_term(*this, std::stol(index), at); !t.empty()) return t;
-  if (name.rfind("v_", 0) == 0 && index.empty() && snaps.count(name.substr(2))) return "_snap[" + quoted(name.substr(2)) + "]";
+  if (name.rfind("v_", 0) == 0 && index.empty() && snaps.count(name.substr(2))) return "_snap[" + yade_quoted(name.substr(2)) + "]";
   if (name.rfind("v_", 0) == 0 && index.empty()) {
     const std::string v = name.substr(2);
     double value = 0;
     if (auto it = formulas.find(v); it != formulas.end()) {
       // numbers only (no state, no step): sable's value, whatever operators it uses (%, round, ...)
-      if (constant(it->second, depth) && sim.variables->numeric(v, value)) return num(value);
+      if (constant(it->second, depth) && sim.variables->numeric(v, value)) return yade_num(value);
       return "(" + translate(it->second, at, depth + 1) + ")";
     }
-    if (sim.variables->numeric(v, value)) return num(value);
+    if (sim.variables->numeric(v, value)) return yade_num(value);
   }
   if (name.rfind("f_", 0) == 0) {
     const auto it = wall_of_fix_.find(name.substr(2));
@@ -248,13 +242,13 @@ std::string YadeScript::term(const std::string& name, const std::string& index, 
     if (it != wall_of_fix_.end() && k >= 1 && k <= 3)
       return "O.forces.f(_walls[" + std::to_string(it->second) + "])[" + std::to_string(k - 1) + "]";
     if (set_force_fixes_.count(name.substr(2)) && k >= 1 && k <= 3)  // the group's total force before
-      return "_fixf.get(" + quoted(name.substr(2)) + ", Vector3.Zero)[" + std::to_string(k - 1) + "]";
+      return "_fixf.get(" + yade_quoted(name.substr(2)) + ", Vector3.Zero)[" + std::to_string(k - 1) + "]";
     if (const auto m = std::find(mesh_order_.begin(), mesh_order_.end(), name.substr(2));
         m != mesh_order_.end() && k >= 1 && k <= 9)  // force, torque about the reference point, the point
       return "_mesh_out(" + std::to_string(m - mesh_order_.begin()) + ", " + std::to_string(k) + ")";
     if (is_recorder(name.substr(2)) &&
         k >= 1 && index.find(']') == std::string::npos)  // fix ave/time's last output (value k; row k in vector mode)
-      return "_avt[" + quoted(name.substr(2)) + "].value(" + std::to_string(k - 1) + ")";
+      return "_avt[" + yade_quoted(name.substr(2)) + "].value(" + std::to_string(k - 1) + ")";
     if (const auto fz = freeze_bits_.find(name.substr(2)); fz != freeze_bits_.end() && k >= 1 && k <= 3 &&
                                                            index.find(']') == std::string::npos)
       return "_sumf(" + ids_of(fz->second) + ", " + std::to_string(k - 1) + ")";
@@ -307,10 +301,10 @@ void YadeScript::periodic_cell() {
   py << "O.periodic = True\nO.cell.hSize = Matrix3(";
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
-      py << (j == k ? num(yade_periodic(k) ? d.length(k) : 100 * d.length(k)) : "0") << (k == 2 && j == 2 ? ")\n" : ", ");
+      py << (j == k ? yade_num(yade_periodic(k) ? d.length(k) : 100 * d.length(k)) : "0") << (k == 2 && j == 2 ? ")\n" : ", ");
   py << "_wrap = [";
   for (int k = 0; k < 3; ++k)
-    py << (yade_periodic(k) ? "(" + num(d.lo[k]) + ", " + num(d.length(k)) + ")" : "None") << (k < 2 ? ", " : "]\n");
+    py << (yade_periodic(k) ? "(" + yade_num(d.lo[k]) + ", " + yade_num(d.length(k)) + ")" : "None") << (k < 2 ? ", " : "]\n");
 }
 
 // One YADE material per atom type; the per-pair values go to MatchMakers.
@@ -327,15 +321,15 @@ void YadeScript::materials() {
     const double E = type_value("youngsModulus", i, a), nu = type_value("poissonsRatio", i, a);
     const double mu = pair_value("coefficientFriction", i, i, a);
     if (model == "hertz")
-      py << "_mats.append(O.materials.append(FrictMat(young=" << num(E) << ", poisson=" << num(nu)
-          << ", frictionAngle=math.atan(" << num(mu) << "), density=1000)))\n";
+      py << "_mats.append(O.materials.append(FrictMat(young=" << yade_num(E) << ", poisson=" << yade_num(nu)
+          << ", frictionAngle=math.atan(" << yade_num(mu) << "), density=1000)))\n";
     else
-      py << "_mats.append(O.materials.append(FrictViscoMat(young=" << num(E) << ", poisson=" << num(nu)
-          << ", frictionAngle=math.atan(" << num(mu) << "), betan=" << num(beta(i, i)) << ", density=1000)))\n";
+      py << "_mats.append(O.materials.append(FrictViscoMat(young=" << yade_num(E) << ", poisson=" << yade_num(nu)
+          << ", frictionAngle=math.atan(" << yade_num(mu) << "), betan=" << yade_num(beta(i, i)) << ", density=1000)))\n";
     for (int j = i; j <= n; ++j) {
-      fric << "(" << i - 1 << ", " << j - 1 << ", math.atan(" << num(pair_value("coefficientFriction", i, j, a)) << ")), ";
+      fric << "(" << i - 1 << ", " << j - 1 << ", math.atan(" << yade_num(pair_value("coefficientFriction", i, j, a)) << ")), ";
       // LIGGGHTS' Hertz dashpot 2 sqrt(5/6) |beta| sqrt(m* S) is YADE's 2 betan sqrt(m* kn) with betan = sqrt(5/6) |beta|.
-      bn << "(" << i - 1 << ", " << j - 1 << ", " << num(std::sqrt(5.0 / 6.0) * beta(i, j)) << "), ";
+      bn << "(" << i - 1 << ", " << j - 1 << ", " << yade_num(std::sqrt(5.0 / 6.0) * beta(i, j)) << "), ";
       if (model != "hertz" && std::fabs(beta(i, j) - 0.5 * (beta(i, i) + beta(j, j))) > 1e-12)
         a.fail_line("export-yade: linear/kneib maps onto FrictViscoMat's per-material betan; coefficientRestitution "
                     "between types " + std::to_string(i) + " and " + std::to_string(j) + " is not their mean");
@@ -345,8 +339,8 @@ void YadeScript::materials() {
   auto surface = [&](int material, long type) {
     if (material < 0) return;
     const int t = grain_type_;
-    fric << "(" << t - 1 << ", " << material << ", math.atan(" << num(pair_value("coefficientFriction", t, type, a)) << ")), ";
-    bn << "(" << t - 1 << ", " << material << ", " << num(std::sqrt(5.0 / 6.0) * beta(t, type)) << "), ";
+    fric << "(" << t - 1 << ", " << material << ", math.atan(" << yade_num(pair_value("coefficientFriction", t, type, a)) << ")), ";
+    bn << "(" << t - 1 << ", " << material << ", " << yade_num(std::sqrt(5.0 / 6.0) * beta(t, type)) << "), ";
   };
   for (const Wall& w : walls_) surface(w.material, w.type);
   for (const auto& id : mesh_order_) surface(meshes_.at(id).material, meshes_.at(id).type);
@@ -400,8 +394,8 @@ int YadeScript::hertz_surface_material(const Fix& f, long type, double s, const 
   for (int it = 0; it < 200; ++it) ((excess(lo) > 0) == (excess(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
   const double nb = 0.5 * (lo + hi), Eb = (1 - nb * nb) / q;
   const double mu = pair_value("coefficientFriction", a, type, pair);
-  py << "O.materials.append(FrictMat(young=" << num(Eb) << ", poisson=" << num(nb) << ", frictionAngle=math.atan("
-      << num(mu) << "), density=1000))  # " << note << " in YADE, see export_yade.cpp\n";
+  py << "O.materials.append(FrictMat(young=" << yade_num(Eb) << ", poisson=" << yade_num(nb) << ", frictionAngle=math.atan("
+      << yade_num(mu) << "), density=1000))  # " << note << " in YADE, see export_yade.cpp\n";
   return next_id++;
 }
 
@@ -435,13 +429,13 @@ void YadeScript::mesh_facets() {
       py << " (";
       for (int k = 0; k < 3; ++k) {
         const Vec3d p = m.to_world(m.corner(static_cast<int>(t), k));
-        py << num(p[0]) << ", " << num(p[1]) << ", " << num(p[2]) << ", ";
+        py << yade_num(p[0]) << ", " << yade_num(p[1]) << ", " << yade_num(p[2]) << ", ";
       }
       py << "),\n";
     }
     const Vec3d r = m.to_world(m.ref_body);
-    auto v3 = [](const Vec3d& v) { return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")"; };
-    py << "], " << w.material << ", " << v3(r) << ", (" << v3(w.origin) << ", " << v3(w.axis) << ", " << num(w.angle)
+    auto v3 = [](const Vec3d& v) { return "(" + yade_num(v[0]) + ", " + yade_num(v[1]) + ", " + yade_num(v[2]) + ")"; };
+    py << "], " << w.material << ", " << v3(r) << ", (" << v3(w.origin) << ", " << v3(w.axis) << ", " << yade_num(w.angle)
         << ", " << v3(w.shift) << ")))\n";
   }
 }
@@ -469,7 +463,7 @@ void YadeScript::walls() {
     const std::string mat = w.material >= 0 ? std::to_string(w.material) : "_mats[" + std::to_string(w.type - 1) + "]";
     const std::string mask = w.mask != 1 ? ", mask=" + std::to_string(w.mask) : "";
     if (!boxes_) {
-      py << "_walls.append(O.bodies.append(utils.wall(" << num(w.pos) << ", axis=" << w.axis << ", sense=0, material="
+      py << "_walls.append(O.bodies.append(utils.wall(" << yade_num(w.pos) << ", axis=" << w.axis << ", sense=0, material="
           << mat << mask << ")))  # fix " << w.fix->id << "\n";
       continue;
     }
@@ -482,16 +476,16 @@ void YadeScript::walls() {
                     "plane spans non-periodic axes only, z counting as such in 2D)");
     if (d.wraps(w.axis) && (w.pos < d.lo[w.axis] || w.pos >= d.hi[w.axis]))
       a.fail_line(std::string("export-yade: this ") + "xyz"[w.axis] + "plane lies outside the periodic box (" +
-                  num(d.lo[w.axis]) + " to " + num(d.hi[w.axis]) + "); put it inside the period");
+                  yade_num(d.lo[w.axis]) + " to " + yade_num(d.hi[w.axis]) + "); put it inside the period");
     const double t = 1e-8 * rmin;
     double c[3], h[3];
     for (int k = 0; k < 3; ++k) {
       c[k] = k == w.axis ? w.pos : 0.5 * (d.lo[k] + d.hi[k]);
       h[k] = k == w.axis ? 0.5 * t : d.length(k);
     }
-    py << "_walls.append(O.bodies.append(utils.box((" << num(c[0]) << ", " << num(c[1]) << ", " << num(c[2]) << "), ("
-        << num(h[0]) << ", " << num(h[1]) << ", " << num(h[2]) << "), fixed=True, material=" << mat << mask
-        << ")))  # fix " << w.fix->id << ": " << "xyz"[w.axis] << "plane " << num(w.pos) << " as a thin box (periodic cell)\n";
+    py << "_walls.append(O.bodies.append(utils.box((" << yade_num(c[0]) << ", " << yade_num(c[1]) << ", " << yade_num(c[2]) << "), ("
+        << yade_num(h[0]) << ", " << yade_num(h[1]) << ", " << yade_num(h[2]) << "), fixed=True, material=" << mat << mask
+        << ")))  # fix " << w.fix->id << ": " << "xyz"[w.axis] << "plane " << yade_num(w.pos) << " as a thin box (periodic cell)\n";
   }
 }
 
@@ -513,10 +507,10 @@ void YadeScript::bodies() {
     py << " (" << at.id[i] << ", " << at.type[i];
     double u[3];  // unwrapped: a rigid body across a periodic boundary stays whole (YADE wraps for contacts)
     sim.domain.unmap(&at.x[3 * i], &at.image[3 * i], u);
-    for (int k = 0; k < 3; ++k) py << ", " << num(u[k]);
-    py << ", " << num(at.radius[i]) << ", " << num(at.rmass[i]) << ", " << num(at.inertia(i));
-    for (int k = 0; k < 3; ++k) py << ", " << num(fixed_[i] ? 0.0 : at.v[3 * i + k]);
-    for (int k = 0; k < 3; ++k) py << ", " << num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
+    for (int k = 0; k < 3; ++k) py << ", " << yade_num(u[k]);
+    py << ", " << yade_num(at.radius[i]) << ", " << yade_num(at.rmass[i]) << ", " << yade_num(at.inertia(i));
+    for (int k = 0; k < 3; ++k) py << ", " << yade_num(fixed_[i] ? 0.0 : at.v[3 * i + k]);
+    for (int k = 0; k < 3; ++k) py << ", " << yade_num(fixed_[i] || !rotation_ ? 0.0 : at.omega[3 * i + k]);
     py << ", " << (fixed_[i] ? "True" : "False") << ", '" << uniq << "'),\n";
   }
   py << "]\n";
@@ -558,7 +552,7 @@ void YadeScript::contact_history() {
          "_hist = [\n";
   for (std::size_t c = 0; c < r.contacts.count(); ++c) {
     py << " (" << r.contacts.ids[2 * c] << ", " << r.contacts.ids[2 * c + 1];
-    for (int k = 0; k < 3; ++k) py << ", " << num(r.contacts.hist[c * ns + sx + k]);
+    for (int k = 0; k < 3; ++k) py << ", " << yade_num(r.contacts.hist[c * ns + sx + k]);
     py << "),\n";
   }
   py << "]\n"
@@ -611,17 +605,17 @@ void YadeScript::clumps() {
     for (long id : c.ids) ids += std::to_string(id) + ", ";
     for (char ch : std::string("xyzXYZ"))
       if (dofs.find(ch) != std::string::npos) uniq += ch;
-    py << " ([" << ids << "], " << num(c.mass) << ", (";
-    for (double v : c.inertia) py << num(v) << ", ";
-    py << "), (" << num(c.vcm[0]) << ", " << num(c.vcm[1]) << ", " << num(c.vcm[2]) << "), (" << num(c.omega[0])
-        << ", " << num(c.omega[1]) << ", " << num(c.omega[2]) << "), '" << uniq << "', " << num(c.member_mass) << "),\n";
+    py << " ([" << ids << "], " << yade_num(c.mass) << ", (";
+    for (double v : c.inertia) py << yade_num(v) << ", ";
+    py << "), (" << yade_num(c.vcm[0]) << ", " << yade_num(c.vcm[1]) << ", " << yade_num(c.vcm[2]) << "), (" << yade_num(c.omega[0])
+        << ", " << yade_num(c.omega[1]) << ", " << yade_num(c.omega[2]) << "), '" << uniq << "', " << yade_num(c.member_mass) << "),\n";
   }
   py << "]\n_cid = [_clump(*c) for c in _clumps]\n";
 }
 
 void YadeScript::engines() {
-  py << "O.dt = " << num(sim.dt) << "\n";
-  py << "_g = Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", " << num(gravity_[2]) << ")\n";
+  py << "O.dt = " << yade_num(sim.dt) << "\n";
+  py << "_g = Vector3(" << yade_num(gravity_[0]) << ", " << yade_num(gravity_[1]) << ", " << yade_num(gravity_[2]) << ")\n";
   py << "def _add_forces():\n    pass\n";
   for (const auto& f : forces_) py << "    " << f << "\n";
   const bool facets = !mesh_order_.empty();
@@ -643,8 +637,8 @@ void YadeScript::engines() {
     e.replace(e.find("IDS"), 3, "_meshes[" + std::to_string(k) + "][0]");
     py << "    " << e << ",  # fix move/mesh on " << mesh_order_[k] << "\n";
   }
-  py << "    NewtonIntegrator(damping=0, gravity=Vector3(" << num(gravity_[0]) << ", " << num(gravity_[1]) << ", "
-      << num(gravity_[2]) << ")),\n"
+  py << "    NewtonIntegrator(damping=0, gravity=Vector3(" << yade_num(gravity_[0]) << ", " << yade_num(gravity_[1]) << ", "
+      << yade_num(gravity_[2]) << ")),\n"
       << "    PyRunner(command='_thermo_tick()', iterPeriod=1, initRun=True),\n]\n";  // initRun: step 1's rows and samples too
   contact_history();  // utils.createInteraction takes the laws from O.engines
 }
@@ -871,7 +865,7 @@ std::string YadeScript::head() const {
          "    for r in _recorders:  # sable: init() and setup() of fix ave/time\n"
          "        r.init()\n"
          "        r.tick()\n"
-         "    print(" + quoted(cols) + ", flush=True)\n"
+         "    print(" + yade_quoted(cols) + ", flush=True)\n"
          "    _row()\n"
          "    O.run(n, True)\n"
          "    _step[0] = _step0[0] + O.iter\n"
@@ -923,7 +917,7 @@ std::string YadeScript::force_component(const Args& a, std::size_t i) const {
   const std::string& w = a.word(i, "a force component (number, v_name or NULL)");
   if (w == "NULL") return "None";
   if (w.rfind("v_", 0) == 0) return "(" + translate(w, a) + ")";
-  return num(a.num(i, "a number, v_name or NULL (export-yade)"));
+  return yade_num(a.num(i, "a number, v_name or NULL (export-yade)"));
 }
 
 void YadeScript::add_wall(const Fix& f, long type, int axis, double pos) {

@@ -52,14 +52,14 @@ using CommandRegistry = Registry<void, Simulation&, const Args&>;
 #define SABLE_CAT2(a, b) a##b
 #define SABLE_CAT(a, b) SABLE_CAT2(a, b)
 #define SABLE_REGISTER_STYLE(Reg, name, Class)                                                    \
-  static const bool SABLE_CAT(sable_registered_, __LINE__) = ::sable::Reg::add(                 \
+  static const bool SABLE_CAT(sable_registered_, __COUNTER__) = ::sable::Reg::add(                 \
       name, [](::sable::Simulation& s, const ::sable::Args& a) { return std::make_unique<Class>(s, a); })
 #define SABLE_FIX(name, Class) SABLE_REGISTER_STYLE(FixRegistry, name, Class)
 #define SABLE_COMPUTE(name, Class) SABLE_REGISTER_STYLE(ComputeRegistry, name, Class)
 #define SABLE_REGION(name, Class) SABLE_REGISTER_STYLE(RegionRegistry, name, Class)
 #define SABLE_DUMP(name, Class) SABLE_REGISTER_STYLE(DumpRegistry, name, Class)
 #define SABLE_COMMAND(name, fn) \
-  static const bool SABLE_CAT(sable_registered_, __LINE__) = ::sable::CommandRegistry::add(name, fn)
+  static const bool SABLE_CAT(sable_registered_, __COUNTER__) = ::sable::CommandRegistry::add(name, fn)
 
 namespace sable {
 class Pair;

@@ -16,6 +16,9 @@
 #include "tests/unit/ballistic_scene.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_ballistic_clumps {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -269,3 +272,5 @@ TEST(BallisticClumps, BadInput) {
   EXPECT_NE(e.find("wider than 16 largest radii"), std::string::npos) << e;
   EXPECT_EQ(d->atoms.n, 0u);
 }
+
+}  // namespace test_ballistic_clumps

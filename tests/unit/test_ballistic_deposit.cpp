@@ -14,6 +14,9 @@
 #include "tests/unit/ballistic_scene.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_ballistic_deposit {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -249,3 +252,5 @@ TEST(BallisticDeposit, BadInput) {
   EXPECT_NE(narrow.find("wider than 4 largest radii"), std::string::npos) << narrow;
   EXPECT_EQ(d->atoms.n, 0u);
 }
+
+}  // namespace test_ballistic_deposit

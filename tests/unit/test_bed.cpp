@@ -6,6 +6,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_bed {
+
 using sable::test::Deck;
 
 TEST(Bed, FloorForceEqualsWeightOfSettledBed) {
@@ -49,3 +52,5 @@ run 45000)D");
   const double mean = -sum / n;  // grains push the floor down (-z)
   EXPECT_NEAR(mean / weight, 1.0, 0.005) << "floor force " << mean << " N vs weight " << weight << " N";
 }
+
+}  // namespace test_bed

@@ -12,6 +12,9 @@
 
 #include "core/engine/block_sum.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_block_sum {
+
 namespace {
 
 // Values of very different magnitudes, so the order of the additions shows in the bits.
@@ -69,3 +72,5 @@ TEST(BlockSum, SameBitsForAnySplit) {
   }
   EXPECT_NE(naive, expect[0]);
 }
+
+}  // namespace test_block_sum

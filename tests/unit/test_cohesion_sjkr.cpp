@@ -24,6 +24,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_cohesion_sjkr {
+
 using sable::test::Deck;
 
 namespace {
@@ -235,3 +238,5 @@ TEST(CohesionSjkr, DampedSlowCollisionSticksOnlyWithCohesion) {
 }
 
 }  // namespace
+
+}  // namespace test_cohesion_sjkr

@@ -19,6 +19,9 @@
 #include "contact_models/registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_composed_law {
+
 using sable::test::Deck;
 using sable::test::entry_history;
 using sable::test::printed;
@@ -214,3 +217,5 @@ TEST(ComposedLaw, AnyRegisteredCombinationRunsAndSaysSoOnce) {
   EXPECT_EQ(out.find(note, at + 1), std::string::npos) << "said more than once:\n" << out;
   for (double x : d->atoms.x) ASSERT_TRUE(std::isfinite(x));
 }
+
+}  // namespace test_composed_law

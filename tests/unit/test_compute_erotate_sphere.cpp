@@ -6,6 +6,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_compute_erotate_sphere {
+
 using sable::test::Deck;
 
 namespace {
@@ -76,3 +79,5 @@ TEST(ComputeErotateSphere, HalfstepAndGroup) {
   const double m1 = mass(0.05, 2500), want1 = 0.5 * 0.4 * m1 * 0.05 * 0.05 * 9;
   EXPECT_NEAR(d->find_compute("r1")->scalar(), want1, 1e-12 * want1);
 }
+
+}  // namespace test_compute_erotate_sphere

@@ -7,6 +7,9 @@
 #include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_compute_ke {
+
 using sable::test::Deck;
 
 namespace {
@@ -93,3 +96,5 @@ TEST(ComputeKe, BadKeywordIsRejectedAtItsLine) {
         << e.what();
   }
 }
+
+}  // namespace test_compute_ke

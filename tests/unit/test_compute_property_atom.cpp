@@ -16,6 +16,9 @@
 #include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_compute_property_atom {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -227,3 +230,5 @@ run 0)");
   d("run 0");
   EXPECT_EQ(var(d, "h"), 0.4);
 }
+
+}  // namespace test_compute_property_atom

@@ -11,6 +11,9 @@
 #include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_compute_reduce {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -169,3 +172,5 @@ TEST(ComputeReduce, BadInputsNameTheWord) {
             std::string::npos);
   EXPECT_NE(error_of(d, "compute r all reduce max").find("expected at least one input"), std::string::npos);
 }
+
+}  // namespace test_compute_reduce

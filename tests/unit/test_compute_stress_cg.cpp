@@ -21,6 +21,9 @@
 #include "fixes/fix_mesh_surface.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_compute_stress_cg {
+
 using sable::CgField;
 using sable::CgKernel;
 using sable::test::Deck;
@@ -571,3 +574,5 @@ TEST(StressCG, ErrorsNameTheWord) {
   EXPECT_NE(error_of(d, "fix a all ave/cg 2 4 c_c hdf5 " + (tmp / "x.h5")).find("expected file F.h5"),
             std::string::npos);
 }
+
+}  // namespace test_compute_stress_cg

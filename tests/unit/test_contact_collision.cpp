@@ -25,6 +25,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_collision {
+
 using sable::test::Deck;
 
 namespace {
@@ -193,3 +196,5 @@ timestep 1e-7)");
   const double G = 5e7 / 2.6;
   EXPECT_NEAR(d->pair->rayleigh_time(0), kPi * kR * std::sqrt(2500 / G) / (0.1631 * 0.3 + 0.8766), 1e-15);
 }
+
+}  // namespace test_contact_collision

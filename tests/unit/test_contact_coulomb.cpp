@@ -18,6 +18,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_coulomb {
+
 using sable::test::Deck;
 
 namespace {
@@ -113,3 +116,5 @@ TEST(CoulombIncline, SlidesAboveTheFrictionAngle) {
   std::printf("incline 30 deg, mu 0.1 (sliding): a = %.6f m/s^2, g (sin - mu cos) = %.6f\n", a, want);
   EXPECT_NEAR(a, want, 0.01 * want);
 }
+
+}  // namespace test_contact_coulomb

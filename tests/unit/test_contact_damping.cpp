@@ -19,6 +19,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_damping {
+
 using sable::test::Deck;
 
 namespace {
@@ -168,3 +171,5 @@ pair_style gran model hooke/hysteresis tangential history)",
     EXPECT_NEAR(t, c.expected, 1e-12 * c.expected) << c.name;
   }
 }
+
+}  // namespace test_contact_damping

@@ -17,6 +17,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/lattice_deck_2d.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_fabric {
+
 using sable::test::Deck;
 using sable::test::lattice_deck;
 using sable::test::spring_scene_2d;
@@ -338,3 +341,5 @@ TEST(ForceMidline, DefaultHeightIsTheGroupsSpan) {
   EXPECT_EQ(vec(d, "a", 2), vec(d, "p", 2));
   EXPECT_NEAR(vec(d, "a", 1), vec(d, "a", 2) / 0.006, 1e-12 * vec(d, "a", 1));
 }
+
+}  // namespace test_contact_fabric

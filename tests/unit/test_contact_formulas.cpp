@@ -17,6 +17,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_formulas {
+
 using sable::test::Deck;
 
 namespace {
@@ -317,3 +320,5 @@ timestep 1e-6)");
   EXPECT_EQ(d->atoms.f[0], 0.0);
   EXPECT_EQ(d->atoms.f[3], 0.0);
 }
+
+}  // namespace test_contact_formulas

@@ -15,6 +15,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_history {
+
 using sable::test::Deck;
 using sable::test::entry_history;
 
@@ -248,3 +251,5 @@ TEST(ContactHistory, ResetAtSeparationOrAtRebuild) {
   EXPECT_EQ(lig_y[on - 1], lig_y[off]) << "and leaves it untouched during the flight";
   EXPECT_NE(sable_y[on], lig_y[on]) << "so the landing starts from a different spring";
 }
+
+}  // namespace test_contact_history

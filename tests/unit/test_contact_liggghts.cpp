@@ -25,6 +25,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_liggghts {
+
 using sable::test::Deck;
 
 namespace {
@@ -217,3 +220,5 @@ run 1000
               d->neighbor.builds);
   EXPECT_LT(w, 1e-8);
 }
+
+}  // namespace test_contact_liggghts

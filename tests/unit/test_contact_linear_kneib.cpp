@@ -17,6 +17,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_linear_kneib {
+
 using sable::test::Deck;
 
 namespace {
@@ -110,3 +113,5 @@ TEST(LinearKneib, WallTakesTheGrainRadius) {
   EXPECT_LT(o.gap_early, 0.0);
   EXPECT_GT(o.gap_late, 0.0);
 }
+
+}  // namespace test_contact_linear_kneib

@@ -12,6 +12,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_local {
+
 using sable::test::Deck;
 using sable::test::entry_history;
 
@@ -185,3 +188,5 @@ TEST(ContactLocal, FollowsAPairStyleRedefinedBetweenRuns) {
     EXPECT_NE(std::string(e.what()).find("keeps no contact history"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_contact_local

@@ -19,6 +19,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_rolling {
+
 using sable::test::Deck;
 
 namespace {
@@ -110,3 +113,5 @@ TEST(RollingFriction, NoRollingFrictionKeepsRolling) {
   const double a = rolling_deceleration("off", 0.1);
   EXPECT_NEAR(a, 0.0, 1e-3);
 }
+
+}  // namespace test_contact_rolling

@@ -11,6 +11,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/right_wall_scene.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_contact_sources {
+
 using sable::ContactRecords;
 using sable::ContactSource;
 using sable::test::Deck;
@@ -121,3 +124,5 @@ TEST(ContactSources, WallLastPassUntilTheAtomsChange) {
   EXPECT_EQ(seen, 1);
   EXPECT_EQ(sable::contact_source_of_fix(*d, "mw")->last_pass([](int, const double*, const double*) {}), false);
 }
+
+}  // namespace test_contact_sources

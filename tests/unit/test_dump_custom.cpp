@@ -18,6 +18,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_dump_custom {
+
 using sable::test::Deck;
 namespace fs = std::filesystem;
 
@@ -419,3 +422,5 @@ TEST(DumpCustom, KilledRunLeavesEveryWrittenSnapshotReadable) {
   }
 }
 #endif
+
+}  // namespace test_dump_custom

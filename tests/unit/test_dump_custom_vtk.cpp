@@ -14,6 +14,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_dump_custom_vtk {
+
 using sable::test::Deck;
 namespace fs = std::filesystem;
 
@@ -325,3 +328,5 @@ for p in sys.argv[1:]:
                      "d.pvtu vtkUnstructuredGrid" + arrays + "e.pvtp vtkPolyData" + arrays +
                      "a_boundingBox.vtk vtkRectilinearGrid 8 1 \nb_boundingBox.vtr vtkRectilinearGrid 8 1 \n");
 }
+
+}  // namespace test_dump_custom_vtk

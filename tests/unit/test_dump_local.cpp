@@ -16,6 +16,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/right_wall_scene.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_dump_local {
+
 using sable::test::Deck;
 using sable::test::error_of;
 using sable::test::TempDir;
@@ -233,3 +236,5 @@ TEST(DumpLocal, ModifyEverySetsThePeriod) {
   EXPECT_EQ(parse(tmp / "rows.txt").size(), 3u);
   EXPECT_NE(error_of(d, "dump_modify dl every 0").find("'0'"), std::string::npos);
 }
+
+}  // namespace test_dump_local

@@ -10,6 +10,9 @@
 #include "core/io/thermo.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_energy {
+
 using sable::test::Deck;
 
 namespace {
@@ -79,3 +82,5 @@ fix i all nve/sphere)D");
   EXPECT_LT(worst, 1e-4) << "largest relative kinetic-energy change over " << samples << " samples";
   std::printf("energy test: %d contact-free samples of 1000, worst relative change %.3g\n", samples, worst);
 }
+
+}  // namespace test_energy

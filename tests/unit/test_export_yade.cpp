@@ -19,6 +19,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tools/export_yade.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_export_yade {
+
 using sable::test::TempDir;
 
 namespace {
@@ -838,3 +841,5 @@ TEST(ExportYade, DumpLocalOfWallSlicesRowsIsTranslated) {
                                               " c_wl[1]\nrun 10\n");
   EXPECT_NE(e.find("c_ID[k] of a compute wall/gran/slices"), std::string::npos) << e;
 }
+
+}  // namespace test_export_yade

@@ -10,6 +10,9 @@
 #include <map>
 #include <numbers>
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_expression {
+
 using sable::evaluate;
 using sable::evaluate_boolean;
 using sable::Expression;
@@ -310,3 +313,5 @@ TEST(Expression, EvaluationErrorsNameTheCause) {
     EXPECT_NE(std::string(e.what()).find("unknown per-atom quantity or thermo keyword 'y'"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_expression

@@ -10,6 +10,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_fix_adapt {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -157,3 +160,5 @@ TEST(FixAdapt, Errors) {
                 .find("must be > 0"),
             std::string::npos);
 }
+
+}  // namespace test_fix_adapt

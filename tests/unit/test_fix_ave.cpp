@@ -23,6 +23,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_fix_ave {
+
 using sable::test::Deck;
 using sable::test::error_of;
 using sable::test::TempDir;
@@ -592,3 +595,5 @@ TEST(FixAve, KilledRunLeavesReadableFiles) {
     H5Fclose(g);
   }
 }
+
+}  // namespace test_fix_ave

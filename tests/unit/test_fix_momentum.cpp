@@ -6,6 +6,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_fix_momentum {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -70,3 +73,5 @@ TEST(FixMomentum, Errors) {
   EXPECT_NE(error_of(b, "fix m all momentum 1 angular\n").find("does not remove the angular momentum"), std::string::npos);
   EXPECT_NE(error_of(c, "fix m all momentum 1 linear 1 2 0\n").find("a flag 0 or 1"), std::string::npos);
 }
+
+}  // namespace test_fix_momentum

@@ -11,6 +11,9 @@
 #include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_fix_rigid {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -534,3 +537,5 @@ run 40000)");
   EXPECT_LT(value(d, "c_ub"), 1e-3);
   EXPECT_NEAR(-value(d, "f_fw[2]"), load, 1e-3 * load);
 }
+
+}  // namespace test_fix_rigid

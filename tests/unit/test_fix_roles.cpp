@@ -15,6 +15,9 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_fix_roles {
 #endif
 
 using sable::FixRole;
@@ -197,3 +200,5 @@ fix fr low freeze
   const std::string out = sable::test::printed(std::string(kBed) + fixes + "info plan\nrun 1\n", d);
   EXPECT_NE(out.find("initial_integrate: fix mv (move, prescribed motion)"), std::string::npos) << out;
 }
+
+}  // namespace test_fix_roles

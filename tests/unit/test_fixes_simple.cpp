@@ -8,6 +8,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_fixes_simple {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -166,3 +169,5 @@ TEST(FixViscous, Errors) {
   EXPECT_NE(error_of(d, "fix v all viscous 0.1 scale 3 2").find("between 1 and 1"), std::string::npos);
   EXPECT_NE(error_of(d, "fix v all viscous 0.1 damp 3 2").find("'scale type ratio'"), std::string::npos);
 }
+
+}  // namespace test_fixes_simple

@@ -14,6 +14,9 @@
 #include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_group_motion {
+
 using sable::test::Deck;
 using sable::test::error_of;
 using sable::test::printed;
@@ -558,3 +561,5 @@ TEST(FixMove, SameBitsForAnyThreadCount) {
   EXPECT_TRUE(same_bits(one.v, two.v, one.v.size()));
 #endif
 }
+
+}  // namespace test_group_motion

@@ -21,6 +21,9 @@
 #include "core/io/h5_series.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_h5_series {
+
 using sable::H5Series;
 using sable::test::Deck;
 using sable::test::error_of;
@@ -230,3 +233,5 @@ TEST(H5Series, DeckRowsAreOnDiskWhenAnErrorStopsTheRun) {
   EXPECT_EQ(text.back(), 38);
   EXPECT_EQ(h5_steps(tmp / "a.h5"), text);
 }
+
+}  // namespace test_h5_series

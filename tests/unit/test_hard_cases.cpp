@@ -19,6 +19,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/neighbor_pairs.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_hard_cases {
+
 using sable::test::Deck;
 using sable::test::Scene;
 
@@ -380,3 +383,5 @@ TEST_P(Quartz, PileSettlesAtEighteenPercentOfTheRayleighTime) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Poisson, Quartz, ::testing::Values(0.17, 0.3));
+
+}  // namespace test_hard_cases

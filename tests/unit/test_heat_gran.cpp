@@ -16,6 +16,9 @@
 #include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_heat_gran {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -318,3 +321,5 @@ run 12000)");
   EXPECT_NEAR(column(d, "f_Temp", 2), 321.79977351570005, 1e-12 * 800);
   EXPECT_NEAR(column(d, "f_Temp", 3), 300.5367601684145, 1e-12 * 800);
 }
+
+}  // namespace test_heat_gran

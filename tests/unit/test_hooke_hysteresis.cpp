@@ -20,6 +20,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_hooke_hysteresis {
+
 using sable::test::Deck;
 
 namespace {
@@ -152,3 +155,5 @@ TEST(HookeHysteresis, StrongAdhesionHoldsADampedPair) {
 }
 
 }  // namespace
+
+}  // namespace test_hooke_hysteresis

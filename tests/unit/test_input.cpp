@@ -8,6 +8,9 @@
 #include "core/input/variable.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_input {
+
 using sable::test::Deck;
 using sable::test::printed;
 
@@ -132,3 +135,5 @@ TEST(Input, ErrorCommandStopsAtItsLineWithTheDecksMessage) {
     EXPECT_NE(m.find("stopped by the deck: NP = -1: expected NP > 0"), std::string::npos) << m;
   }
 }
+
+}  // namespace test_input

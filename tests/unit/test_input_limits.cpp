@@ -7,7 +7,8 @@
 #include "core/input/number_format.h"
 #include "tests/unit/deck_runner.h"
 
-namespace sable::test {
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace sable::test::test_input_limits {
 namespace {
 
 const char* kPile = R"(units si
@@ -162,4 +163,4 @@ TEST(InputLimits, GrainsWiderThanTheBox) {
 }
 
 }  // namespace
-}  // namespace sable::test
+}  // namespace sable::test::test_input_limits

@@ -8,6 +8,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_insert_pack {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -422,3 +425,5 @@ TEST(InsertPack, Errors) {
   d("region r2 block 0 0.05 0 0.05 0 0.05 units box\n" + ok + "particles_in_region 10 region r2\nregion r2 delete");
   EXPECT_NE(error_of(d, "run 1").find("region 'r2' was deleted"), std::string::npos);
 }
+
+}  // namespace test_insert_pack

@@ -14,6 +14,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_insert_rate_region {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -223,3 +226,5 @@ TEST(InsertRateRegion, Errors) {
   has("nparticles 10 particlerate -1 insert_every 10", "a rate > 0");
   has("nparticles 10 particlerate 10 insert_every 10 volumefraction_region 0.3", "an insert/rate/region keyword");
 }
+
+}  // namespace test_insert_rate_region

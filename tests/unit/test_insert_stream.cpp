@@ -13,6 +13,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_insert_stream {
+
 using sable::test::Deck;
 
 namespace {
@@ -137,3 +140,5 @@ TEST(InsertStream, RestartAndResetTimestepKeepTheFlight) {
   }
   EXPECT_EQ(differ, 0);
 }
+
+}  // namespace test_insert_stream

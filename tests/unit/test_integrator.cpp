@@ -3,6 +3,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_integrator {
+
 using sable::test::Deck;
 
 TEST(Integrator, FreeFallIsExactForConstantGravity) {
@@ -21,3 +24,5 @@ run 1000)");
   EXPECT_NEAR(d->atoms.v[2], -0.981, 1e-12);
   EXPECT_NEAR(d->time, 0.1, 1e-12);
 }
+
+}  // namespace test_integrator

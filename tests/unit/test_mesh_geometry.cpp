@@ -14,6 +14,9 @@
 
 #include "core/geometry/mesh.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_mesh_geometry {
+
 using sable::TriMesh;
 using sable::Vec3d;
 
@@ -265,3 +268,5 @@ TEST(MeshGeometry, LinearAndRotationSuperpose) {
   EXPECT_NEAR(v[1], -0.2 + 10 * (p0[0] - 0.5), 1e-12);
   EXPECT_NEAR(v[2], 0.1, 1e-15);
 }
+
+}  // namespace test_mesh_geometry

@@ -26,6 +26,9 @@
 #include "fixes/fix_wall_gran_mesh.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_mesh_walls {
+
 using sable::test::Deck;
 
 namespace {
@@ -675,3 +678,5 @@ fix integr all nve/sphere)");
   EXPECT_EQ(checks, 800);
   EXPECT_GT(contacts, 1000);  // the grains reached the drum
 }
+
+}  // namespace test_mesh_walls

@@ -14,6 +14,9 @@
 #include "fixes/fix_particletemplate_multisphere.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_multisphere {
+
 using sable::ClumpShape;
 using sable::FixMultisphere;
 using sable::FixParticletemplateMultisphere;
@@ -321,3 +324,5 @@ TEST(Multisphere, BadInput) {
                 .find("define a fix multisphere"),
             std::string::npos);
 }
+
+}  // namespace test_multisphere

@@ -18,6 +18,9 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_neighbor {
 #endif
 
 using namespace sable;
@@ -350,3 +353,5 @@ TEST(Neighbor, SlowestBinAxisCutsTheThinnestSlab) {
   b.neighbor.build(b.atoms, b.domain, nullptr, 0);
   EXPECT_NE(b.neighbor.slow_axis(), 2);
 }
+
+}  // namespace test_neighbor

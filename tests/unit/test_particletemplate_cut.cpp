@@ -10,6 +10,9 @@
 #include "fixes/fix_particletemplate_sphere.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_particletemplate_cut {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -117,3 +120,5 @@ TEST(TemplateCut, BadCutsAreErrors) {
   EXPECT_NE(error_of(d, head + "cut x").find("the cut K"), std::string::npos);
   d(head + "cut 1");  // delta = 0.7 (petit2017's widest) with the +-1 sigma cut is fine
 }
+
+}  // namespace test_particletemplate_cut

@@ -22,6 +22,9 @@
 #include "core/input/args.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_petit_law {
+
 using sable::test::Deck;
 
 namespace {
@@ -139,3 +142,5 @@ TEST(PetitLaw, KernelForceOfTwoOverlappingQuartzGrains) {
   // The kernel's kt over the tangent of its Fn: 2 (1 - nu)/(2 - nu).
   EXPECT_NEAR(std::fabs(at.f[3 * i1 + 1]) / (vt * dt) / (2 * kEstar * std::sqrt(kReff * ov)), kRatio, 1e-9);
 }
+
+}  // namespace test_petit_law

@@ -29,6 +29,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_plugin {
+
 using sable::test::Deck;
 
 namespace {
@@ -189,3 +192,5 @@ TEST(Plugin, LoadsIntoTheSableExecutable) {
   EXPECT_NE(output.find("Loop time"), std::string::npos) << output;
   std::remove(deck.c_str());
 }
+
+}  // namespace test_plugin

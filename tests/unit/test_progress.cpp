@@ -6,6 +6,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_progress {
+
 using sable::test::Deck;
 
 TEST(Progress, LinesCarryStepPercentRateAndTimeLeft) {
@@ -30,3 +33,5 @@ run 4)");
   EXPECT_NE(text.find("s left"), std::string::npos) << text;
   EXPECT_NE(text.find("Loop time of"), std::string::npos) << text;
 }
+
+}  // namespace test_progress

@@ -13,6 +13,9 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_quasi_static {
 #endif
 
 using sable::test::Deck;
@@ -487,3 +490,5 @@ TEST(QuasiStatic, HaltThatNeverFiresIsCaught) {
     EXPECT_FALSE(stopped_by_halt(r, 2 * r[3] + 1));  // the cap alone rejects it
   }
 }
+
+}  // namespace test_quasi_static

@@ -8,6 +8,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_read_data {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -125,3 +128,5 @@ TEST(ComputeModify, AcceptsTemperatureKeywordsAndChecksThem) {
   EXPECT_NE(error_of(d, "compute_modify thermo_temp dynamic maybe\n").find("yes or no"), std::string::npos);
   EXPECT_NE(error_of(d, "compute_modify thermo_temp colour red\n").find("dynamic, dynamic/dof, extra"), std::string::npos);
 }
+
+}  // namespace test_read_data

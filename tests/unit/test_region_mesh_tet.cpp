@@ -10,6 +10,9 @@
 #include "core/geometry/region.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_region_mesh_tet {
+
 using sable::test::Deck;
 
 namespace {
@@ -114,3 +117,5 @@ TEST(RegionMeshTet, Errors) {
                 .find("has none"),
             std::string::npos);
 }
+
+}  // namespace test_region_mesh_tet

@@ -15,6 +15,9 @@
 #include "core/io/restart.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_restart {
+
 using sable::test::Deck;
 using sable::test::error_of;
 using sable::test::TempDir;
@@ -279,3 +282,5 @@ TEST(Restart, BadFilesNameTheFileAndTheProblem) {
     EXPECT_NE(e.find("the box already exists"), std::string::npos) << e;
   }
 }
+
+}  // namespace test_restart

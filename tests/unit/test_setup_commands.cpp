@@ -8,6 +8,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_setup_commands {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -380,3 +383,5 @@ create_box 1 box)");
   EXPECT_NE(error_of(e, "lattice sc 0.1 origin 0.5 1 0").find("expected an origin fraction in [0, 1)"), std::string::npos);
   EXPECT_NE(error_of(e, "lattice sc 0.1 orient x 1 0 0").find("expected 'origin' or nothing"), std::string::npos);
 }
+
+}  // namespace test_setup_commands

@@ -8,6 +8,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_stability {
+
 using sable::test::Deck;
 using sable::test::printed;
 
@@ -85,3 +88,5 @@ TEST(Stability, SafeStepPrintsTheBounds) {
   EXPECT_EQ(out.find("WARNING"), std::string::npos) << out;
   EXPECT_EQ(d->step, 10);
 }
+
+}  // namespace test_stability

@@ -8,6 +8,9 @@
 
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_step_bounds {
+
 using sable::test::Deck;
 
 namespace {
@@ -93,3 +96,5 @@ TEST(StepBounds, BeforeTheFirstRunThereIsNoContactTime) {
   d("timestep 1e-7\nfix i all nve/sphere\nrun 0");
   EXPECT_TRUE(std::isfinite(d->step_bounds().hertz));
 }
+
+}  // namespace test_step_bounds

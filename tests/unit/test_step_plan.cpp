@@ -15,6 +15,9 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_step_plan {
 #endif
 
 using sable::test::Deck;
@@ -184,3 +187,5 @@ TEST(StepPlan, InfoTakesOnlyPlan) {
     EXPECT_NE(std::string(e.what()).find("'plan'"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_step_plan

@@ -20,6 +20,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/lattice_deck_2d.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_stress_cg_2d {
+
 using sable::CgField;
 using sable::CgKernel;
 using sable::test::Deck;
@@ -275,3 +278,5 @@ TEST(StressCG2D, LatticeDecksInDimension2) {
       for (int c : {ZZ, XZ, YZ}) EXPECT_EQ(maxabs(out, kS + c), 0.0) << what;
     }
 }
+
+}  // namespace test_stress_cg_2d

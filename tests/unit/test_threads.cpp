@@ -21,6 +21,9 @@
 #include "core/engine/threads.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_threads {
+
 using sable::test::Deck;
 constexpr sable::Simd kWide = sable::Simd::AVX512;  // the widest the CPU has (simd_level())
 
@@ -472,3 +475,5 @@ TEST(StepFusion, SlowPathNamedOncePerFix) {
   Deck quiet;
   EXPECT_EQ(sable::test::printed(plain, quiet).find("Note: fix"), std::string::npos);
 }
+
+}  // namespace test_threads

@@ -14,6 +14,9 @@
 #include "core/engine/error.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_two_d {
+
 using sable::test::Deck;
 using sable::test::error_of;
 
@@ -363,3 +366,5 @@ create_box 1 box)");
   EXPECT_NE(error_of(d4, "fix i all nve/sphere disc").find("a 2D simulation for 'disc'"), std::string::npos);
   EXPECT_NE(error_of(d4, "fix j all nve update").find("nothing after 'nve'"), std::string::npos);
 }
+
+}  // namespace test_two_d

@@ -13,6 +13,9 @@
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_wall_gran {
+
 using sable::test::Deck;
 
 namespace {
@@ -258,3 +261,5 @@ neigh_modify every 1 check no)");  // a rebuild (and sort) every step
   EXPECT_EQ(spring(3), 0.0) << "the spring of a grain moved away between runs survived";
   EXPECT_GT(spring(1), 0.0);
 }
+
+}  // namespace test_wall_gran

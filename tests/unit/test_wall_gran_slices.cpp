@@ -17,6 +17,9 @@
 #include "tests/unit/deck_runner.h"
 #include "tests/unit/right_wall_scene.h"
 
+// A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
+namespace test_wall_gran_slices {
+
 using sable::test::Deck;
 using sable::test::error_of;
 using sable::test::TempDir;
@@ -235,3 +238,5 @@ TEST(WallGranSlices, AfterDeletingGrainsTheContactsAreReevaluated) {
   c->local_now();
   EXPECT_EQ(c->local_rows(), 2u);
 }
+
+}  // namespace test_wall_gran_slices

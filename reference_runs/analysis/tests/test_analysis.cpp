@@ -12,16 +12,11 @@
 #include <unistd.h>
 
 #include "reference_runs/analysis/analysis.h"
+#include "reference_runs/analysis/tests/gsl_rng.h"
 
 using namespace sable::analysis;
 
 namespace {
-
-struct Rng {
-  std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> r{gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free};
-  explicit Rng(unsigned long seed) { gsl_rng_set(r.get(), seed); }
-  operator gsl_rng*() const { return r.get(); }
-};
 
 Vec truncated_lognormal(gsl_rng* r, std::size_t n, double mu, double sigma, double x0) {
   Vec x;

@@ -14,16 +14,11 @@
 
 #include "core/io/h5_series.h"
 #include "reference_runs/analysis/analysis.h"
+#include "reference_runs/analysis/tests/gsl_rng.h"
 
 using namespace sable::analysis;
 
 namespace {
-
-struct Rng {
-  std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> r{gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free};
-  explicit Rng(unsigned long seed) { gsl_rng_set(r.get(), seed); }
-  operator gsl_rng*() const { return r.get(); }
-};
 
 // kneib2017 Sec. III A: r1 = 0.53, r2 = 0.86, I_M^0 = 0.02 over I_M = 1e-3 ... 0.5.
 constexpr double kR1 = 0.53, kR2 = 0.86, kI0 = 0.02;

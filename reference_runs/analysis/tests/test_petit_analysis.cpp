@@ -9,18 +9,13 @@
 #include <memory>
 
 #include "reference_runs/analysis/analysis.h"
+#include "reference_runs/analysis/tests/gsl_rng.h"
 
 using namespace sable::analysis;
 
 namespace {
 
 constexpr double kDeg = M_PI / 180;
-
-struct Rng {
-  std::unique_ptr<gsl_rng, void (*)(gsl_rng*)> r{gsl_rng_alloc(gsl_rng_mt19937), gsl_rng_free};
-  explicit Rng(unsigned long seed) { gsl_rng_set(r.get(), seed); }
-  operator gsl_rng*() const { return r.get(); }
-};
 
 // Eq. 9 with P = 1/pi: -(3/2) ln cos(2/3 (phi_max - phi_min)) / pi, and its inverse.
 double uniform_eq9(double mu, double phi_min) {
