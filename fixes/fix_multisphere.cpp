@@ -51,7 +51,7 @@ FixMultisphere::FixMultisphere(Simulation& s, const Args& a) : Fix(s, a), set_(s
     }
   }
   for (auto& f : s.fixes)
-    if (f->style == style && f->id != id) a.fail(3, "one fix multisphere only (LIGGGHTS: exactly one; '" + f->id + "' exists)");
+    if (dynamic_cast<const FixMultisphere*>(f.get()) && f->id != id) a.fail(3, "one fix multisphere only (LIGGGHTS: exactly one; '" + f->id + "' exists)");
   if (s.domain.dimension != 3) a.fail(3, "dimension 3 (LIGGGHTS: fix multisphere works with 3D simulations only)");
   set_.col = s.atoms.add_column("multisphere:" + id, BodySet::kStride);
 }
