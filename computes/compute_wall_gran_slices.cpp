@@ -33,7 +33,7 @@
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "core/input/variable.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

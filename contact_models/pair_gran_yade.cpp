@@ -1,8 +1,8 @@
-// pair_style gran in sable --export-yade (tools/yade_script.h): the models
+// pair_style gran in sable --export-yade (core/io/yade_script.h): the models
 // YADE has a law for, hertz (Mindlin) and linear/kneib (CundallStrackVisco),
 // with tangential history; the materials and laws are written from the model.
 #include "contact_models/pair_gran.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

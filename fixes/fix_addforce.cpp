@@ -8,7 +8,7 @@
 #include "core/engine/block_sum.h"
 #include "core/input/style_registry.h"
 #include "fixes/group_force.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

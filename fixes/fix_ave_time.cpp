@@ -28,7 +28,7 @@
 #include "core/input/style_registry.h"
 #include "core/io/thermo.h"
 #include "core/input/variable.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 namespace ave {

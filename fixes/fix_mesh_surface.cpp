@@ -6,7 +6,7 @@
 #include "core/io/restart.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

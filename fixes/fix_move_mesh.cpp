@@ -15,7 +15,7 @@
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "fixes/fix_mesh_surface.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

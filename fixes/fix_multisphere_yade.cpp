@@ -1,4 +1,4 @@
-// fix multisphere in sable --export-yade (tools/yade_script.h): each body one
+// fix multisphere in sable --export-yade (core/io/yade_script.h): each body one
 // YADE clump of its member spheres with the body's own mass, inertia (from the
 // template, about its principal axes) and state; every member carries the
 // body's mass in contacts, as LIGGGHTS has it.
@@ -8,7 +8,7 @@
 
 #include "core/engine/simulation.h"
 #include "fixes/fix_multisphere.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

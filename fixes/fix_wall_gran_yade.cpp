@@ -1,10 +1,10 @@
-// fix wall/gran in sable --export-yade (tools/yade_script.h): a primitive plane
+// fix wall/gran in sable --export-yade (core/io/yade_script.h): a primitive plane
 // becomes a YADE wall (a thin box in a periodic cell), a mesh wall the facets of
 // its fix mesh/surface; the script gives each the Hertz or linear law of the
 // pair style. What YADE has no counterpart for is refused at the fix's line.
 #include "fixes/fix_wall_gran.h"
 #include "fixes/fix_wall_gran_mesh.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 namespace {

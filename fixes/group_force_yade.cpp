@@ -5,7 +5,7 @@
 // pass, so the weight that sable's fix gravity put in before this fix (gravity
 // defined earlier) is counted in by hand and taken back out of what is set.
 #include "fixes/group_force.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 

@@ -1,6 +1,6 @@
 // sable --export-yade (tools/export_yade.h): the driver. It reads the deck
 // through Input's intercept, keeps the deck-order bookkeeping of the script
-// (tools/yade_script.h), and at the first run asks each style, in deck order,
+// (core/io/yade_script.h), and at the first run asks each style, in deck order,
 // for its own translation (export_yade); `run` and `print` become Python here.
 #include "tools/export_yade.h"
 
@@ -17,7 +17,7 @@
 #include "core/input/input.h"
 #include "core/engine/simulation.h"
 #include "core/input/variable.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 namespace {

@@ -9,7 +9,7 @@
 namespace sable {
 
 class Simulation;
-class YadeScript;  // tools/yade_script.h
+class YadeScript;  // core/io/yade_script.h
 
 class Compute {
  public:

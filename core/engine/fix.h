@@ -16,7 +16,7 @@ namespace sable {
 
 class Simulation;
 class RigidBodies;  // core/engine/rigid_bodies.h
-class YadeScript;   // tools/yade_script.h
+class YadeScript;   // core/io/yade_script.h
 
 enum FixHook : unsigned {
   INITIAL_INTEGRATE = 1u << 0,
@@ -96,7 +96,7 @@ class Fix : public GlobalOutput {
   virtual const RigidBodies* rigid_bodies() const { return nullptr; }
 
   // sable --export-yade: this fix's part of the YADE script, from its parsed
-  // members (tools/yade_script.h). A style with no translation refuses at its line.
+  // members (core/io/yade_script.h). A style with no translation refuses at its line.
   virtual void export_yade(YadeScript&) const {
     args.fail_line("export-yade: fix style '" + style + "' is not translated to YADE");
   }

@@ -9,7 +9,7 @@ namespace sable {
 
 class Simulation;
 class ContactStore;
-class YadeScript;  // tools/yade_script.h
+class YadeScript;  // core/io/yade_script.h
 
 class Pair {
  public:
@@ -32,7 +32,7 @@ class Pair {
   // Same for atom i against a wall of type wall_type.
   virtual double rayleigh_time(std::size_t i) const = 0;
   virtual std::string describe() const = 0;
-  // sable --export-yade: the contact law as YADE materials and laws (tools/yade_script.h).
+  // sable --export-yade: the contact law as YADE materials and laws (core/io/yade_script.h).
   virtual void export_yade(YadeScript&) const { args.fail(1, "gran model ... (export-yade)"); }
 };
 

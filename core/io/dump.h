@@ -10,7 +10,7 @@
 namespace sable {
 
 class Simulation;
-class YadeScript;  // tools/yade_script.h
+class YadeScript;  // core/io/yade_script.h
 
 class Dump {
  public:
@@ -28,7 +28,7 @@ class Dump {
   void write(long step);    // called when step % every == 0
   virtual bool modify_param(const Args& args, std::size_t& i);  // dump_modify keywords
   virtual void flush() {}
-  // sable --export-yade: this dump as a recorder of the YADE script (tools/yade_script.h).
+  // sable --export-yade: this dump as a recorder of the YADE script (core/io/yade_script.h).
   virtual void export_yade(YadeScript&) const {
     args.fail(3, "dump custom or local (export-yade translates these text dumps only; '" + style + "' is not translated)");
   }

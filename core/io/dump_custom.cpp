@@ -10,7 +10,7 @@
 #include "core/io/dump_columns.h"
 #include "core/io/dump_file.h"
 #include "core/input/style_registry.h"
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 namespace sable {
 namespace {

@@ -113,7 +113,7 @@ TEST(ExportYade, ScriptHoldsGrainsLawRunAndObservables) {
 
 // YADE's Hertz wall contact takes R = r/2; the wall material the exporter
 // writes must give YADE's formulas LIGGGHTS' stiffness with R = r:
-// E*_YADE = sqrt(2) Y*, G_YADE / (2 - nu_YADE) = 2 sqrt(2) G* (tools/yade_script.cpp).
+// E*_YADE = sqrt(2) Y*, G_YADE / (2 - nu_YADE) = 2 sqrt(2) G* (core/io/yade_script.cpp).
 TEST(ExportYade, HertzWallMaterialRestoresLiggghtsStiffness) {
   TempDir tmp;
   const std::string s =

@@ -17,7 +17,7 @@
 
 #include "core/input/args.h"
 #include "core/geometry/mesh.h"
-#include "tools/yade_clumps.h"
+#include "core/io/yade_clumps.h"
 
 namespace sable {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Rigid bodies of a deck as YADE clumps, for sable --export-yade
-// (tools/yade_script.h). Each body becomes one clump of its member spheres
+// (core/io/yade_script.h). Each body becomes one clump of its member spheres
 // with sable's mass and inertia (YADE's own would come from the materials'
 // density, ignoring the masses sable gave the grains), its centre-of-mass
 // velocity and spin, and the degrees of freedom its force/torque flags lock.

@@ -1,6 +1,6 @@
-// The YADE script sable --export-yade writes (tools/yade_script.h): Python
+// The YADE script sable --export-yade writes (core/io/yade_script.h): Python
 // helpers, expressions, and the scene from what the styles added.
-#include "tools/yade_script.h"
+#include "core/io/yade_script.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,6 @@
-// Rigid bodies as YADE clumps (tools/yade_clumps.h); fix multisphere's are
+// Rigid bodies as YADE clumps (core/io/yade_clumps.h); fix multisphere's are
 // made next to it (fixes/fix_multisphere_yade.cpp).
-#include "tools/yade_clumps.h"
+#include "core/io/yade_clumps.h"
 
 #include <algorithm>
 #include <array>
