@@ -186,14 +186,7 @@ class FixAveHisto : public Fix {
   }
 
  private:
-  struct Value {
-    char kind = 0;  // a (atom attribute), c, f, v
-    std::string id, word;
-    int index = 0;
-    std::size_t at = 0;
-    Compute* c = nullptr;
-    Fix* f = nullptr;
-  };
+  using Value = ave::Value;  // kinds a (atom attribute), c, f, v
   enum Kind { Global, PerAtom, Local };
   using enum ave::Ave;
   enum Beyond { Ignore, End, Extra };
@@ -214,16 +207,7 @@ class FixAveHisto : public Fix {
   std::unique_ptr<ave::H5Series> h5_;
   int h5_stats_ = -1, h5_counts_ = -1, h5_fraction_ = -1, h5_step_ = -1;
 
-  void resolve(Value& v) {
-    v.c = nullptr;
-    v.f = nullptr;
-    if (v.kind == 'c' && !(v.c = sim.find_compute(v.id)))
-      args.fail(v.at, "an existing compute ID ('" + v.id + "' is not defined)");
-    if (v.kind == 'f' && !(v.f = sim.find_fix(v.id)))
-      args.fail(v.at, "an existing fix ID ('" + v.id + "' is not defined)");
-    if (v.kind == 'f' && v.f == this) args.fail(v.at, "another fix (a fix cannot histogram itself)");
-    if (v.kind == 'v' && !sim.variables->exists(v.id)) args.fail(v.at, "a defined variable ('" + v.id + "' is not)");
-  }
+  void resolve(Value& v) { v.resolve(sim, args, this, "histogram"); }
 
   // Every value of the same kind, and one the mode and the source can give.
   void check_values() {

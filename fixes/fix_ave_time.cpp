@@ -143,6 +143,15 @@ void Options::check(const Args& a) const {
   if (overwrite && ave != Running) a.fail_line("'overwrite' needs 'ave running' (as in LIGGGHTS)");
 }
 
+void Value::resolve(Simulation& sim, const Args& a, const Fix* self, const char* doing) {
+  c = nullptr;
+  f = nullptr;
+  if (kind == 'c' && !(c = sim.find_compute(id))) a.fail(at, "an existing compute ID ('" + id + "' is not defined)");
+  if (kind == 'f' && !(f = sim.find_fix(id))) a.fail(at, "an existing fix ID ('" + id + "' is not defined)");
+  if (kind == 'f' && f == self) a.fail(at, std::string("another fix (a fix cannot ") + doing + " itself)");
+  if (kind == 'v' && !sim.variables->exists(id)) a.fail(at, "a defined variable ('" + id + "' is not)");
+}
+
 }  // namespace ave
 
 namespace {
@@ -294,15 +303,7 @@ class FixAveTime : public Fix {
 
  private:
   void export_yade_recorder(YadeScript& s) const;
-  struct Value {
-    char kind = 0;  // c, f, v
-    std::string id, word;
-    int index = 0;  // 0: scalar (or whole vector in vector mode)
-    std::size_t at = 0;
-    bool off = false;
-    Compute* c = nullptr;
-    Fix* f = nullptr;
-  };
+  using Value = ave::Value;  // kinds c, f, v
   using enum ave::Ave;
   ave::Schedule sched_;
   std::vector<Value> values_;
@@ -350,16 +351,7 @@ class FixAveTime : public Fix {
     if (vector_mode_) nrows_ = len;
   }
 
-  void resolve(Value& v) {
-    v.c = nullptr;
-    v.f = nullptr;
-    if (v.kind == 'c' && !(v.c = sim.find_compute(v.id)))
-      args.fail(v.at, "an existing compute ID ('" + v.id + "' is not defined)");
-    if (v.kind == 'f' && !(v.f = sim.find_fix(v.id)))
-      args.fail(v.at, "an existing fix ID ('" + v.id + "' is not defined)");
-    if (v.kind == 'f' && v.f == this) args.fail(v.at, "another fix (a fix cannot average itself)");
-    if (v.kind == 'v' && !sim.variables->exists(v.id)) args.fail(v.at, "a defined variable ('" + v.id + "' is not)");
-  }
+  void resolve(Value& v) { v.resolve(sim, args, this, "average"); }
 
   double value(const Value& v, int row) {
     if (v.kind == 'c') return vector_mode_ ? v.c->vector(row + 1) : v.index ? v.c->vector(v.index) : v.c->scalar();

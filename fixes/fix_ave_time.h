@@ -9,7 +9,27 @@
 #include "core/input/args.h"
 #include "core/io/h5_series.h"
 
+namespace sable {
+class Compute;
+class Fix;
+class Simulation;
+}  // namespace sable
+
 namespace sable::ave {
+
+// One input of either fix: c_ID[i], f_ID[i], v_name (ave/histo: also an atom attribute, kind 'a').
+struct Value {
+  char kind = 0;
+  std::string id, word;
+  int index = 0;        // 0: the scalar (or the whole vector in vector mode)
+  std::size_t at = 0;   // its word (errors point at it)
+  bool off = false;     // ave/time's `off`
+  Compute* c = nullptr;
+  Fix* f = nullptr;
+  // Finds the compute, fix or variable it names, failing at its word; `self` (the
+  // fix reading it) may not read itself (`doing`: what it would do, for the message).
+  void resolve(Simulation& sim, const Args& a, const Fix* self, const char* doing);
+};
 
 // Steps on which inputs are sampled: Nrepeat samples Nevery apart, ending on a
 // multiple of Nfreq that is >= start.
