@@ -521,7 +521,7 @@ void Simulation::force_pass(const Stage& s) {
                                       [](auto& o) { return o.kind == AtomOp::FirstHalf || o.kind == AtomOp::BothHalves; });
   if (std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::Prescan; }))
     neighbor.expect_prescan(atoms, step + 1);
-  begin_ops(s.ops);
+  begin_ops(s);
   double fix_s = 0.0, all_s = 0.0;  // thread 0's seconds in post_force tasks and in all ops (time split)
   pair->compute_then([&](int t, std::size_t lo, std::size_t hi) {
     if (t != 0) return run_ops_on_range(*this, s.ops, t, lo, hi);
@@ -529,7 +529,7 @@ void Simulation::force_pass(const Stage& s) {
     run_ops_on_range(*this, s.ops, t, lo, hi, &fix_s);
     all_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   });
-  end_ops(s.ops);
+  end_ops(s);
   cleared_steps += next_first && std::any_of(s.ops.begin(), s.ops.end(), [](auto& o) { return o.kind == AtomOp::ClearForces; });
   timers.pair -= all_s;  // thread 0's share, as the time split counts
   timers.fixes += fix_s;
@@ -555,7 +555,7 @@ void Simulation::run_stage(const Stage& s) {
         return std::any_of(s.ops.begin(), s.ops.end(), [&](auto& o) { return o.kind == k; });
       };
       if (has(AtomOp::Prescan)) neighbor.expect_prescan(atoms, step);
-      run_atom_ops(*this, s.ops);
+      run_atom_ops(*this, s);
       cleared_steps += (has(AtomOp::FirstHalf) || has(AtomOp::BothHalves)) && has(AtomOp::ClearForces);
       return;
     }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <deque>
 
 #include "core/engine/simulation.h"
 #include "core/engine/threads.h"
@@ -139,53 +138,30 @@ void run_ops_on_range(Simulation& sim, const std::vector<AtomOp>& ops, int t, st
   run_phase(sim, ops, split, ops.size(), t, lo, hi, fix_seconds);
 }
 
-// Each fix once, in the order of its first op, with the hook of its last op (a
-// fused integrator: INITIAL_INTEGRATE). Called twice per stage and step, so the
-// answer is kept per op list: found again by the (fix, hook) sequence it was
-// made from (one pass, no allocation), not by the list's address, which a
-// rebuilt plan may reuse.
-using FixCalls = std::vector<std::pair<Fix*, FixHook>>;
-static const FixCalls& fixes_called(const std::vector<AtomOp>& ops) {
-  struct Known {
-    FixCalls seq, calls;  // every op's (fix, hook) that calls a fix; each fix once
-  };
-  thread_local std::deque<Known> known;  // a deque: a fix whose begin() asks again leaves the answer in place
-  for (const Known& k : known) {
-    std::size_t n = 0;
-    bool same = true;
-    for (const AtomOp& op : ops) {
-      if (!calls_fix(op)) continue;
-      same = n < k.seq.size() && k.seq[n].first == op.fix && k.seq[n].second == hook_of(op);
-      if (!same) break;
-      ++n;
-    }
-    if (same && n == k.seq.size()) return k.calls;
-  }
-  if (known.size() >= 32) known.clear();  // plans rebuilt many times: start over
-  Known k;
+// Stage::calls of an op list.
+static std::vector<std::pair<Fix*, FixHook>> fixes_called(const std::vector<AtomOp>& ops) {
+  std::vector<std::pair<Fix*, FixHook>> out;
   for (const AtomOp& op : ops) {
     if (!calls_fix(op)) continue;
-    k.seq.emplace_back(op.fix, hook_of(op));
-    auto it = std::find_if(k.calls.begin(), k.calls.end(), [&](auto& p) { return p.first == op.fix; });
-    if (it == k.calls.end()) k.calls.emplace_back(op.fix, hook_of(op));
+    auto it = std::find_if(out.begin(), out.end(), [&](auto& p) { return p.first == op.fix; });
+    if (it == out.end()) out.emplace_back(op.fix, hook_of(op));
     else it->second = hook_of(op);
   }
-  known.push_back(std::move(k));
-  return known.back().calls;
+  return out;
 }
 
-void begin_ops(const std::vector<AtomOp>& ops) {
-  for (auto& [f, h] : fixes_called(ops)) f->begin(h);
+void begin_ops(const Stage& s) {
+  for (auto& [f, h] : s.calls) f->begin(h);
 }
 
-void end_ops(const std::vector<AtomOp>& ops) {
-  for (auto& [f, h] : fixes_called(ops)) f->end(h);
+void end_ops(const Stage& s) {
+  for (auto& [f, h] : s.calls) f->end(h);
 }
 
-void run_atom_ops(Simulation& sim, const std::vector<AtomOp>& ops) {
-  begin_ops(ops);
-  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { run_ops_on_range(sim, ops, t, lo, hi); });
-  end_ops(ops);
+void run_atom_ops(Simulation& sim, const Stage& s) {
+  begin_ops(s);
+  sim.atoms.for_ranges([&](int t, std::size_t lo, std::size_t hi) { run_ops_on_range(sim, s.ops, t, lo, hi); });
+  end_ops(s);
 }
 
 // ---- The plain plan and its rewrites.
@@ -356,6 +332,7 @@ StepPlan build_plan(const Simulation& sim, unsigned mask) {
   if (mask & kFold) p = fold_gravity(std::move(p));
   if (mask & kPipeline) p = pipeline(std::move(p), sim.pair != nullptr);
   if (mask & kPrescan) p = prescan(std::move(p));
+  for (Stage& s : p.stages) s.calls = fixes_called(s.ops);
   return p;
 }
 

@@ -50,6 +50,10 @@ struct Stage {
   Fix* fix = nullptr;  // Hook
   FixHook hook = INITIAL_INTEGRATE;
   std::vector<AtomOp> ops;  // AtomPass, ForcePass
+  // The fixes of ops, each once in the order of its first op, with its last op's
+  // hook (a fused integrator: INITIAL_INTEGRATE): whose begin() and end() the
+  // stage calls. Set by build_plan after the rewrites.
+  std::vector<std::pair<Fix*, FixHook>> calls;
   std::string describe() const;
 };
 
@@ -80,12 +84,12 @@ StepPlan prescan(StepPlan p);
 StepPlan build_plan(const Simulation& sim, unsigned mask);
 
 // Runs `ops` over every thread's atoms (begin/end of each fix serially around them).
-void run_atom_ops(Simulation& sim, const std::vector<AtomOp>& ops);
+void run_atom_ops(Simulation& sim, const Stage& s);
 // Runs `ops` on one thread's atoms [lo, hi): single-phase ops block by block.
 void run_ops_on_range(Simulation& sim, const std::vector<AtomOp>& ops, int t, std::size_t lo, std::size_t hi,
                       double* fix_seconds = nullptr);
 // begin()/end() of each fix the ops call (serially, before and after a pass).
-void begin_ops(const std::vector<AtomOp>& ops);
-void end_ops(const std::vector<AtomOp>& ops);
+void begin_ops(const Stage& s);
+void end_ops(const Stage& s);
 
 }  // namespace sable
