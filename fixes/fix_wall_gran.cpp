@@ -9,6 +9,7 @@
 #include "contact_models/pair_gran.h"
 #include "contact_models/registry.h"
 #include "core/engine/simulation.h"
+#include "core/io/restart.h"
 #include "core/input/style_registry.h"
 #include "core/engine/threads.h"
 
@@ -90,14 +91,13 @@ FixWallGran::FixWallGran(Simulation& s, const Args& a) : Fix(s, a) {
   }
   if (!have_wall) a.fail(a.size(), "'primitive type T xplane|yplane|zplane|xcylinder|... ARGS'");
   hist_size_ = static_cast<int>(kernel_->history_slots().size());
-  if (hist_size_ > 0) hist_col_ = s.atoms.add_column("wall/gran " + id, hist_size_);
+  hist_.configure(hist_size_);
 }
 
 void FixWallGran::init() {
   kernel_->connect(Materials::of(sim), args);
   freeze_bit_ = frozen_groupbits(sim);
   setup_pass_ = true;
-  check_all_ = true;
 }
 
 double FixWallGran::max_speed() const {
@@ -110,6 +110,9 @@ double FixWallGran::max_speed() const {
 void FixWallGran::Staged::clear() {
   atom.clear();
   place.clear();
+  row.clear();
+  hist.clear();
+  keys.clear();
   force.clear();
   deltan.clear();
   en.clear();
@@ -176,7 +179,7 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
   if (shape_ == Shape::Plane) {
     for (std::size_t c = c0; c < c1; ++c) {
       const int i = near_[c];
-      prefetch_near(c + 16);
+      at.prefetch_ahead(near_, c);
       const double overlap = rad[i] - std::fabs(x[3 * i + axis_] - w.pos);
       if (overlap <= 0.0) continue;
       if (!(at.mask[i] & bits) || !(at.mask[i] & also)) continue;
@@ -191,7 +194,7 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
   const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
   for (std::size_t c = c0; c < c1; ++c) {
     const int i = near_[c];
-    prefetch_near(c + 16);
+    at.prefetch_ahead(near_, c);
     const double d1 = x[3 * i + a1] - c1_, d2 = x[3 * i + a2] - c2_, rho2 = d1 * d1 + d2 * d2;
     const double in = radius_ - rad[i], out_r = radius_ + rad[i];
     if ((in > 0.0 && rho2 < in * in * (1.0 - 1e-9)) || rho2 > out_r * out_r * (1.0 + 1e-9)) continue;
@@ -203,74 +206,9 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
   }
 }
 
-// History of the grains that left the wall is reset. Between neighbour
-// rebuilds atoms keep their indices, so only last step's contacts can have
-// left (a merge of two sorted lists). After a rebuild they are among the new
-// near grains (they touched the wall a step ago: within reach); after an
-// insertion, and at a run's first pass (the deck may have moved grains between
-// runs), every grain of the group is checked.
-// atoms_now_: this pass's contacts, sorted.
-void FixWallGran::forget_departed(const Now& w) {
-  const Atoms& at = sim.atoms;
-  double* hist = sim.atoms.column(hist_col_).data();
-  auto forget = [&](std::size_t i) {
-    double n[3], vw[3], dist = 0.0;
-    if (!geometry(i, w, n, vw, dist)) return;  // on a cylinder's axis: left as it was
-    for (int m = 0; m < hist_size_; ++m) hist[i * hist_size_ + m] = 0.0;
-  };
-  const std::vector<int>& now = atoms_now_;
-  if (prev_builds_ == sim.neighbor.builds && prev_n_ == at.n) {
-    std::size_t c = 0;
-    for (int i : prev_atoms_) {
-      while (c < now.size() && now[c] < i) ++c;
-      if (c < now.size() && now[c] == i) continue;
-      forget(static_cast<std::size_t>(i));
-    }
-  } else {
-    auto check = [&](std::size_t i, std::size_t& c) {  // c: position in `now`, both in increasing i
-      while (c < now.size() && now[c] < static_cast<int>(i)) ++c;
-      if (c < now.size() && now[c] == static_cast<int>(i)) return;
-      if (!(at.mask[i] & groupbit)) return;
-      bool nonzero = false;
-      for (int m = 0; m < hist_size_; ++m) nonzero |= hist[i * hist_size_ + m] != 0.0;
-      if (nonzero) forget(i);
-    };
-    std::size_t c = 0;
-    if (!check_all_ && prev_n_ == at.n) {
-      for (int i : near_) check(static_cast<std::size_t>(i), c);
-    } else {
-      for (std::size_t i = 0; i < at.n; ++i) check(i, c);
-    }
-  }
-  check_all_ = false;
-  prev_atoms_.swap(atoms_now_);
-  prev_builds_ = sim.neighbor.builds;
-  prev_n_ = at.n;
-}
-
-// Grains near a wall are spread through memory (a floor holds a few grains of
-// every slab of bins) and out of cache in large systems: their position and
-// radius (this search), state, forces and wall history (the force pass that
-// follows) are requested a few grains ahead.
-void FixWallGran::prefetch_near(std::size_t c) const {
-  if (c >= near_.size()) return;
-  Atoms& at = sim.atoms;
-  const std::size_t i = near_[c];
-  __builtin_prefetch(&at.x[3 * i]);
-  __builtin_prefetch(&at.radius[i]);
-  __builtin_prefetch(&at.mask[i]);
-  __builtin_prefetch(&at.v[3 * i]);
-  __builtin_prefetch(&at.omega[3 * i]);
-  __builtin_prefetch(&at.f[3 * i]);
-  __builtin_prefetch(&at.torque[3 * i]);
-  __builtin_prefetch(&at.rmass[i]);
-  if (hist_col_ >= 0) __builtin_prefetch(at.column(hist_col_).data() + i * hist_size_);
-}
-
 // Between rebuilds no grain moves more than skin/2 (the rebuild rule) and a
 // wiggling plane at most |A| from POS: a grain whose gap to the wall at POS
 // was skin + |A| or more at the rebuild cannot touch it before the next one.
-// On the per-atom passes' ranges (atom_pass_threaded), joined in atom order.
 void FixWallGran::refresh_near() {
   const Atoms& at = sim.atoms;
   if (near_builds_ == sim.neighbor.builds && near_n_ == at.n) return;
@@ -278,27 +216,39 @@ void FixWallGran::refresh_near() {
   near_n_ = at.n;
   const double reach = sim.neighbor.skin + std::fabs(wiggle_amp_);
   const int a1 = (axis_ + 1) % 3, a2 = (axis_ + 2) % 3;
-  near_parts_.resize(atom_pass_threads());
-  for (std::vector<int>& found : near_parts_) found.clear();  // a serial pass fills only the first
-  at.for_ranges([&](int t, std::size_t lo, std::size_t hi) {
-    std::vector<int>& found = near_parts_[t];
-    for (std::size_t i = lo; i < hi; ++i) {
-      const double* x = &at.x[3 * i];
-      double dist;
-      if (shape_ == Shape::Plane) {
-        dist = std::fabs(x[axis_] - pos0_);
-      } else {
-        const double d1 = x[a1] - c1_, d2 = x[a2] - c2_;
-        dist = std::fabs(std::sqrt(d1 * d1 + d2 * d2) - radius_);
-      }
-      if (dist - at.radius[i] < reach) found.push_back(static_cast<int>(i));
-    }
-  });
-  near_.clear();
-  for (const std::vector<int>& found : near_parts_) near_.insert(near_.end(), found.begin(), found.end());
+  at.select(
+      [&](std::size_t i) {
+        const double* x = &at.x[3 * i];
+        double dist;
+        if (shape_ == Shape::Plane) {
+          dist = std::fabs(x[axis_] - pos0_);
+        } else {
+          const double d1 = x[a1] - c1_, d2 = x[a2] - c2_;
+          dist = std::fabs(std::sqrt(d1 * d1 + d2 * d2) - radius_);
+        }
+        return dist - at.radius[i] < reach;
+      },
+      near_);
 }
 
-WallBatch FixWallGran::batch(const Staged& st) {
+// Keys in grain-id order (a grain meets a primitive wall once: no repeats).
+void FixWallGran::look_up(Staged& st) const {
+  const std::size_t n = st.atom.size();
+  const long* tag = sim.atoms.id.data();
+  st.by_id.resize(n);
+  for (std::size_t c = 0; c < n; ++c) st.by_id[c] = static_cast<int>(c);
+  std::sort(st.by_id.begin(), st.by_id.end(), [&](int a, int b) { return tag[st.atom[a]] < tag[st.atom[b]]; });
+  st.keys.resize(n);
+  st.row.resize(n);
+  for (std::size_t q = 0; q < n; ++q) {
+    st.keys[q] = {tag[st.atom[st.by_id[q]]], 0};
+    st.row[st.by_id[q]] = static_cast<int>(q);
+  }
+  st.hist.resize(n * static_cast<std::size_t>(hist_size_));
+  hist_.look_up(st.keys.data(), n, st.hist.data());
+}
+
+WallBatch FixWallGran::batch(Staged& st) {
   Atoms& at = sim.atoms;
   WallBatch b;
   b.a = atom_view(at, at.n, freeze_bit_);
@@ -307,9 +257,10 @@ WallBatch FixWallGran::batch(const Staged& st) {
   b.deltan = st.deltan.data();
   b.en = st.en.data();
   b.vwall = st.vwall.data();
-  if (hist_col_ >= 0) {  // per-atom history: the row of contact k is its atom
-    b.hist = at.column(hist_col_).data();
-    b.hist_index = st.atom.data();
+  if (hist_size_ > 0) {  // contact k's history is row st.row[k] of st.hist
+    look_up(st);
+    b.hist = st.hist.data();
+    b.hist_index = st.row.data();
     b.hist_stride = hist_size_;
   }
   b.wall_type = type_;
@@ -328,10 +279,8 @@ void FixWallGran::begin(FixHook) {
   pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
   pass_atoms_ = sim.atoms.n;
-  const std::size_t parts = static_cast<std::size_t>(atom_pass_threads());
-  if (parts_.size() < parts) parts_.resize(parts);
-  for (auto& p : parts_) p.clear();
-  sum_.begin(near_.size(), thread_settings().wall_block, static_cast<int>(parts));
+  parts_.start([](Staged& p) { p.clear(); });
+  sum_.begin(near_.size(), thread_settings().wall_block, parts_.size());
 }
 
 void FixWallGran::range(FixHook, const AtomRange& r) {
@@ -350,10 +299,16 @@ void FixWallGran::range(FixHook, const AtomRange& r) {
   for (std::size_t c = 0; c < st.atom.size(); ++c) sum_.add(t, static_cast<std::size_t>(st.place[c]), &st.force[3 * c]);
 }
 
+// The history kept is this pass's contacts': a grain that left the wall starts afresh.
 void FixWallGran::end(FixHook) {
-  atoms_now_.clear();
-  for (const Staged& p : parts_) atoms_now_.insert(atoms_now_.end(), p.atom.begin(), p.atom.end());
-  if (hist_col_ >= 0) forget_departed(pass_now_);
+  if (hist_size_ > 0) {
+    const std::size_t hs = static_cast<std::size_t>(hist_size_);
+    WallHistory::merged_order(
+        parts_.size(), [&](int t) { return parts_[t].keys.data(); },
+        [&](int t) { return parts_[t].keys.size(); }, order_);
+    hist_.keep(
+        order_, [&](int t, int q) { return parts_[t].keys[q]; }, [&](int t, int q) { return parts_[t].hist.data() + q * hs; });
+  }
   double total[3];
   sum_.finish(total);
   for (int d = 0; d < 3; ++d) force_[d] = 0.0 - total[d];  // (0.0 - x, not -x: no "-0" in thermo output)
@@ -373,6 +328,18 @@ void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {
   WallBatch b = batch(records_);
   b.ctx.update = false;
   kernel_->wall_records(b, out);
+}
+
+bool FixWallGran::write_state(std::string& out) const {
+  restart::Packer p;
+  hist_.write(p);
+  out = p.bytes;
+  return true;
+}
+
+void FixWallGran::read_state(const std::string& in) {
+  restart::Unpacker u(in, "the restart state of fix " + id);
+  if (!hist_.read(u)) args.fail_line("the restart file's fix " + id + " has another model");
 }
 
 double FixWallGran::compute_vector(int i) {

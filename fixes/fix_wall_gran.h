@@ -12,8 +12,8 @@
 //   wiggle (sable addition, LIGGGHTS-PUBLIC has none for primitives): a plane
 //          moves along its normal as POS + A sin(2 pi t / P), t from the fix's creation.
 // Outputs (sable addition): f_ID[1..3] = total force exerted by the grains ON the
-// wall at the last force evaluation. Per-atom wall history (tangential spring,
-// rolling spring) is an Atoms column, so it follows atoms through sorting.
+// wall at the last force evaluation. The contacts' history (tangential spring,
+// rolling spring) is kept by grain id (core's WallHistory), and in restart files.
 #include <memory>
 #include <vector>
 
@@ -21,6 +21,8 @@
 #include "core/engine/block_sum.h"
 #include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
+#include "core/engine/threads.h"
+#include "core/engine/wall_history.h"
 
 namespace sable {
 
@@ -33,6 +35,9 @@ class FixWallGran : public Fix, public ContactSource {
   void range(FixHook, const AtomRange& r) override;
   void end(FixHook) override;
   double compute_vector(int i) override;  // 1..3: force on the wall
+  bool write_state(std::string& out) const override;  // the contacts' history
+  void read_state(const std::string& in) override;
+  const WallHistory& history() const { return hist_; }
   double max_speed() const override;
 
   ContactKernel& kernel() { return *kernel_; }
@@ -46,6 +51,7 @@ class FixWallGran : public Fix, public ContactSource {
   const double* wall_point(int k) const override { return &records_.point[3 * k]; }
   const double* wall_velocity(int k) const override { return &records_.vwall[3 * k]; }
   bool last_pass(const PassFn& fn) const override;
+  void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override { hist_.renumber(o, n); }
   int plane_axis() const override { return shape_ == Shape::Plane ? axis_ : -1; }
 
  private:
@@ -58,17 +64,20 @@ class FixWallGran : public Fix, public ContactSource {
   double wiggle_amp_ = 0, wiggle_period_ = 0;
   long wiggle_step0_ = 0;
   int type_ = 1;
-  int hist_col_ = -1, hist_size_ = 0;
+  int hist_size_ = 0;
+  WallHistory hist_;  // last force pass's contacts, by grain id
   bool setup_pass_ = true;
-  bool check_all_ = true;  // next forget_departed looks at every grain (first pass of a run)
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
   // Overlapping grains found by one search: atom index, its place in the near
   // list, overlap, unit normal, wall velocity, wall point and (force pass)
-  // force per contact. Own cache lines: each thread grows its own.
+  // force per contact; keys: the contacts' (grain id, 0) in id order, hist their
+  // history in that order and row each contact's place there. Own cache lines:
+  // each thread grows its own.
   struct alignas(64) Staged {
-    std::vector<int> atom, place;
-    std::vector<double> deltan, en, vwall, point, force;
+    std::vector<int> atom, place, row, by_id;
+    std::vector<double> deltan, en, vwall, point, force, hist;
+    std::vector<WallHistory::Key> keys;
     void clear();
   };
   // Wall position along its normal and normal velocity at this step (wiggle).
@@ -77,32 +86,27 @@ class FixWallGran : public Fix, public ContactSource {
   };
   // The force pass: each thread's contacts (Atoms::split ranges, in order),
   // the wall's state and whether history is updated (begin).
-  std::vector<Staged> parts_;
+  ThreadParts<Staged> parts_;
   Now pass_now_{0.0, 0.0};
   bool pass_update_ = true;
   std::size_t pass_atoms_ = 0;
   Staged records_;  // the contacts of the last records() call
-  // Contacts of the last force pass (atom indices), valid while no rebuild or insertion changed the indices.
-  std::vector<int> prev_atoms_, atoms_now_;
-  long prev_builds_ = -1;
-  std::size_t prev_n_ = 0;
+  WallHistory::Order order_;  // end(): the parts' contacts in key order
 
   // Grains that can reach the wall before the next neighbour rebuild (indices
   // hold until then): the per-step search looks at these only.
   std::vector<int> near_;
-  std::vector<std::vector<int>> near_parts_;  // refresh_near's per-thread finds
   long near_builds_ = -1;
   std::size_t near_n_ = 0;
   void refresh_near();
-  void prefetch_near(std::size_t c) const;
 
   Now now() const;
   bool geometry(std::size_t i, const Now& w, double n[3], double vw[3], double& dist) const;
   // Appends the overlapping grains of near_[c0, c1) in the fix group that also match `also`.
   void collect(std::size_t c0, std::size_t c1, std::uint32_t also, const Now& w, Staged& out) const;
-  // Zeroes the history of the grains that left the wall since the last force pass.
-  void forget_departed(const Now& w);
-  WallBatch batch(const Staged& s);
+  // The staged contacts' history from the last pass (s.keys, s.hist, s.row).
+  void look_up(Staged& s) const;
+  WallBatch batch(Staged& s);
   BlockSum<3> sum_;  // the total force on the grains, in fixed blocks of the near list
 };
 

@@ -55,7 +55,9 @@ void FixWallGranMesh::find_meshes() {
     if (!f) args.fail_line("fix mesh/surface " + m + " no longer exists");
     meshes_.push_back(f);
   }
-  prev_.resize(meshes_.size());
+  prev_.resize(meshes_.size());  // kept across runs
+  for (WallHistory& h : prev_)
+    if (h.size() != hist_size_) h.configure(hist_size_);
   near_.resize(meshes_.size());
   glue_.resize(meshes_.size());  // filled at init (records() before a run: no glue yet)
   // The first wall/gran mesh fix of a mesh clears its load each step; the others add to it.
@@ -434,29 +436,12 @@ bool FixWallGranMesh::joined(int m, int t, int u) const {
 // of that grain on a triangle of the same surface (curvature) that has ended
 // (the grain passed onto this triangle), else zeros: as LIGGGHTS 3.8, history
 // does not pass an active edge.
-std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits) const {
-  const std::size_t hs = static_cast<std::size_t>(hist_size_);
-  std::vector<double> out(hs * hits.size(), 0.0);
-  if (hs == 0) return out;
-  const Kept& p = prev_[m];
-  auto hit_now = [&](long tag, int tri) {
-    return std::binary_search(hits.begin(), hits.end(), Hit{tag, 0, tri, 0, {}, {}, {}, {}},
-                              [](const Hit& a, const Hit& b) { return a.tag != b.tag ? a.tag < b.tag : a.tri < b.tri; });
-  };
-  for (std::size_t k = 0; k < hits.size(); ++k) {
-    const Hit& h = hits[k];
-    const auto lo = std::lower_bound(p.tag.begin(), p.tag.end(), h.tag) - p.tag.begin();
-    const auto hi = std::upper_bound(p.tag.begin(), p.tag.end(), h.tag) - p.tag.begin();
-    long from = -1;
-    for (auto j = lo; j < hi && from < 0; ++j)
-      if (p.tri[j] == h.tri) from = j;
-    for (auto j = lo; j < hi && from < 0; ++j) {
-      const int t = p.tri[j];
-      if (hit_now(h.tag, t)) continue;  // that contact goes on
-      if (joined(m, t, h.tri)) from = j;
-    }
-    if (from >= 0) std::copy_n(p.hist.begin() + from * hs, hs, out.begin() + k * hs);
-  }
+std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits,
+                                                 std::vector<WallHistory::Key>& keys) const {
+  keys.resize(hits.size());
+  for (std::size_t k = 0; k < hits.size(); ++k) keys[k] = {hits[k].tag, hits[k].tri};
+  std::vector<double> out(static_cast<std::size_t>(hist_size_) * hits.size());
+  prev_[m].look_up(keys.data(), keys.size(), out.data(), [&](int before, int now) { return joined(m, before, now); });
   return out;
 }
 
@@ -501,11 +486,10 @@ void FixWallGranMesh::begin(FixHook) {
   }
   pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
-  parts_.resize(static_cast<std::size_t>(atom_pass_threads()));
-  for (Part& p : parts_) {
+  parts_.start([&](Part& p) {
     p.mesh.resize(meshes_.size());
-    for (auto& pm : p.mesh) pm.hits.clear();  // a serial pass fills only the first
-  }
+    for (auto& pm : p.mesh) pm.hits.clear(), pm.keys.clear();
+  });
 }
 
 // The contacts of the near grains among atoms [lo, hi): found, given their
@@ -520,7 +504,7 @@ void FixWallGranMesh::range(FixHook, const AtomRange& r) {
     Part::PerMesh& pm = p.mesh[m];
     const int mi = static_cast<int>(m);
     collect(mi, ~0u, static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), p, pm.hits);
-    pm.hist = history_for(mi, pm.hits);
+    pm.hist = history_for(mi, pm.hits, pm.keys);
     WallBatch b = batch(mi, pm.hits, pm.cols, pm.atoms, pm.rows, pm.hist.data());
     pm.force.assign(3 * pm.hits.size(), 0.0);
     b.force = pm.force.data();
@@ -535,25 +519,16 @@ void FixWallGranMesh::range(FixHook, const AtomRange& r) {
 void FixWallGranMesh::end(FixHook) {
   double total[3] = {0, 0, 0};
   const std::size_t hs = static_cast<std::size_t>(hist_size_);
-  std::vector<std::pair<int, int>> order;  // (part, contact)
+  WallHistory::Order order;  // (part, contact)
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
-    order.clear();
-    for (std::size_t t = 0; t < parts_.size(); ++t)
-      for (std::size_t k = 0; k < parts_[t].mesh[m].hits.size(); ++k) order.emplace_back(static_cast<int>(t), static_cast<int>(k));
-    std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
-      const Hit& p = parts_[a.first].mesh[m].hits[a.second];
-      const Hit& q = parts_[b.first].mesh[m].hits[b.second];
-      return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri;
-    });
+    auto pm_of = [&](int t) -> const Part::PerMesh& { return parts_[t].mesh[m]; };
+    WallHistory::merged_order(
+        parts_.size(), [&](int t) { return pm_of(t).keys.data(); },
+        [&](int t) { return pm_of(t).hits.size(); }, order);
     TriMesh& mesh = meshes_[m]->mesh();
     const std::uint32_t mesh_bits = meshes_[m]->groupbit;  // LIGGGHTS' stress module: grains of the mesh fix's group
-    Kept& kept = prev_[m];
-    kept.tag.resize(order.size());
-    kept.tri.resize(order.size());
-    kept.hist.resize(order.size() * hs);
-    for (std::size_t r = 0; r < order.size(); ++r) {
-      const Part::PerMesh& pm = parts_[order[r].first].mesh[m];
-      const std::size_t k = static_cast<std::size_t>(order[r].second);
+    for (const auto& [t, k] : order) {
+      const Part::PerMesh& pm = pm_of(t);
       const Hit& h = pm.hits[k];
       const Vec3d on_mesh{0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]};
       for (int d = 0; d < 3; ++d) total[d] += on_mesh[d];
@@ -561,10 +536,9 @@ void FixWallGranMesh::end(FixHook) {
         mesh.add_load(h.pmesh, on_mesh, h.tri);
         if (!pm.wear.empty() && pass_update_) mesh.wear[h.tri] += pm.wear[k];
       }
-      kept.tag[r] = h.tag;
-      kept.tri[r] = h.tri;
-      std::copy_n(pm.hist.begin() + k * hs, hs, kept.hist.begin() + r * hs);
     }
+    prev_[m].keep(
+        order, [&](int t, int k) { return pm_of(t).keys[k]; }, [&](int t, int k) { return pm_of(t).hist.data() + k * hs; });
   }
   std::copy(total, total + 3, force_);
 }
@@ -596,6 +570,7 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
   out.hist_size = hist_size_;
   rec_ = Rec{};
   std::vector<Hit> hits;
+  std::vector<WallHistory::Key> keys;
   std::vector<double> cols;
   std::vector<int> atoms, rows;
   ContactRecords part;
@@ -604,7 +579,7 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
     meshes_[m]->update_pose();
     refresh_near(mi);
     collect(mi, bits, 0, near_[m].atoms.size(), serial_, hits);
-    std::vector<double> hist = history_for(mi, hits);
+    std::vector<double> hist = history_for(mi, hits, keys);
     WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
     b.ctx.update = false;
     const int offset = static_cast<int>(rec_.tri.size());
@@ -627,12 +602,7 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
 bool FixWallGranMesh::write_state(std::string& out) const {
   restart::Packer p;
   p.put<std::uint64_t>(prev_.size());
-  for (const Kept& k : prev_) {
-    std::vector<std::int64_t> tags(k.tag.begin(), k.tag.end());
-    p.put_vector(tags);
-    p.put_vector(k.tri);
-    p.put_vector(k.hist);
-  }
+  for (const WallHistory& h : prev_) h.write(p);
   out = p.bytes;
   return true;
 }
@@ -641,13 +611,8 @@ void FixWallGranMesh::read_state(const std::string& in) {
   restart::Unpacker u(in, "the restart state of fix " + id);
   const auto n = u.get<std::uint64_t>();
   if (n != prev_.size()) args.fail_line("the restart file's fix " + id + " had " + std::to_string(n) + " meshes");
-  for (Kept& k : prev_) {
-    const auto tags = u.get_vector<std::int64_t>();
-    k.tag.assign(tags.begin(), tags.end());
-    k.tri = u.get_vector<int>();
-    k.hist = u.get_vector<double>();
-    if (k.hist.size() != k.tri.size() * hist_size_) args.fail_line("the restart file's fix " + id + " has another model");
-  }
+  for (WallHistory& h : prev_)
+    if (!h.read(u)) args.fail_line("the restart file's fix " + id + " has another model");
 }
 
 double FixWallGranMesh::compute_vector(int i) {

@@ -54,6 +54,35 @@ class Atoms {
   void for_ranges(Body&& body) const {
     for_atom_ranges(split, n, body);
   }
+  // A pass over a list of scattered atoms (a wall's near grains) at place c
+  // asks for the state of the atom a few places ahead (position, radius, mask,
+  // velocities, forces, mass): far from each other, they are out of cache in
+  // large systems.
+  void prefetch_ahead(const std::vector<int>& list, std::size_t c) const {
+    constexpr std::size_t kAhead = 16;
+    if (c + kAhead >= list.size()) return;
+    const std::size_t i = static_cast<std::size_t>(list[c + kAhead]);
+    __builtin_prefetch(&x[3 * i]);
+    __builtin_prefetch(&radius[i]);
+    __builtin_prefetch(&mask[i]);
+    __builtin_prefetch(&v[3 * i]);
+    __builtin_prefetch(&omega[3 * i]);
+    __builtin_prefetch(&f[3 * i]);
+    __builtin_prefetch(&torque[3 * i]);
+    __builtin_prefetch(&rmass[i]);
+  }
+  // The atoms i with keep(i), in increasing order, into out: each thread of the
+  // atom passes looks at its own range (a fix's search at neighbour builds).
+  template <class Keep>
+  void select(Keep&& keep, std::vector<int>& out) const {
+    std::vector<std::vector<int>> parts(static_cast<std::size_t>(atom_pass_threads()));
+    for_ranges([&](int t, std::size_t lo, std::size_t hi) {
+      for (std::size_t i = lo; i < hi; ++i)
+        if (keep(i)) parts[t].push_back(static_cast<int>(i));
+    });
+    out.clear();
+    for (const std::vector<int>& p : parts) out.insert(out.end(), p.begin(), p.end());
+  }
 
   // Append one atom, returns its index. Mass from density and radius (mass_of).
   std::size_t add(long id, int type, const double xyz[3], double radius, double density);

@@ -37,6 +37,10 @@ class ContactSource {
   virtual bool last_pass(const PassFn& /*fn*/) const { return false; }
   // A flat wall's normal axis (0, 1, 2); -1 for any other source.
   virtual int plane_axis() const { return -1; }
+  // Grain ids changed (delete_atoms ... compress yes): grain old_ids[k] is now
+  // new_ids[k], old_ids ascending, new_ids in the same order; ids not listed are
+  // gone. History kept by grain id follows.
+  virtual void ids_renumbered(const std::vector<long>& /*old_ids*/, const std::vector<long>& /*new_ids*/) {}
 };
 
 // The run's contact sources: the pair style's, if it has contacts, then every

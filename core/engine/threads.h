@@ -146,6 +146,28 @@ inline int atom_pass_threads() {
 #endif
 }
 
+// Per-thread results of an atom pass that a fix keeps until its end(): each
+// thread fills its own part (a T aligned to a cache line never shares one).
+template <class T>
+class ThreadParts {
+ public:
+  // A part per thread of the coming atom pass, each reset(part) (a serial pass fills only the first).
+  template <class Reset>
+  void start(Reset&& reset) {
+    const std::size_t n = static_cast<std::size_t>(atom_pass_threads());
+    if (parts_.size() < n) parts_.resize(n);
+    for (T& p : parts_) reset(p);
+  }
+  T& operator[](int t) { return parts_[static_cast<std::size_t>(t)]; }
+  const T& operator[](int t) const { return parts_[static_cast<std::size_t>(t)]; }
+  int size() const { return static_cast<int>(parts_.size()); }
+  auto begin() const { return parts_.begin(); }
+  auto end() const { return parts_.end(); }
+
+ private:
+  std::vector<T> parts_;
+};
+
 // The contact loops' variant: the widest that the CPU has and that
 // thread_settings().simd and the environment (SABLE_SIMD=sse2|avx2|avx512)
 // allow. All give identical results: they differ in vector width only (no FMA

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/engine/error.h"
+#include "core/engine/contact_source.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 #include "core/engine/random.h"
@@ -60,7 +61,12 @@ void cmd_delete_atoms(Simulation& sim, const Args& a) {
     std::vector<std::size_t> by_id(at.n);
     std::iota(by_id.begin(), by_id.end(), 0);
     std::sort(by_id.begin(), by_id.end(), [&](std::size_t p, std::size_t q) { return at.id[p] < at.id[q]; });
-    for (std::size_t k = 0; k < by_id.size(); ++k) at.id[by_id[k]] = static_cast<long>(k) + 1;
+    std::vector<long> old_ids(by_id.size()), new_ids(by_id.size());
+    for (std::size_t k = 0; k < by_id.size(); ++k) {
+      old_ids[k] = at.id[by_id[k]];
+      new_ids[k] = at.id[by_id[k]] = static_cast<long>(k) + 1;
+    }
+    for (ContactSource* c : contact_sources(sim)) c->ids_renumbered(old_ids, new_ids);
     at.permute(by_id);  // also refreshes the ID -> index map; atoms now in ID order
   }
   // LIGGGHTS gives new atoms max(existing ID) + 1, so a deleted top ID is reused.

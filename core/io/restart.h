@@ -3,8 +3,8 @@
 // LIGGGHTS-style deck cannot re-declare (box, step, time, groups, atoms with
 // every extra column, contact history, fix states). As in LIGGGHTS, the deck
 // that reads it declares pair style, walls and fixes again; their history
-// re-attaches by name (wall columns), by atom ids (pair history, at the next
-// setup) and by fix ID + style (fix states).
+// re-attaches by atom ids (pair history, at the next setup) and by fix ID +
+// style (fix states: among them the walls' contact history).
 //
 // File layout (native byte order, format version kFormat):
 //   "SABLE RESTART\n" "format N\n"       text header, readable with `head -2`
@@ -25,7 +25,7 @@ class Simulation;
 
 namespace restart {
 
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;  // 2: wall history in fix states, not atom columns
 
 // Appends trivially copyable values, strings and vectors to a byte string.
 class Packer {

@@ -9,10 +9,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "core/engine/error.h"
 #include "core/io/restart.h"
+#include "fixes/fix_wall_gran.h"
 #include "tests/unit/deck_runner.h"
 
 // A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
@@ -71,6 +73,12 @@ void expect_bits(const std::vector<T>& a, const std::vector<T>& b, std::size_t n
   EXPECT_EQ(0, std::memcmp(a.data(), b.data(), n * sizeof(T))) << what << " differs";
 }
 
+const sable::WallHistory& wall_history(sable::Simulation& s, const char* wall) {
+  auto* f = dynamic_cast<sable::FixWallGran*>(s.find_fix(wall));
+  if (!f) throw std::runtime_error(std::string("no wall/gran fix ") + wall);
+  return f->history();
+}
+
 void expect_same_state(sable::Simulation& a, sable::Simulation& b) {
   ASSERT_EQ(a.atoms.n, b.atoms.n);
   EXPECT_EQ(a.step, b.step);
@@ -85,11 +93,13 @@ void expect_same_state(sable::Simulation& a, sable::Simulation& b) {
   expect_bits(a.atoms.f, b.atoms.f, 3 * n, "f");
   expect_bits(a.atoms.torque, b.atoms.torque, 3 * n, "torque");
   for (const char* w : kWalls) {
-    const std::string name = std::string("wall/gran ") + w;
-    const int ca = a.atoms.find_column(name), cb = b.atoms.find_column(name);
-    ASSERT_GE(ca, 0);
-    ASSERT_GE(cb, 0);
-    expect_bits(a.atoms.column(ca), b.atoms.column(cb), n * a.atoms.column_stride(ca), name.c_str());
+    const sable::WallHistory &wa = wall_history(a, w), &wb = wall_history(b, w);
+    ASSERT_EQ(wa.count(), wb.count()) << w;
+    for (std::size_t r = 0; r < wa.count(); ++r) {
+      ASSERT_TRUE(wa.key(r) == wb.key(r)) << w;
+      expect_bits(std::vector<double>(wa.row(r), wa.row(r) + wa.size()),
+                  std::vector<double>(wb.row(r), wb.row(r) + wb.size()), wa.size(), w);
+    }
   }
   auto* ha = a.pair->history();
   auto* hb = b.pair->history();
@@ -117,11 +127,10 @@ std::size_t active_pair_history(sable::Simulation& s) {
 std::size_t active_wall_history(sable::Simulation& s) {
   std::size_t c = 0;
   for (const char* w : kWalls) {
-    const int col = s.atoms.find_column(std::string("wall/gran ") + w);
-    const int st = s.atoms.column_stride(col);
-    for (std::size_t i = 0; i < s.atoms.n; ++i) {
+    const sable::WallHistory& h = wall_history(s, w);
+    for (std::size_t r = 0; r < h.count(); ++r) {
       bool nz = false;
-      for (int m = 0; m < st; ++m) nz = nz || s.atoms.column(col)[i * st + m] != 0.0;
+      for (int m = 0; m < h.size(); ++m) nz = nz || h.row(r)[m] != 0.0;
       c += nz;
     }
   }
@@ -210,16 +219,14 @@ TEST(Restart, FileNamesModelSlotsColumnsAndFixStates) {
   EXPECT_NE(s.find(b->pair->describe()), std::string::npos) << s;
   for (auto& slot : b->pair->history()->slots) EXPECT_NE(s.find(" " + slot.name), std::string::npos) << s;
   EXPECT_NE(s.find("ins (insert/pack"), std::string::npos) << s;
-  EXPECT_EQ(read_bytes(path).rfind("SABLE RESTART\nformat 1\n", 0), 0u);
+  EXPECT_EQ(read_bytes(path).rfind("SABLE RESTART\nformat 2\n", 0), 0u);
 
   Deck c;
   c("units si\natom_style granular\nread_restart " + path);
-  EXPECT_EQ(c->atoms.ncolumns(), 5);
-  const int floor = c->atoms.find_column("wall/gran floor");
-  ASSERT_GE(floor, 0);
+  EXPECT_EQ(c->atoms.ncolumns(), 0);  // wall history is in the walls' fix states
+  EXPECT_NE(s.find("floor (wall/gran"), std::string::npos) << s;
   c(kBody);
-  EXPECT_EQ(c->atoms.ncolumns(), 5);  // the walls re-attached to their columns
-  EXPECT_EQ(c->atoms.find_column("wall/gran floor"), floor);
+  EXPECT_GT(wall_history(*c, "floor").count(), 0u);  // the floor re-attached to its contacts
   EXPECT_EQ(c->groups.find("grains"), b->groups.find("grains"));
 }
 
@@ -266,8 +273,8 @@ TEST(Restart, BadFilesNameTheFileAndTheProblem) {
   flipped[good.size() / 2] ^= 0x20;
   EXPECT_NE(read_error("flip", flipped).find("is corrupt"), std::string::npos);
   std::string v9 = good;
-  v9.replace(v9.find("format 1"), 8, "format 9");
-  EXPECT_NE(read_error("v9", v9).find("has restart format 9, but this sable reads format 1"), std::string::npos);
+  v9.replace(v9.find("format 2"), 8, "format 9");
+  EXPECT_NE(read_error("v9", v9).find("has restart format 9, but this sable reads format 2"), std::string::npos);
   EXPECT_NE(read_error("text", "ITEM: TIMESTEP\n0\n").find("is not a sable restart file"), std::string::npos);
   using namespace std::string_literals;  // the header of a LIGGGHTS 3.8 restart file, embedded zeros included
   const std::string lig = "\0\0\0\0Z\0\0\0Version LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26"s;

@@ -11,6 +11,7 @@
 
 #include "core/engine/compute.h"
 #include "core/input/style_registry.h"
+#include "fixes/fix_wall_gran.h"
 #include "tests/unit/deck_runner.h"
 
 // A namespace per file: the unit tests compile in unity batches (tests/CMakeLists.txt).
@@ -228,7 +229,8 @@ compute wl all wall/gran/local pos vel id force delta)");
 
 // The wall's tangential spring of a grain is forgotten when the grain leaves
 // the wall: at a step with a neighbour rebuild (the atoms just sorted), and
-// when the deck moves it away between runs.
+// when the deck moves it away between runs; it follows the grain when
+// delete_atoms renumbers the grains.
 TEST(WallGran, SpringForgottenWhenTheGrainLeaves) {
   Deck d;
   d(kHead);
@@ -244,22 +246,33 @@ neigh_modify every 1 check no)");  // a rebuild (and sort) every step
   sable::Atoms& at = d->atoms;
   for (std::size_t i = 0; i < at.n; ++i) at.v[3 * i] = 0.05;  // sliding: the spring loads
   d("run 200");
-  const int col = at.find_column("wall/gran floor");
-  ASSERT_GE(col, 0);
-  auto spring = [&](long id) {
-    const std::size_t i = at.index_of(id);
-    const double* h = &at.column(col)[3 * i];
-    return std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  auto* floor = dynamic_cast<sable::FixWallGran*>(d->find_fix("floor"));
+  ASSERT_TRUE(floor);
+  auto spring = [&](long id) {  // 0 when the wall keeps no contact of grain id
+    const sable::WallHistory& kept = floor->history();
+    for (std::size_t r = 0; r < kept.count(); ++r)
+      if (kept.key(r).tag == id) {
+        const double* h = kept.row(r);
+        return std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+      }
+    return 0.0;
   };
   for (long id = 1; id <= 3; ++id) ASSERT_GT(spring(id), 0.0) << "grain " << id << " loads no spring";
   at.v[3 * at.index_of(2) + 2] = 2.0;  // leaves the floor within the next step
   d("run 3");
   EXPECT_EQ(spring(2), 0.0) << "the spring of a grain that left the floor survived a rebuild step";
   EXPECT_GT(spring(1), 0.0);
-  d("set atom 3 z 0.008");  // moved away between runs: no longer near the floor
+  // delete_atoms renumbers the grains (compress yes): the springs follow them.
+  const double s1 = spring(1), s3 = spring(3);
+  d("group first id 1\ndelete_atoms group first compress yes");
+  EXPECT_EQ(spring(2), s3) << "grain 3, now 2, lost its spring";
+  EXPECT_EQ(spring(1), 0.0) << "grain 2 (left the floor), now 1";
+  EXPECT_EQ(spring(3), 0.0) << "no grain 3 any more";
+  ASSERT_GT(s1, 0.0);
+  ASSERT_GT(s3, 0.0);
+  d("set atom 2 z 0.008");  // moved away between runs: no longer near the floor
   d("run 1");
-  EXPECT_EQ(spring(3), 0.0) << "the spring of a grain moved away between runs survived";
-  EXPECT_GT(spring(1), 0.0);
+  EXPECT_EQ(spring(2), 0.0) << "the spring of a grain moved away between runs survived";
 }
 
 }  // namespace test_wall_gran

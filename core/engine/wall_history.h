@@ -1,0 +1,121 @@
+#pragma once
+// History of a wall's contacts (primitive and mesh walls), keyed by (grain id,
+// element): the element is a mesh's triangle, 0 for a primitive wall, and the
+// partner is the wall that owns the store. It holds the rows of the last force
+// pass in key order, so a look-up depends neither on where grains sit in memory
+// nor on which thread met them, and it is what a restart keeps. (Grain pairs
+// keep theirs in ContactStore, rows per neighbour-list entry, carried across
+// rebuilds by (grain id, grain id).)
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace sable {
+
+namespace restart {
+class Packer;
+class Unpacker;
+}  // namespace restart
+
+class WallHistory {
+ public:
+  struct Key {
+    long tag;     // the grain's id
+    int element;  // triangle, or 0
+    friend bool operator<(const Key& a, const Key& b) { return a.tag != b.tag ? a.tag < b.tag : a.element < b.element; }
+    friend bool operator==(const Key& a, const Key& b) = default;
+  };
+  // (part, index) of contacts held in several parts, each in key order.
+  using Order = std::vector<std::pair<int, int>>;
+
+  void configure(int size) {
+    size_ = size;
+    tag_.clear(), element_.clear(), hist_.clear();
+  }
+  int size() const { return size_; }
+  std::size_t count() const { return tag_.size(); }
+  Key key(std::size_t r) const { return {tag_[r], element_[r]}; }
+  const double* row(std::size_t r) const { return hist_.data() + r * size_; }
+
+  // The history of each of `keys` (sorted, no repeats) into out, size() values
+  // per key: the row of the same key; else a row of the same grain whose
+  // element is not in `keys` (that contact has ended) and that
+  // takes(its element, the key's element) accepts (a mesh: the grain passed
+  // onto a triangle of the same surface); else zeros.
+  template <class Takes>
+  void look_up(const Key* keys, std::size_t n, double* out, Takes&& takes) const;
+  void look_up(const Key* keys, std::size_t n, double* out) const {
+    look_up(keys, n, out, [](int, int) { return false; });
+  }
+
+  // The contacts of parts 0..nparts-1 in one key order; keys_of(p) and count_of(p)
+  // give part p's keys, each part already in key order.
+  template <class KeysOf, class CountOf>
+  static void merged_order(int nparts, KeysOf&& keys_of, CountOf&& count_of, Order& out);
+  // The store becomes this pass's contacts: `order` over the parts, key_of(p, k)
+  // and hist_of(p, k) the key and history of contact k of part p.
+  template <class KeyOf, class HistOf>
+  void keep(const Order& order, KeyOf&& key_of, HistOf&& hist_of);
+
+  // Grain old_ids[k] is now new_ids[k] (old_ids ascending, new_ids in the same
+  // order: the key order holds); rows of grains not listed are dropped.
+  void renumber(const std::vector<long>& old_ids, const std::vector<long>& new_ids);
+
+  void write(restart::Packer& p) const;
+  // False (and the store left empty) when the file's rows have another size.
+  bool read(restart::Unpacker& u);
+
+ private:
+  int size_ = 0;
+  std::vector<long> tag_;
+  std::vector<int> element_;
+  std::vector<double> hist_;
+};
+
+template <class Takes>
+void WallHistory::look_up(const Key* keys, std::size_t n, double* out, Takes&& takes) const {
+  const std::size_t hs = static_cast<std::size_t>(size_);
+  std::fill(out, out + n * hs, 0.0);
+  if (hs == 0) return;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Key& key = keys[k];
+    const auto lo = std::lower_bound(tag_.begin(), tag_.end(), key.tag) - tag_.begin();
+    const auto hi = std::upper_bound(tag_.begin() + lo, tag_.end(), key.tag) - tag_.begin();
+    long from = -1;
+    for (auto j = lo; j < hi && from < 0; ++j)
+      if (element_[j] == key.element) from = j;
+    for (auto j = lo; j < hi && from < 0; ++j) {
+      if (std::binary_search(keys, keys + n, Key{key.tag, element_[j]})) continue;  // that contact goes on
+      if (takes(element_[j], key.element)) from = j;
+    }
+    if (from >= 0) std::copy_n(hist_.begin() + from * hs, hs, out + k * hs);
+  }
+}
+
+template <class KeysOf, class CountOf>
+void WallHistory::merged_order(int nparts, KeysOf&& keys_of, CountOf&& count_of, Order& out) {
+  out.clear();
+  auto before = [&](const auto& a, const auto& b) { return keys_of(a.first)[a.second] < keys_of(b.first)[b.second]; };
+  for (int p = 0; p < nparts; ++p) {
+    const std::size_t mid = out.size();
+    for (std::size_t k = 0; k < count_of(p); ++k) out.emplace_back(p, static_cast<int>(k));
+    std::inplace_merge(out.begin(), out.begin() + static_cast<long>(mid), out.end(), before);
+  }
+}
+
+template <class KeyOf, class HistOf>
+void WallHistory::keep(const Order& order, KeyOf&& key_of, HistOf&& hist_of) {
+  const std::size_t hs = static_cast<std::size_t>(size_);
+  tag_.resize(order.size());
+  element_.resize(order.size());
+  hist_.resize(order.size() * hs);
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const Key k = key_of(order[r].first, order[r].second);
+    tag_[r] = k.tag;
+    element_[r] = k.element;
+    if (hs) std::copy_n(hist_of(order[r].first, order[r].second), hs, hist_.begin() + r * hs);
+  }
+}
+
+}  // namespace sable
