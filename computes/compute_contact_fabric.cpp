@@ -134,9 +134,7 @@ class ComputeContactFabric : public Compute {
         if (m < 0 || m > 100) a.fail(i + 1, "a number of contacts in 0..100");
         min_contacts_ = static_cast<int>(m);
       } else if (a[i] == "contacts") {
-        const std::string& w = a.word(i + 1, "both or any");
-        if (w != "both" && w != "any") a.fail(i + 1, "both or any");
-        any_ = w == "any";
+        any_ = a.choice(i + 1, {"both", "any"}) == 1;
       } else {
         a.fail(i, "bins, area, rattler or contacts (or the end of the line)");
       }

@@ -70,9 +70,7 @@ class ComputeForceMidline : public Compute {
   void parse(const Args& a) {
     const std::string usage = "compute ID group force/midline x X0 [ylo YLO yhi YHI] (or y Y0 [xlo XLO xhi XHI])";
     a.need(6, usage);
-    const std::string& w = a.word(4, "x or y");
-    if (w != "x" && w != "y") a.fail(4, "x or y (the line x = X0 or y = Y0)");
-    ax_ = w == "x" ? 0 : 1;
+    ax_ = a.choice(4, {"x", "y"}, " (the line x = X0 or y = Y0)");
     line_ = BoundArg::parse(sim, a, 5, "the line's position (a number or v_name)");
     if (a.size() == 6) return;
     const std::string o = ax_ == 0 ? "y" : "x";

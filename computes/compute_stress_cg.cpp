@@ -25,9 +25,7 @@ void ComputeStressCG::parse(const Args& a) {
   static const char* axis[3] = {"x", "y", "z"};
   for (std::size_t i = 4; i < a.size();) {
     if (a[i] == "kernel") {
-      const std::string& name = a.word(i + 1, "lucy or gauss");
-      if (name != "lucy" && name != "gauss") a.fail(i + 1, "lucy or gauss");
-      kind = name == "lucy" ? CgKernel::Kind::Lucy : CgKernel::Kind::Gauss;
+      kind = a.choice(i + 1, {"lucy", "gauss"}) == 0 ? CgKernel::Kind::Lucy : CgKernel::Kind::Gauss;
       w = a.num(i + 2, "the kernel width W");
       if (!(w > 0)) a.fail(i + 2, "a kernel width W > 0");
       have_kernel = true;

@@ -61,9 +61,7 @@ class ComputeWallGranSlices : public Compute {
     hi_ = BoundArg::parse(s, a, 11, "an upper bound (a number or v_name)");
     for (std::size_t i = 12; i < a.size(); i += 2) {
       if (a[i] != "outside") a.fail(i, "the keyword 'outside' (or the end of the line)");
-      const std::string& m = a.word(i + 1, "clamp or drop");
-      if (m != "clamp" && m != "drop") a.fail(i + 1, "clamp or drop");
-      clamp_ = m == "clamp";
+      clamp_ = a.choice(i + 1, {"clamp", "drop"}) == 0;
     }
     local_flag = true;
     local_names = {"id", "x", "y", "z", "fx", "fy", "fz"};

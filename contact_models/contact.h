@@ -75,6 +75,32 @@ class ModelSettings {
   std::vector<Entry> entries_;
 };
 
+// A sub-model that keeps nothing per contact (most of them).
+struct NoHistory {
+  static constexpr int kHistory = 0;
+  static void history_slots(std::vector<HistorySlot>&) {}
+};
+
+// What LIGGGHTS 3.8's normal models share: the switches tangential_damping
+// (gammat, read by damping liggghts) and limitForce (Fn clipped at 0: no
+// attraction), and three keywords they accept that sable does not implement.
+struct LiggghtsNormal : NoHistory {
+  bool tangential_damping = true, limit_force = false;
+
+  void switches(ModelSettings& s) {
+    s.on_off("tangential_damping", tangential_damping);
+    s.on_off("limitForce", limit_force);
+  }
+  static void unimplemented(ModelSettings& s) {
+    s.off_only("disableNormalWhenBonded");
+    s.off_only("computeDissipatedEnergy");
+    s.off_only("computeElasticPotential");
+  }
+  void limit(NormalForce& n) const {
+    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
+  }
+};
+
 // What each axis asks of a sub-model (contact_models/README.md). A header
 // under contact_models/<axis>/ ends with SABLE_<AXIS>_MODEL(Type); the build
 // finds that line and the type runs with every model of the other axes

@@ -12,15 +12,10 @@
 
 namespace sable {
 
-class FixAddforce : public Fix {
+class FixAddforce : public GroupForceFix {
  public:
-  FixAddforce(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = atom_tasks = POST_FORCE;
+  FixAddforce(Simulation& s, const Args& a) : GroupForceFix(s, a, false, true) {
     scalar_flag = 1;
-    vector_size = 3;
-    if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz after 'addforce'");
-    force_.parse(a, 4, false, true);
-    traits.keeps_plane = force_.keeps_plane();
     for (std::size_t i = 7; i < a.size(); i += 2) {
       if (a[i] == "every") {
         every_ = a.integer(i + 1, "a step interval > 0");
@@ -33,10 +28,6 @@ class FixAddforce : public Fix {
         a.fail(i, "every or region");
       }
     }
-  }
-  void init() override {
-    force_.check(sim, args);
-    region_.init(sim, args);
   }
   void export_yade(YadeScript& s) const override;  // each grain's force, added each step
 
@@ -51,7 +42,7 @@ class FixAddforce : public Fix {
     Atoms& at = sim.atoms;
     sum_.range(r);
     for (std::size_t i = r.lo; i < r.hi; ++i) {
-      if (!(at.mask[i] & groupbit) || !region_.admits(&at.x[3 * i])) continue;
+      if (!member(i)) continue;
       double* f = &at.f[3 * i];
       double xu[3], add[4];
       sim.domain.unmap(&at.x[3 * i], &at.image[3 * i], xu);
@@ -72,8 +63,6 @@ class FixAddforce : public Fix {
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i] : 0.0; }
 
  private:
-  ForceComponents force_;
-  RegionOption region_;
   long every_ = 1;
   bool active_ = false;
   AtomSum<4> sum_;

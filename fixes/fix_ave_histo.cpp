@@ -53,19 +53,10 @@ class FixAveHisto : public Fix {
     }
     if (values_.empty())
       a.fail(10, "at least one value: x, y, z, vx, vy, vz, fx, fy, fz, c_ID, c_ID[I], f_ID, f_ID[I], v_name");
-    ave::Options o;
     while (i < a.size()) {
-      if (o.parse(a, i, sched_, "the first step to histogram from")) continue;
+      if (opt_.parse(a, i, sched_, "the first step to histogram from")) continue;
       if (a[i] == "beyond") {
-        const std::string& m = a.word(i + 1, "ignore, end or extra");
-        if (m == "ignore")
-          beyond_ = Ignore;
-        else if (m == "end")
-          beyond_ = End;
-        else if (m == "extra")
-          beyond_ = Extra;
-        else
-          a.fail(i + 1, "ignore, end or extra");
+        beyond_ = static_cast<Beyond>(a.choice(i + 1, {"ignore", "end", "extra"}));  // in the enum's order
         i += 2;
       } else {
         a.fail(i,
@@ -73,11 +64,7 @@ class FixAveHisto : public Fix {
                "title3, hdf5");
       }
     }
-    o.check(a);
-    vector_mode_ = o.vector_mode;
-    overwrite_ = o.overwrite;
-    ave_ = o.ave;
-    nwindow_ = o.nwindow;
+    opt_.check(a);
     check_values();
 
     // Bins and their centre coordinates; 'extra' adds one bin below lo and one above hi.
@@ -90,25 +77,20 @@ class FixAveHisto : public Fix {
     if (beyond_ == Extra) coord_.front() = lo_, coord_.back() = hi_;
     bin_.assign(nbins_, 0.0);
     bin_total_.assign(nbins_, 0.0);
-    if (ave_ == Window) {
-      bin_list_.assign(nwindow_ * nbins_, 0.0);
-      stats_list_.assign(nwindow_ * 4, 0.0);
+    if (opt_.ave == Window) {
+      bin_list_.assign(opt_.nwindow * nbins_, 0.0);
+      stats_list_.assign(opt_.nwindow * 4, 0.0);
     }
 
-    if (!o.file.empty()) {
-      text_.open(o.file, a, o.file_at);
-      text_.overwrite = overwrite_;
+    if (!opt_.file.empty()) {
+      text_.open(opt_, a);
       text_.header(
-          o.title_or(0, "# Histogrammed data for fix " + id) + "\n" +
-          o.title_or(1, "# TimeStep Number-of-bins Total-counts Missing-counts Min-value Max-value") + "\n" +
-          o.title_or(2, "# Bin Coord Count Count/Total") + "\n");
+          opt_.title_or(0, "# Histogrammed data for fix " + id) + "\n" +
+          opt_.title_or(1, "# TimeStep Number-of-bins Total-counts Missing-counts Min-value Max-value") + "\n" +
+          opt_.title_or(2, "# Bin Coord Count Count/Total") + "\n");
     }
-    if (!o.h5file.empty()) {
-      h5_ = std::make_unique<ave::H5Series>(o.h5file);
-      std::vector<std::string> cols;
-      for (auto& v : values_) cols.push_back(v.word);
-      h5_->attribute("values", cols);
-      h5_->attribute("fix", {id, style, args.joined(1)});
+    if (!opt_.h5file.empty()) {
+      h5_ = ave::open_h5(opt_, values_, "values", *this);
       h5_->attribute("stats_columns", {"total", "missing", "min", "max"});
       h5_->constant("coord", coord_);
       h5_stats_ = h5_->series("stats", {4}, false);
@@ -117,37 +99,29 @@ class FixAveHisto : public Fix {
       h5_step_ = h5_->series("step", {}, true);
       h5_->start();
     }
-    nvalid_ = sched_.first_after(s.step);
+    sched_.begin(s.step);
   }
 
   void init() override {
     for (auto& v : values_) resolve(v);
-    if (nvalid_ < sim.step) {
-      irepeat_ = 0;
-      nvalid_ = sched_.first_after(sim.step);
-    }
+    sched_.resume(sim.step);
   }
   void setup() override { end_of_step(); }
 
   void end_of_step() override {
-    if (sim.step != nvalid_) return;
-    if (irepeat_ == 0) {
+    if (sim.step != sched_.nvalid) return;
+    if (sched_.irepeat == 0) {
       stats_[0] = stats_[1] = 0.0;
       stats_[2] = kBig;
       stats_[3] = -kBig;
       std::fill(bin_.begin(), bin_.end(), 0.0);
     }
     for (auto& v : values_) bin_value(v);
-    if (++irepeat_ < sched_.nrepeat) {
-      nvalid_ += sched_.nevery;
-      return;
-    }
-    irepeat_ = 0;
-    nvalid_ = sim.step + sched_.nfreq - (sched_.nrepeat - 1) * sched_.nevery;
-    if (ave_ == One) {
+    if (!sched_.sampled(sim.step)) return;
+    if (opt_.ave == One) {
       std::copy(stats_, stats_ + 4, stats_total_);
       bin_total_ = bin_;
-    } else if (ave_ == Running) {
+    } else if (opt_.ave == Running) {
       stats_total_[0] += stats_[0];
       stats_total_[1] += stats_[1];
       stats_total_[2] = std::min(stats_total_[2], stats_[2]);
@@ -162,7 +136,7 @@ class FixAveHisto : public Fix {
       }
       st[2] = stats_[2];
       st[3] = stats_[3];
-      const long m = window_full_ ? nwindow_ : iwindow_ + 1;
+      const long m = window_full_ ? opt_.nwindow : iwindow_ + 1;
       stats_total_[2] = stats_list_[2];
       stats_total_[3] = stats_list_[3];
       for (long w = 1; w < m; ++w) {
@@ -175,7 +149,7 @@ class FixAveHisto : public Fix {
         if (window_full_) bin_total_[b] -= bl[b];
         bl[b] = bin_[b];
       }
-      if (++iwindow_ == nwindow_) iwindow_ = 0, window_full_ = true;
+      if (++iwindow_ == opt_.nwindow) iwindow_ = 0, window_full_ = true;
     }
     write_outputs();
   }
@@ -193,10 +167,9 @@ class FixAveHisto : public Fix {
   ave::Schedule sched_;
   std::vector<Value> values_;
   Kind kind_ = Global;
-  bool vector_mode_ = false, overwrite_ = false;
-  ave::Ave ave_ = One;
+  ave::Options opt_;  // mode, ave, file, ... as given
   Beyond beyond_ = Ignore;
-  long nwindow_ = 0, iwindow_ = 0, nvalid_ = 0, irepeat_ = 0;
+  long iwindow_ = 0;
   bool window_full_ = false;
   double lo_ = 0, hi_ = 0, binsize_ = 1, bininv_ = 1;
   int nbins_ = 0;
@@ -227,18 +200,18 @@ class FixAveHisto : public Fix {
         kind_ = k;
       else if (k != kind_)
         args.fail(v.at, "a value of the same kind as the first (all global, all per-atom or all local)");
-      if (k != Global && !vector_mode_)
+      if (k != Global && !opt_.vector_mode)
         args.fail(v.at, std::string("a global value, or 'mode vector' for ") + (k == PerAtom ? "per-atom" : "local") +
                             " values");
       const std::string what = std::string(v.kind == 'c' ? "compute " : "fix ") + v.id;
       if ((v.kind == 'c' || v.kind == 'f') && k == Global) {
         const bool scalar = v.c ? v.c->scalar_flag : v.f->scalar_flag != 0;
         const int size = v.c ? v.c->vector_size : v.f->vector_size;
-        if (!vector_mode_ && v.index == 0 && !scalar) args.fail(v.at, "a global scalar (" + what + " has none)");
-        if (!vector_mode_ && v.index > size)
+        if (!opt_.vector_mode && v.index == 0 && !scalar) args.fail(v.at, "a global scalar (" + what + " has none)");
+        if (!opt_.vector_mode && v.index > size)
           args.fail(v.at, "an index within 1.." + std::to_string(size) + " of " + what);
-        if (vector_mode_ && v.index > 0) args.fail(v.at, "a global vector without [I] (no global arrays in sable)");
-        if (vector_mode_ && size <= 0) args.fail(v.at, "a global vector (" + what + " has none)");
+        if (opt_.vector_mode && v.index > 0) args.fail(v.at, "a global vector without [I] (no global arrays in sable)");
+        if (opt_.vector_mode && size <= 0) args.fail(v.at, "a global vector (" + what + " has none)");
       }
       if (v.kind == 'c' && k == PerAtom) {
         const int cols = v.c->peratom_cols;
@@ -298,7 +271,7 @@ class FixAveHisto : public Fix {
     if (kind_ == Global) {
       const int size = v.c ? v.c->vector_size : v.f->vector_size;
       auto get = [&](int i) { return v.c ? v.c->vector(i) : v.f->compute_vector(i); };
-      if (vector_mode_) {
+      if (opt_.vector_mode) {
         for (int i = 1; i <= size; ++i) bin_one(get(i));
       } else {
         bin_one(v.index ? get(v.index) : v.c ? v.c->scalar() : v.f->compute_scalar());

@@ -60,10 +60,20 @@ TextFile::~TextFile() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void TextFile::open(const std::string& path, const Args& a, std::size_t word) {
-  path_ = path;
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
-  if (fd_ < 0) a.fail(word, "a writable file (" + std::string(std::strerror(errno)) + ")");
+void TextFile::open(const Options& o, const Args& a) {
+  path_ = o.file;
+  overwrite = o.overwrite;
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
+  if (fd_ < 0) a.fail(o.file_at, "a writable file (" + std::string(std::strerror(errno)) + ")");
+}
+
+std::unique_ptr<H5Series> open_h5(const Options& o, const std::vector<Value>& values, const char* key, const Fix& fix) {
+  auto h5 = std::make_unique<H5Series>(o.h5file);
+  std::vector<std::string> words;
+  for (auto& v : values) words.push_back(v.word);
+  h5->attribute(key, words);
+  h5->attribute("fix", {fix.id, fix.style, fix.args.joined(1)});
+  return h5;
 }
 
 void TextFile::write_all(int fd, const std::string& s) {
@@ -96,9 +106,7 @@ void TextFile::block(const std::string& text) {
 bool Options::parse(const Args& a, std::size_t& i, Schedule& sched, const char* start_what) {
   const std::string& k = a[i];
   if (k == "mode") {
-    const std::string& m = a.word(i + 1, "scalar or vector");
-    if (m != "scalar" && m != "vector") a.fail(i + 1, "scalar or vector");
-    vector_mode = m == "vector";
+    vector_mode = a.choice(i + 1, {"scalar", "vector"}) == 1;
     i += 2;
   } else if (k == "ave") {
     const std::string& m = a.word(i + 1, "one, running or window M");
@@ -156,6 +164,30 @@ void Value::resolve(Simulation& sim, const Args& a, const Fix* self, const char*
 
 namespace {
 
+// The title lines of the text file (title1..3 or LIGGGHTS' defaults), `words` the values as given.
+std::string time_header(const ave::Options& o, const std::string& id, const std::vector<std::string>& words) {
+  std::string h = o.title_or(0, "# Time-averaged data for fix " + id) + "\n";
+  if (o.titled[1]) {
+    h += o.title[1] + "\n";
+  } else if (!o.vector_mode) {
+    h += "# TimeStep";
+    for (const auto& w : words) h += " " + w;
+    h += "\n";
+  } else {
+    h += "# TimeStep Number-of-rows\n";
+  }
+  if (o.vector_mode) {
+    if (o.titled[2]) {
+      h += o.title[2] + "\n";
+    } else {
+      h += "# Row";
+      for (const auto& w : words) h += " " + w;
+      h += "\n";
+    }
+  }
+  return h;
+}
+
 class FixAveTime : public Fix {
  public:
   FixAveTime(Simulation& s, const Args& a) : Fix(s, a) {
@@ -170,10 +202,9 @@ class FixAveTime : public Fix {
       values_.push_back(v);
     }
     if (values_.empty()) a.fail(7, "at least one value: c_ID, c_ID[I], f_ID, f_ID[I] or v_name");
-    ave::Options o;
     std::vector<long> off;
     while (i < a.size()) {
-      if (o.parse(a, i, sched_, "the first step to average from")) continue;
+      if (opt_.parse(a, i, sched_, "the first step to average from")) continue;
       if (a[i] == "off") {
         off.push_back(a.integer(i + 1, "the number of a value not to average (1..N)"));
         if (off.back() < 1 || off.back() > static_cast<long>(values_.size()))
@@ -185,65 +216,36 @@ class FixAveTime : public Fix {
                "title1, title2, title3, hdf5");
       }
     }
-    o.check(a);
-    vector_mode_ = o.vector_mode;
-    overwrite_ = o.overwrite;
-    ave_ = o.ave;
-    nwindow_ = o.nwindow;
+    opt_.check(a);
     for (auto& v : values_) v.off = std::find(off.begin(), off.end(), &v - values_.data() + 1) != off.end();
     check_values();
-    scalar_flag = !vector_mode_;
-    vector_size = vector_mode_ ? nrows_ : static_cast<int>(values_.size());
-    const std::size_t width = (vector_mode_ ? nrows_ : 1) * values_.size();
+    scalar_flag = !opt_.vector_mode;
+    vector_size = opt_.vector_mode ? nrows_ : static_cast<int>(values_.size());
+    const std::size_t width = (opt_.vector_mode ? nrows_ : 1) * values_.size();
     sample_.assign(width, 0.0);
     total_.assign(width, 0.0);
-    if (ave_ == Window) window_.assign(nwindow_ * width, 0.0);
+    if (opt_.ave == Window) window_.assign(opt_.nwindow * width, 0.0);
 
-    if (!o.file.empty()) {
-      text_.open(o.file, a, o.file_at);
-      text_.overwrite = overwrite_;
-      std::string h = o.title_or(0, "# Time-averaged data for fix " + id);
-      h += "\n";
-      if (o.titled[1])
-        h += o.title[1] + "\n";
-      else if (!vector_mode_) {
-        h += "# TimeStep";
-        for (auto& v : values_) h += " " + v.word;
-        h += "\n";
-      } else
-        h += "# TimeStep Number-of-rows\n";
-      if (vector_mode_) {
-        if (o.titled[2])
-          h += o.title[2] + "\n";
-        else {
-          h += "# Row";
-          for (auto& v : values_) h += " " + v.word;
-          h += "\n";
-        }
-      }
-      text_.header(h);
+    if (!opt_.file.empty()) {
+      text_.open(opt_, a);
+      std::vector<std::string> words;
+      for (auto& v : values_) words.push_back(v.word);
+      text_.header(time_header(opt_, id, words));
     }
-    if (!o.h5file.empty()) {
-      h5_ = std::make_unique<ave::H5Series>(o.h5file);
-      std::vector<std::string> cols;
-      for (auto& v : values_) cols.push_back(v.word);
-      h5_->attribute("columns", cols);
-      h5_->attribute("fix", {id, style, args.joined(1)});
+    if (!opt_.h5file.empty()) {
+      h5_ = ave::open_h5(opt_, values_, "columns", *this);
       std::vector<std::size_t> shape{values_.size()};
-      if (vector_mode_) shape.insert(shape.begin(), nrows_);
+      if (opt_.vector_mode) shape.insert(shape.begin(), nrows_);
       h5_values_ = h5_->series("values", shape, false);
       h5_step_ = h5_->series("step", {}, true);
       h5_->start();
     }
-    nvalid_ = sched_.first_after(s.step);
+    sched_.begin(s.step);
   }
 
   void init() override {
     for (auto& v : values_) resolve(v);
-    if (nvalid_ < sim.step) {
-      irepeat_ = 0;
-      nvalid_ = sched_.first_after(sim.step);
-    }
+    sched_.resume(sim.step);
   }
   void setup() override { end_of_step(); }  // LIGGGHTS: samples at setup when due (step 0 with Nrepeat 1)
 
@@ -252,29 +254,24 @@ class FixAveTime : public Fix {
     s.add_recorder(*this, [this](YadeScript& s) { export_yade_recorder(s); });
   }
   void end_of_step() override {
-    if (sim.step != nvalid_) return;
-    const std::size_t nv = values_.size(), rows = vector_mode_ ? nrows_ : 1;
-    if (irepeat_ == 0) std::fill(sample_.begin(), sample_.end(), 0.0);
+    if (sim.step != sched_.nvalid) return;
+    const std::size_t nv = values_.size(), rows = opt_.vector_mode ? nrows_ : 1;
+    if (sched_.irepeat == 0) std::fill(sample_.begin(), sample_.end(), 0.0);
     for (std::size_t j = 0; j < nv; ++j)
       for (std::size_t r = 0; r < rows; ++r) {
         const double x = value(values_[j], static_cast<int>(r));
         double& s = sample_[r * nv + j];
         s = values_[j].off ? x : s + x;
       }
-    if (++irepeat_ < sched_.nrepeat) {
-      nvalid_ += sched_.nevery;
-      return;
-    }
-    irepeat_ = 0;
-    nvalid_ = sim.step + sched_.nfreq - (sched_.nrepeat - 1) * sched_.nevery;
+    if (!sched_.sampled(sim.step)) return;
     for (std::size_t k = 0; k < sample_.size(); ++k)
       if (!values_[k % nv].off) sample_[k] /= static_cast<double>(sched_.nrepeat);
     // Combine with earlier outputs, as LIGGGHTS (same operations, same rounding).
     const std::size_t w = sample_.size();
-    if (ave_ == One) {
+    if (opt_.ave == One) {
       total_ = sample_;
       norm_ = 1;
-    } else if (ave_ == Running) {
+    } else if (opt_.ave == Running) {
       for (std::size_t k = 0; k < w; ++k) total_[k] += sample_[k];
       ++norm_;
     } else {
@@ -284,8 +281,8 @@ class FixAveTime : public Fix {
         if (window_full_) total_[k] -= slot[k];
         slot[k] = sample_[k];
       }
-      if (++iwindow_ == nwindow_) iwindow_ = 0, window_full_ = true;
-      norm_ = window_full_ ? nwindow_ : iwindow_;
+      if (++iwindow_ == opt_.nwindow) iwindow_ = 0, window_full_ = true;
+      norm_ = window_full_ ? opt_.nwindow : iwindow_;
     }
     for (std::size_t k = 0; k < w; ++k)
       if (values_[k % nv].off) total_[k] = norm_ * sample_[k];
@@ -297,7 +294,7 @@ class FixAveTime : public Fix {
     if (i < 1 || i > vector_size)
       args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1.." + std::to_string(vector_size));
     // Vector mode: row i of the first value (LIGGGHTS forgets to divide by norm there; we do not).
-    const std::size_t k = vector_mode_ ? static_cast<std::size_t>(i - 1) * values_.size() : i - 1;
+    const std::size_t k = opt_.vector_mode ? static_cast<std::size_t>(i - 1) * values_.size() : i - 1;
     return norm_ ? total_[k] / norm_ : 0.0;
   }
 
@@ -307,12 +304,11 @@ class FixAveTime : public Fix {
   using enum ave::Ave;
   ave::Schedule sched_;
   std::vector<Value> values_;
-  bool vector_mode_ = false, overwrite_ = false;
-  ave::Ave ave_ = One;
-  long nwindow_ = 0, iwindow_ = 0;
+  ave::Options opt_;  // mode, ave, file, ... as given
+  long iwindow_ = 0;
   bool window_full_ = false;
   int nrows_ = 1;
-  long nvalid_ = 0, irepeat_ = 0, norm_ = 0;
+  long norm_ = 0;
   std::vector<double> sample_, total_, window_;  // [row * nvalues + value]
   ave::TextFile text_;
   std::unique_ptr<ave::H5Series> h5_;
@@ -325,7 +321,7 @@ class FixAveTime : public Fix {
       resolve(v);
       int n = 0;
       if (v.kind == 'v') {
-        if (vector_mode_) args.fail(v.at, "c_ID or f_ID (variables cannot be used with mode vector)");
+        if (opt_.vector_mode) args.fail(v.at, "c_ID or f_ID (variables cannot be used with mode vector)");
         if (sim.variables->is_atom_style(v.id))
           args.fail(v.at, "an equal-style variable (v_" + v.id + " is atom-style)");
         continue;
@@ -333,7 +329,7 @@ class FixAveTime : public Fix {
       const bool scalar = v.c ? v.c->scalar_flag : v.f->scalar_flag != 0;
       const int size = v.c ? v.c->vector_size : v.f->vector_size;
       const std::string what = std::string(v.c ? "compute " : "fix ") + v.id;
-      if (!vector_mode_) {
+      if (!opt_.vector_mode) {
         if (v.index == 0 && !scalar)
           args.fail(v.at, "a global scalar (" + what + " has none" + (size ? "; use " + v.word + "[I]" : "") + ")");
         if (v.index > 0 && v.index > size)
@@ -348,15 +344,15 @@ class FixAveTime : public Fix {
                             std::to_string(n) + ")");
       len = n;
     }
-    if (vector_mode_) nrows_ = len;
+    if (opt_.vector_mode) nrows_ = len;
   }
 
   void resolve(Value& v) { v.resolve(sim, args, this, "average"); }
 
   double value(const Value& v, int row) {
-    if (v.kind == 'c') return vector_mode_ ? v.c->vector(row + 1) : v.index ? v.c->vector(v.index) : v.c->scalar();
+    if (v.kind == 'c') return opt_.vector_mode ? v.c->vector(row + 1) : v.index ? v.c->vector(v.index) : v.c->scalar();
     if (v.kind == 'f')
-      return vector_mode_ ? v.f->compute_vector(row + 1)
+      return opt_.vector_mode ? v.f->compute_vector(row + 1)
              : v.index    ? v.f->compute_vector(v.index)
                           : v.f->compute_scalar();
     double x;
@@ -371,7 +367,7 @@ class FixAveTime : public Fix {
     if (text_.is_open()) {
       char buf[64];
       std::string s;
-      if (!vector_mode_) {
+      if (!opt_.vector_mode) {
         std::snprintf(buf, sizeof buf, "%ld", sim.step);
         s = buf;
         for (double x : out) std::snprintf(buf, sizeof buf, " %g", x), s += buf;
@@ -442,26 +438,7 @@ void FixAveTime::export_yade_recorder(YadeScript& s) const {
     nrows = n;
     cols.push_back("lambda: [" + row + " for r in range(" + std::to_string(n) + ")]");
   }
-  // Header as fix_ave_time.cpp writes it.
-  std::string h = o.title_or(0, "# Time-averaged data for fix " + id) + "\n";
-  if (o.titled[1]) {
-    h += o.title[1] + "\n";
-  } else if (!o.vector_mode) {
-    h += "# TimeStep";
-    for (const auto& w : words) h += " " + w;
-    h += "\n";
-  } else {
-    h += "# TimeStep Number-of-rows\n";
-  }
-  if (o.vector_mode) {
-    if (o.titled[2]) {
-      h += o.title[2] + "\n";
-    } else {
-      h += "# Row";
-      for (const auto& w : words) h += " " + w;
-      h += "\n";
-    }
-  }
+  const std::string h = time_header(o, id, words);  // as the fix writes it
   std::string offs, names;
   for (std::size_t j = 0; j < cols.size(); ++j) {
     const bool kept = std::find(off.begin(), off.end(), static_cast<long>(j + 1)) != off.end();

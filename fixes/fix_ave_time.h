@@ -3,6 +3,7 @@
 // (LIGGGHTS' nextvalid()) and the text file (the HDF5 series: core/io/h5_series.h). Both
 // outputs are kill-safe: a run killed at any instant leaves files that parse.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,11 +33,29 @@ struct Value {
 };
 
 // Steps on which inputs are sampled: Nrepeat samples Nevery apart, ending on a
-// multiple of Nfreq that is >= start.
+// multiple of Nfreq that is >= start; and where the sampling stands.
 struct Schedule {
   long nevery = 1, nrepeat = 1, nfreq = 1, start = 0;
+  long nvalid = 0, irepeat = 0;              // the next sampling step; samples so far of this average
   void parse(const Args& a, std::size_t i);  // Nevery Nrepeat Nfreq at words i..i+2, with LIGGGHTS' checks
   long first_after(long step) const;         // the first sampling step >= step of the next average
+  void begin(long step) {
+    irepeat = 0;
+    nvalid = first_after(step);
+  }
+  void resume(long step) {  // at a run's init: a sampling step passed unsampled starts afresh
+    if (nvalid < step) begin(step);
+  }
+  // After the sample of `step`: true when it completes an average (the next sampling step is set).
+  bool sampled(long step) {
+    if (++irepeat < nrepeat) {
+      nvalid += nevery;
+      return false;
+    }
+    irepeat = 0;
+    nvalid = step + nfreq - (nrepeat - 1) * nevery;
+    return true;
+  }
 };
 
 enum Ave { One, Running, Window };
@@ -67,7 +86,7 @@ class TextFile {
   TextFile(const TextFile&) = delete;
   TextFile& operator=(const TextFile&) = delete;
   ~TextFile();
-  void open(const std::string& path, const Args& a, std::size_t word);  // truncates; errors point at `word`
+  void open(const Options& o, const Args& a);  // o.file, truncated (errors point at its word); o.overwrite
   bool is_open() const { return fd_ >= 0; }
   void header(const std::string& text);  // the title lines
   void block(const std::string& text);   // one output (lines ending in '\n')
@@ -80,5 +99,9 @@ class TextFile {
 };
 
 using sable::H5Series;  // core/io/h5_series.h
+
+// The series file o.hdf5 names, with the words of the values (attribute `key`) and
+// the fix's command (attribute "fix"); the caller adds its series, then starts it.
+std::unique_ptr<H5Series> open_h5(const Options& o, const std::vector<Value>& values, const char* key, const Fix& fix);
 
 }  // namespace sable::ave

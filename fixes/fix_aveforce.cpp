@@ -16,23 +16,12 @@
 
 namespace sable {
 
-class FixAveforce : public Fix {
+class FixAveforce : public GroupForceFix {
  public:
-  FixAveforce(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = atom_tasks = two_phase_tasks = POST_FORCE;
-    vector_size = 3;
-    if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz (number, v_name or NULL) after 'aveforce'");
-    force_.parse(a, 4, true, false);
+  FixAveforce(Simulation& s, const Args& a) : GroupForceFix(s, a, true, false) {
+    two_phase_tasks = POST_FORCE;
     traits.constraint = true;
-    traits.keeps_plane = force_.keeps_plane();
-    for (std::size_t i = 7; i < a.size(); i += 2) {
-      if (a[i] != "region") a.fail(i, "region");
-      region_.parse(s, a, i + 1);
-    }
-  }
-  void init() override {
-    force_.check(sim, args);
-    region_.init(sim, args);
+    parse_region_only(a);
   }
   void export_yade(YadeScript& s) const override { export_yade_set_forces(s, *this, true); }
 
@@ -65,14 +54,8 @@ class FixAveforce : public Fix {
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i - 1] : 0.0; }
 
  private:
-  ForceComponents force_;
-  RegionOption region_;
   AtomSum<4> sum_;
   double total_[4] = {0, 0, 0, 0};  // force before, grain count
-
-  bool member(std::size_t i) const {
-    return (sim.atoms.mask[i] & groupbit) && region_.admits(&sim.atoms.x[3 * i]);
-  }
 };
 
 SABLE_FIX("aveforce", FixAveforce);

@@ -18,14 +18,10 @@ FixDampingCundall::FixDampingCundall(Simulation& s, const Args& a) : Fix(s, a) {
 }
 
 void FixDampingCundall::init() {
-  bool after = false;
-  for (auto& f : sim.fixes) {
-    if (after && (f->hooks & POST_FORCE) && !f->traits.keeps_plane)
-      sim.warn("fix damping/cundall " + id + ": fix " + f->style + " '" + f->id +
-               "' is defined after it, so its force is not damped; define fix damping/cundall after every fix "
-               "that adds force (gravity, walls) and before enforce2d and freeze");
-    if (f.get() == this) after = true;
-  }
+  for (const Fix* f : later_force_fixes())
+    sim.warn("fix damping/cundall " + id + ": fix " + f->style + " '" + f->id +
+             "' is defined after it, so its force is not damped; define fix damping/cundall after every fix "
+             "that adds force (gravity, walls) and before enforce2d and freeze");
 }
 
 void FixDampingCundall::begin(FixHook) {

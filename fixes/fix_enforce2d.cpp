@@ -19,14 +19,10 @@ class FixEnforce2d : public Fix {
     if (s.domain.dimension != 2) a.fail(3, "a 2D simulation for fix enforce2d ('dimension 2' before create_box)");
   }
   void init() override {
-    bool after = false;
-    for (auto& f : sim.fixes) {
-      if (after && (f->hooks & POST_FORCE) && !f->traits.keeps_plane)
-        sim.warn("fix enforce2d " + id + ": fix " + f->style + " '" + f->id +
-                 "' is defined after it and may add out-of-plane force after enforce2d has run; "
-                 "define fix enforce2d last (as LIGGGHTS requires)");
-      if (f.get() == this) after = true;
-    }
+    for (const Fix* f : later_force_fixes())
+      sim.warn("fix enforce2d " + id + ": fix " + f->style + " '" + f->id +
+               "' is defined after it and may add out-of-plane force after enforce2d has run; "
+               "define fix enforce2d last (as LIGGGHTS requires)");
   }
   void range(FixHook, const AtomRange& r) override {
     Atoms& at = sim.atoms;

@@ -212,14 +212,10 @@ bool FixInsert::shared_keyword(const Args& a, std::size_t& i) {
     yes_no(c);
     if (c) a.fail(i - 1, "'no' (compress_tags yes is not supported)");
   } else if (k == "random_distribute") {
-    const std::string& v = a.word(i + 1, "exact or uncorrelated");
-    if (v != "exact" && v != "uncorrelated") a.fail(i + 1, "exact or uncorrelated");
-    exact_ = v == "exact";
+    exact_ = a.choice(i + 1, {"exact", "uncorrelated"}) == 0;
     i += 2;
   } else if (k == "vel") {
-    const std::string& st = a.word(i + 1, "constant, uniform or gaussian");
-    vstyle_ = st == "constant" ? 0 : st == "uniform" ? 1 : st == "gaussian" ? 2 : -1;
-    if (vstyle_ < 0) a.fail(i + 1, "constant, uniform or gaussian");
+    vstyle_ = a.choice(i + 1, {"constant", "uniform", "gaussian"});
     for (int d = 0; d < 3; ++d) v_[d] = a.num(i + 2 + d, "a velocity component");
     for (int d = 0; d < 3 && vstyle_; ++d) dv_[d] = a.num(i + 5 + d, "a velocity fluctuation component");
     i += vstyle_ ? 8 : 5;

@@ -75,9 +75,7 @@ FixMeshSurface::FixMeshSurface(Simulation& s, const Args& a) : Fix(s, a) {
       a.yes_no(i + 1, "on or off");  // forces are always tracked
       i += 2;
     } else if (k == "wear") {
-      const std::string& w = a.word(i + 1, "finnie or off");
-      if (w != "finnie" && w != "off") a.fail(i + 1, "finnie or off (the wear models of LIGGGHTS 3.8)");
-      wear = w == "finnie";
+      wear = a.choice(i + 1, {"finnie", "off"}, " (the wear models of LIGGGHTS 3.8)") == 0;
       i += 2;
     } else if (k == "verbose") {
       a.yes_no(i + 1, "yes or no");

@@ -54,13 +54,8 @@ class FixMove : public Fix {
       a.fail(4, "a move style: linear, wiggle, rotate or variable");
     }
     if (a.size() < next) a.fail(a.size(), "the arguments of move " + st);
-    for (std::size_t i = next; i < a.size(); i += 2) {
-      if (a[i] != "units") a.fail(i, "units");
-      const std::string& u = a.word(i + 1, "box");
-      if (u == "lattice")
-        a.fail(i + 1, "box (sable's fix move takes box units only; give distances and velocities in box units)");
-      if (u != "box") a.fail(i + 1, "box");
-    }
+    a.box_units_only(next, "units",
+                     "box (sable's fix move takes box units only; give distances and velocities in box units)");
     check_2d(a);
     traits.turns_grains = style_ == Rotate;  // it sets each grain's spin
     col_ = s.atoms.add_column("move " + id, 3, kUnset);

@@ -10,23 +10,11 @@
 
 namespace sable {
 
-class FixSetforce : public Fix {
+class FixSetforce : public GroupForceFix {
  public:
-  FixSetforce(Simulation& s, const Args& a) : Fix(s, a) {
-    hooks = atom_tasks = POST_FORCE;
-    vector_size = 3;
-    if (a.size() < 7) a.fail(a.size(), "three force components fx fy fz (number, v_name or NULL) after 'setforce'");
-    force_.parse(a, 4, true, true);
+  FixSetforce(Simulation& s, const Args& a) : GroupForceFix(s, a, true, true) {
     traits.constraint = true;
-    traits.keeps_plane = force_.keeps_plane();
-    for (std::size_t i = 7; i < a.size(); i += 2) {
-      if (a[i] != "region") a.fail(i, "region");
-      region_.parse(s, a, i + 1);
-    }
-  }
-  void init() override {
-    force_.check(sim, args);
-    region_.init(sim, args);
+    parse_region_only(a);
   }
   void export_yade(YadeScript& s) const override { export_yade_set_forces(s, *this, false); }
 
@@ -38,7 +26,7 @@ class FixSetforce : public Fix {
     Atoms& at = sim.atoms;
     sum_.range(r);
     for (std::size_t i = r.lo; i < r.hi; ++i) {
-      if (!(at.mask[i] & groupbit) || !region_.admits(&at.x[3 * i])) continue;
+      if (!member(i)) continue;
       double* f = &at.f[3 * i];
       sum_.add(r, i, f);
       for (int k = 0; k < 3; ++k)
@@ -49,8 +37,6 @@ class FixSetforce : public Fix {
   double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i - 1] : 0.0; }
 
  private:
-  ForceComponents force_;
-  RegionOption region_;
   AtomSum<3> sum_;
   double total_[3] = {0, 0, 0};
 };

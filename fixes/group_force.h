@@ -1,6 +1,7 @@
 #pragma once
 // What fix addforce, setforce and aveforce share (LAMMPS syntax): three force
-// components, each a number, v_name or NULL, and the `region ID` option.
+// components, each a number, v_name or NULL, the `region ID` option, and who is
+// acted on (GroupForceFix, their base).
 // Variables are looked up at init (so they may be defined after the fix) and
 // evaluated once a step, serially, before the per-atom pass reads them.
 #include <cmath>
@@ -101,6 +102,41 @@ struct RegionOption {
     if (!region) a.fail(at, "an existing region ID (define it with 'region' first)");
   }
   bool admits(const double* x) const { return !region || region->match(x); }
+};
+
+// The base of the three: fx fy fz at words 4..6, options from word 7, one
+// post-force pass over the grains of the group (inside the region, if given).
+class GroupForceFix : public Fix {
+ public:
+  void init() override {
+    force_.check(sim, args);
+    region_.init(sim, args);
+  }
+
+ protected:
+  // null_ok, atom_ok: as ForceComponents::parse.
+  GroupForceFix(Simulation& s, const Args& a, bool null_ok, bool atom_ok) : Fix(s, a) {
+    hooks = atom_tasks = POST_FORCE;
+    vector_size = 3;
+    if (a.size() < 7)
+      a.fail(a.size(), std::string("three force components fx fy fz ") + (null_ok ? "(number, v_name or NULL) " : "") +
+                           "after '" + style + "'");
+    force_.parse(a, 4, null_ok, atom_ok);
+    traits.keeps_plane = force_.keeps_plane();
+  }
+  // setforce and aveforce take `region ID` and nothing else.
+  void parse_region_only(const Args& a) {
+    for (std::size_t i = 7; i < a.size(); i += 2) {
+      if (a[i] != "region") a.fail(i, "region");
+      region_.parse(sim, a, i + 1);
+    }
+  }
+  bool member(std::size_t i) const {
+    return (sim.atoms.mask[i] & groupbit) && region_.admits(&sim.atoms.x[3 * i]);
+  }
+
+  ForceComponents force_;
+  RegionOption region_;
 };
 
 }  // namespace sable

@@ -6,11 +6,9 @@
 
 namespace sable {
 
-struct CohesionOff {
+struct CohesionOff : NoHistory {
   static constexpr const char* kName = "off";
-  static constexpr int kHistory = 0;
   static constexpr bool kActive = false;
-  static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
   void connect(PropertyRequest&) {}
   double force(const Contact&, const NormalForce&, double*, const StepContext&) const { return 0.0; }

@@ -19,11 +19,9 @@ namespace sable {
 
 // The pull k A of an area rule Area (static double area(const Contact&), kName).
 template <class Area>
-struct CohesionEnergyDensity {
+struct CohesionEnergyDensity : NoHistory {
   static constexpr const char* kName = Area::kName;
-  static constexpr int kHistory = 0;
   static constexpr bool kActive = true;
-  static void history_slots(std::vector<HistorySlot>&) {}
 
   const double* k = nullptr;
   bool tangential_reduce = false;

@@ -25,10 +25,8 @@
 
 namespace sable {
 
-struct DampingLiggghts {
+struct DampingLiggghts : NoHistory {
   static constexpr const char* kName = "liggghts";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
 
   template <class Normal>

@@ -39,10 +39,8 @@ struct RestitutionDashpot {
   }
 };
 
-struct DampingRestitution {
+struct DampingRestitution : NoHistory {
   static constexpr const char* kName = "restitution";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
   template <class Normal>
   void connect(PropertyRequest& p, Normal&) {

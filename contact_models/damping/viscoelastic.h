@@ -12,10 +12,8 @@
 
 namespace sable {
 
-struct DampingViscoelastic {
+struct DampingViscoelastic : NoHistory {
   static constexpr const char* kName = "viscoelastic";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   const double *gn = nullptr, *gt = nullptr;
   void settings(ModelSettings&) {}
   template <class Normal>

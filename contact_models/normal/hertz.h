@@ -13,22 +13,16 @@
 
 namespace sable {
 
-struct NormalHertz {
+struct NormalHertz : LiggghtsNormal {
   static constexpr const char* kName = "hertz";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::hertz;
 
-  bool tangential_damping = true, limit_force = false;
   const double* Y = nullptr;
 
   void settings(ModelSettings& s) {
-    s.on_off("tangential_damping", tangential_damping);
-    s.on_off("limitForce", limit_force);
+    switches(s);
     s.off_only("heating_normal_hertz");
-    s.off_only("disableNormalWhenBonded");
-    s.off_only("computeDissipatedEnergy");
-    s.off_only("computeElasticPotential");
+    unimplemented(s);
   }
   // Per type pair, once: the factors of kn and kt that do not depend on the contact.
   void connect(PropertyRequest& p) {
@@ -51,7 +45,8 @@ struct NormalHertz {
     n.Fel = n.kn * c.deltan;
     return n;
   }
-  void limit(NormalForce& n) const { n.Fn = n.Fn < fn_floor ? fn_floor : n.Fn; }  // limitForce: no attraction
+  // limitForce: LiggghtsNormal::limit without its branch (the hot path of the common law).
+  void limit(NormalForce& n) const { n.Fn = n.Fn < fn_floor ? fn_floor : n.Fn; }
 
   // LIGGGHTS' Hertz time (fix check/timestep/gran): 2.87 (m*^2 / (R* Y*^2 v))^(1/5).
   double contact_time(const ContactTimeInput& in) const {

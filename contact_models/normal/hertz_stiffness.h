@@ -11,19 +11,13 @@
 
 namespace sable {
 
-struct NormalHertzStiffness {
+struct NormalHertzStiffness : LiggghtsNormal {
   static constexpr const char* kName = "hertz/stiffness";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::hertz_stiffness;
 
-  bool tangential_damping = true, limit_force = false;
   const double *kn_ = nullptr, *kt_ = nullptr;
 
-  void settings(ModelSettings& s) {
-    s.on_off("tangential_damping", tangential_damping);
-    s.on_off("limitForce", limit_force);
-  }
+  void settings(ModelSettings& s) { switches(s); }
   void connect(PropertyRequest& p) {
     kn_ = p.pair_table("kn");
     kt_ = p.pair_table("kt");
@@ -36,9 +30,6 @@ struct NormalHertzStiffness {
     n.kt = n.s * kt_[c.tp];
     n.Fel = n.kn * c.deltan;
     return n;
-  }
-  void limit(NormalForce& n) const {
-    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
   }
 
   // kn[ij] sqrt(R* dn) dn is Hertz with Y* = 3/4 kn[ij]: 2.87 (m*^2 / (R* Y*^2 v))^(1/5), damping ignored.

@@ -14,25 +14,20 @@
 
 namespace sable {
 
-struct NormalHooke {
+struct NormalHooke : LiggghtsNormal {
   static constexpr const char* kName = "hooke";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::hooke;
 
-  bool tangential_damping = true, limit_force = false, kt_to_kn = false, viscous = false;
+  bool kt_to_kn = false, viscous = false;
   const double* Y = nullptr;
   double char_vel = 0;
 
   void settings(ModelSettings& s) {
-    s.on_off("tangential_damping", tangential_damping);
-    s.on_off("limitForce", limit_force);
+    switches(s);
     s.on_off("ktToKnUser", kt_to_kn);
     s.off_only("viscous");
     s.off_only("heating_normal_hooke");
-    s.off_only("disableNormalWhenBonded");
-    s.off_only("computeDissipatedEnergy");
-    s.off_only("computeElasticPotential");
+    unimplemented(s);
   }
   void connect(PropertyRequest& p) {
     Y = p.pair_table("Yeff");
@@ -52,9 +47,6 @@ struct NormalHooke {
     n.kt = kt_to_kn ? n.kn * 0.285714286 : n.kn;
     n.Fel = n.kn * c.deltan;
     return n;
-  }
-  void limit(NormalForce& n) const {
-    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
   }
 
   double contact_time(const ContactTimeInput& in) const { return linear_contact_time(linear_kn(in), in.meff); }

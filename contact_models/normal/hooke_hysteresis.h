@@ -37,9 +37,7 @@ struct NormalHookeHysteresis : NormalHooke {
     s.off_only("ktToKnUser");
     s.off_only("viscous");
     s.off_only("heating_normal_hooke");
-    s.off_only("disableNormalWhenBonded");
-    s.off_only("computeDissipatedEnergy");
-    s.off_only("computeElasticPotential");
+    unimplemented(s);
   }
   void connect(PropertyRequest& p) {
     NormalHooke::connect(p);

@@ -10,22 +10,17 @@
 
 namespace sable {
 
-struct NormalHookeStiffness {
+struct NormalHookeStiffness : LiggghtsNormal {
   static constexpr const char* kName = "hooke/stiffness";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::stiffness;
 
-  bool tangential_damping = true, limit_force = false, absolute_damping = false;
+  bool absolute_damping = false;
   const double *kn_ = nullptr, *kt_ = nullptr;
 
   void settings(ModelSettings& s) {
-    s.on_off("tangential_damping", tangential_damping);
+    switches(s);
     s.on_off("absolute_damping", absolute_damping);
-    s.on_off("limitForce", limit_force);
-    s.off_only("disableNormalWhenBonded");
-    s.off_only("computeDissipatedEnergy");
-    s.off_only("computeElasticPotential");
+    unimplemented(s);
   }
   void connect(PropertyRequest& p) {
     kn_ = p.pair_table("kn");
@@ -38,9 +33,6 @@ struct NormalHookeStiffness {
     n.kt = kt_[c.tp];
     n.Fel = n.kn * c.deltan;
     return n;
-  }
-  void limit(NormalForce& n) const {
-    if (limit_force && n.Fn < 0.0) n.Fn = 0.0;
   }
 
   double linear_kn(const ContactTimeInput& in) const { return kn_[in.tp]; }

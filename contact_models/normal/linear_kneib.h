@@ -18,10 +18,8 @@
 
 namespace sable {
 
-struct NormalLinearKneib {
+struct NormalLinearKneib : NoHistory {
   static constexpr const char* kName = "linear/kneib";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   static constexpr LiggghtsDamping kLiggghtsDamping = LiggghtsDamping::restitution;
 
   bool limit_force = false;

@@ -12,10 +12,8 @@
 
 namespace sable {
 
-struct RollingCdt {
+struct RollingCdt : NoHistory {
   static constexpr const char* kName = "cdt";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
 
   bool torsion_torque = false;
   const double* rmu = nullptr;

@@ -5,10 +5,8 @@
 
 namespace sable {
 
-struct RollingOff {
+struct RollingOff : NoHistory {
   static constexpr const char* kName = "off";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
   void connect(PropertyRequest&) {}
   Vec3 torque(const Contact&, const NormalForce&, double*, const StepContext&) const { return {}; }

@@ -9,10 +9,8 @@
 
 namespace sable {
 
-struct TangentialNoHistory {
+struct TangentialNoHistory : NoHistory {
   static constexpr const char* kName = "no_history";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
 
   const double* mu = nullptr;
   void settings(ModelSettings&) {}

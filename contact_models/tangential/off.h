@@ -6,10 +6,8 @@
 
 namespace sable {
 
-struct TangentialOff {
+struct TangentialOff : NoHistory {
   static constexpr const char* kName = "off";
-  static constexpr int kHistory = 0;
-  static void history_slots(std::vector<HistorySlot>&) {}
   void settings(ModelSettings&) {}
   void connect(PropertyRequest&) {}
   Vec3 force(const Contact&, const NormalForce&, double*, const StepContext&) const { return {}; }

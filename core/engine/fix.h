@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/engine/global_output.h"
 #include "core/input/args.h"
@@ -138,6 +139,10 @@ class Fix : public GlobalOutput {
   virtual void end(FixHook) {}
   // Runs the task declared for hook h (if any) over all atoms: begin, the ranges, end.
   void run_task(FixHook h);
+
+  // The fixes defined after this one whose post_force may add force out of the
+  // plane (not keeps_plane): their force comes after this fix has acted.
+  std::vector<const Fix*> later_force_fixes() const;
 
   // Fastest speed this fix imposes (moving walls), for the time-step check: a
   // function, as it may change during a run (a wiggle, a mover's farthest grain).

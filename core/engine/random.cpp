@@ -37,16 +37,10 @@ double Rng::gaussian() {
     has_spare_ = false;
     return spare_;
   }
-  double u, v, s;
-  do {
-    u = 2.0 * uniform() - 1.0;
-    v = 2.0 * uniform() - 1.0;
-    s = u * u + v * v;
-  } while (s >= 1.0 || s == 0.0);
-  const double f = std::sqrt(-2.0 * std::log(s) / s);
-  spare_ = v * f;
+  double g;
+  polar_gaussians([this] { return uniform(); }, g, spare_);
   has_spare_ = true;
-  return u * f;
+  return g;
 }
 
 double hashed_uniform(long seed, long key) {

@@ -2,6 +2,7 @@
 // Deck random numbers and grain size/density distributions, shared by
 // insertion (fixes) and set / delete_atoms (core): one portable generator,
 // seeds checked like LIGGGHTS; and the grain mass as LIGGGHTS computes it.
+#include <cmath>
 #include <cstdint>
 
 #include "core/input/args.h"
@@ -26,6 +27,21 @@ class Rng {
   double spare_ = 0.0;
   bool has_spare_ = false;
 };
+
+// Marsaglia's polar method: two independent standard normal deviates from
+// uniform() on [0, 1) (Rng and the LAMMPS generator of the deck's normal()).
+template <class Uniform>
+void polar_gaussians(Uniform&& uniform, double& first, double& second) {
+  double u, v, s;
+  do {
+    u = 2.0 * uniform() - 1.0;
+    v = 2.0 * uniform() - 1.0;
+    s = u * u + v * v;
+  } while (s >= 1.0 || s == 0.0);
+  const double f = std::sqrt(-2.0 * std::log(s) / s);
+  first = u * f;
+  second = v * f;
+}
 
 // Uniform [0, 1) from (seed, key) alone: per-atom random choices (set
 // type/fraction, delete_atoms porosity) that do not depend on atom order.

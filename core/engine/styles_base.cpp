@@ -15,12 +15,6 @@
 
 namespace sable {
 
-static int group_arg(Simulation& sim, const Args& a, std::size_t i) {
-  const int g = sim.groups.find(a.word(i, "a group ID"));
-  if (g < 0) a.fail(i, "an existing group ID (define it with 'group' first)");
-  return g;
-}
-
 void Pair::compute_then(const RangeTail& tail) {
   compute();
   sim.atoms.for_ranges(tail);
@@ -41,6 +35,16 @@ void Fix::run_task(FixHook h) {
     }
   });
   end(h);
+}
+
+std::vector<const Fix*> Fix::later_force_fixes() const {
+  std::vector<const Fix*> out;
+  bool after = false;
+  for (auto& f : sim.fixes) {
+    if (after && (f->hooks & POST_FORCE) && !f->traits.keeps_plane) out.push_back(f.get());
+    if (f.get() == this) after = true;
+  }
+  return out;
 }
 
 const char* role_name(FixRole r) {
@@ -74,14 +78,14 @@ double Region::depth(const double*, int) const { return std::numeric_limits<doub
 
 Fix::Fix(Simulation& s, const Args& a) : sim(s), args(a) {
   id = a.word(1, "a fix ID");
-  group = group_arg(s, a, 2);
+  group = s.groups.existing(a, 2);
   groupbit = s.groups.bit(group);
   style = a.word(3, "a fix style");
 }
 
 Compute::Compute(Simulation& s, const Args& a) : sim(s), args(a) {
   id = a.word(1, "a compute ID");
-  group = group_arg(s, a, 2);
+  group = s.groups.existing(a, 2);
   groupbit = s.groups.bit(group);
   style = a.word(3, "a compute style");
 }
@@ -134,13 +138,9 @@ void Region::parse_options(const Args& a, std::size_t i) {
   bool lattice_units = true;  // LAMMPS default is lattice units
   for (; i < a.size(); i += 2) {
     if (a[i] == "side") {
-      const std::string& v = a.word(i + 1, "in or out");
-      if (v != "in" && v != "out") a.fail(i + 1, "in or out");
-      interior = v == "in";
+      interior = a.choice(i + 1, {"in", "out"}) == 0;
     } else if (a[i] == "units") {
-      const std::string& v = a.word(i + 1, "box or lattice");
-      if (v != "box" && v != "lattice") a.fail(i + 1, "box or lattice");
-      lattice_units = v == "lattice";
+      lattice_units = a.choice(i + 1, {"box", "lattice"}) == 1;
     } else {
       a.fail(i, "a region option: side in|out or units box|lattice");
     }
@@ -166,7 +166,7 @@ double Region::coord(const Args& a, std::size_t i, int axis, bool upper) const {
 
 Dump::Dump(Simulation& s, const Args& a) : sim(s), args(a) {
   id = a.word(1, "a dump ID");
-  group = group_arg(s, a, 2);
+  group = s.groups.existing(a, 2);
   groupbit = s.groups.bit(group);
   style = a.word(3, "a dump style");
   every = a.integer(4, "the dump period N (steps)");

@@ -66,6 +66,32 @@ bool Args::yes_no(std::size_t i, const std::string& what) const {
   fail(i, what + " (yes/no or on/off)");
 }
 
+int Args::choice(std::size_t i, std::initializer_list<const char*> options, const std::string& note) const {
+  std::string names;
+  std::size_t k = 0;
+  for (const char* o : options) {
+    if (k > 0) names += k + 1 == options.size() ? " or " : ", ";
+    names += o;
+    ++k;
+  }
+  const std::string& w = word(i, names);
+  k = 0;
+  for (const char* o : options) {
+    if (w == o) return static_cast<int>(k);
+    ++k;
+  }
+  fail(i, names + note);
+}
+
+void Args::box_units_only(std::size_t from, const std::string& keyword, const std::string& lattice) const {
+  for (std::size_t i = from; i < size(); i += 2) {
+    if (w_[i] != "units") fail(i, keyword);
+    const std::string& u = word(i + 1, "box");
+    if (u == "lattice") fail(i + 1, lattice);
+    if (u != "box") fail(i + 1, "box");
+  }
+}
+
 Args Args::tail(std::size_t i) const {
   std::vector<std::string> rest(w_.begin() + std::min(i, w_.size()), w_.end());
   return Args(std::move(rest), where_);

@@ -1,6 +1,7 @@
 #pragma once
 // The words of one deck command plus where they came from, with typed
 // accessors whose errors name file, line, word and what was expected.
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ class Args {
   double num(std::size_t i, const std::string& what) const;
   long integer(std::size_t i, const std::string& what) const;
   bool yes_no(std::size_t i, const std::string& what) const;  // yes/no/on/off
+  // Word i as one of `options`: its index; else an error naming them ("a, b or c", then `note`).
+  int choice(std::size_t i, std::initializer_list<const char*> options, const std::string& note = "") const;
+  // `units box` pairs from word `from` on (sable moves atoms in box units only): `keyword` is what
+  // else may stand there, `lattice` the error that says so to a deck asking for lattice units.
+  void box_units_only(std::size_t from, const std::string& keyword, const std::string& lattice) const;
   // Error pointing at word i (or at the end of the line when i >= size()).
   [[noreturn]] void fail(std::size_t i, const std::string& expected) const;
   // Error about the whole command.

@@ -22,8 +22,7 @@ void cmd_delete_atoms(Simulation& sim, const Args& a) {
   std::vector<char> doomed(at.n, 0);
   std::size_t opt = 3;
   if (style == "group") {
-    const int g = sim.groups.find(a.word(2, "a group ID"));
-    if (g < 0) a.fail(2, "an existing group ID (define it with 'group' first)");
+    const int g = sim.groups.existing(a, 2);
     for (std::size_t i = 0; i < at.n; ++i) doomed[i] = (at.mask[i] & sim.groups.bit(g)) != 0;
   } else if (style == "region" || style == "porosity") {
     const Region* r = sim.find_region(a.word(2, "a region ID"));

@@ -15,23 +15,12 @@
 namespace sable {
 namespace {
 
-int axis_word(const Args& a, std::size_t i) {
-  const std::string& w = a.word(i, "x, y or z");
-  if (w == "x") return 0;
-  if (w == "y") return 1;
-  if (w == "z") return 2;
-  a.fail(i, "x, y or z");
-}
+int axis_word(const Args& a, std::size_t i) { return a.choice(i, {"x", "y", "z"}); }
 
 // The units keyword after the style's arguments: box only.
 void parse_units(const Args& a, std::size_t from) {
-  for (std::size_t i = from; i < a.size(); i += 2) {
-    if (a[i] != "units") a.fail(i, "units (or nothing) after the displacement");
-    const std::string& u = a.word(i + 1, "box");
-    if (u == "lattice")
-      a.fail(i + 1, "box (sable's displace_atoms takes box units only; give distances in box units)");
-    if (u != "box") a.fail(i + 1, "box");
-  }
+  a.box_units_only(from, "units (or nothing) after the displacement",
+                   "box (sable's displace_atoms takes box units only; give distances in box units)");
 }
 
 template <class Move>
@@ -43,9 +32,7 @@ void each_member(Simulation& sim, std::uint32_t bit, Move&& move) {
 
 void cmd_displace_atoms(Simulation& sim, const Args& a) {
   if (!sim.domain.box_exists) a.fail(0, "a box first (create_box before displace_atoms)");
-  const int g = sim.groups.find(a.word(1, "a group ID"));
-  if (g < 0) a.fail(1, "an existing group ID (define it with 'group' first)");
-  const std::uint32_t bit = sim.groups.bit(g);
+  const std::uint32_t bit = sim.groups.bit(sim.groups.existing(a, 1));
   const std::string& style = a.word(2, "move, ramp or rotate");
   if (style == "move") {
     double d[3];

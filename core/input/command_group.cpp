@@ -15,12 +15,6 @@
 namespace sable {
 namespace {
 
-int existing_group(Simulation& sim, const Args& a, std::size_t i) {
-  const int g = sim.groups.find(a.word(i, "a group ID"));
-  if (g < 0) a.fail(i, "an existing group ID (define it with 'group' first)");
-  return g;
-}
-
 // Selection by an integer attribute (type or id) from the list (or logical) at words 3...
 std::vector<char> select_by(const Args& a, const std::vector<long>& attr, const std::string& what) {
   std::vector<char> sel(attr.size(), 0);
@@ -83,7 +77,7 @@ void cmd_group(Simulation& sim, const Args& a) {
   Atoms& at = sim.atoms;
 
   if (style == "delete" || style == "clear") {
-    const int g = existing_group(sim, a, 1);
+    const int g = sim.groups.existing(a, 1);
     if (g == 0) a.fail(1, "a group other than 'all' (it cannot be " + style + "ed)");
     if (style == "delete") {
       for (auto& f : sim.fixes)
@@ -122,7 +116,7 @@ void cmd_group(Simulation& sim, const Args& a) {
     const std::size_t need = style == "union" ? 4 : 5;
     if (a.size() < need) a.fail(a.size(), std::string(style == "union" ? "one or more" : "two or more") + " group IDs");
     std::vector<std::uint32_t> bits;
-    for (std::size_t w = 3; w < a.size(); ++w) bits.push_back(sim.groups.bit(existing_group(sim, a, w)));
+    for (std::size_t w = 3; w < a.size(); ++w) bits.push_back(sim.groups.bit(sim.groups.existing(a, w)));
     for (std::size_t i = 0; i < at.n; ++i) {
       const std::uint32_t m = at.mask[i];
       if (style == "union")

@@ -83,8 +83,7 @@ void cmd_set(Simulation& sim, const Args& a) {
     star_bounds(a, 2, at.ntypes, lo, hi, single, "an atom type or type range");
     for (std::size_t i = 0; i < at.n; ++i) sel[i] = at.type[i] >= lo && at.type[i] <= hi;
   } else if (style == "group") {
-    const int g = sim.groups.find(a.word(2, "a group ID"));
-    if (g < 0) a.fail(2, "an existing group ID (define it with 'group' first)");
+    const int g = sim.groups.existing(a, 2);
     for (std::size_t i = 0; i < at.n; ++i) sel[i] = (at.mask[i] & sim.groups.bit(g)) != 0;
   } else if (style == "region") {
     const Region* r = sim.find_region(a.word(2, "a region ID"));

@@ -63,9 +63,7 @@ void zero_angular(Atoms& at, const Domain& d, std::uint32_t bit) {
 
 void cmd_velocity(Simulation& sim, const Args& a) {
   if (!sim.domain.box_exists) a.fail(0, "a box first (create_box before velocity)");
-  const int g = sim.groups.find(a.word(1, "a group ID"));
-  if (g < 0) a.fail(1, "an existing group ID (define it with 'group' first)");
-  const std::uint32_t bit = sim.groups.bit(g);
+  const std::uint32_t bit = sim.groups.bit(sim.groups.existing(a, 1));
   const std::string& style = a.word(2, "set, ramp or zero");
   std::size_t opt = 0;
   if (style == "set")
@@ -85,17 +83,13 @@ void cmd_velocity(Simulation& sim, const Args& a) {
     if (k == "sum")
       sum = a.yes_no(i + 1, "yes or no");
     else if (k == "units") {
-      const std::string& u = a.word(i + 1, "box or lattice");
-      if (u != "box" && u != "lattice") a.fail(i + 1, "box or lattice");
-      lattice = u == "lattice";
+      lattice = a.choice(i + 1, {"box", "lattice"}) == 1;
     } else if (k == "mom" || k == "rot")
       a.yes_no(i + 1, "yes or no");
     else if (k == "dist") {
-      const std::string& v = a.word(i + 1, "uniform or gaussian");
-      if (v != "uniform" && v != "gaussian") a.fail(i + 1, "uniform or gaussian");
+      a.choice(i + 1, {"uniform", "gaussian"});
     } else if (k == "loop") {
-      const std::string& v = a.word(i + 1, "all, local or geom");
-      if (v != "all" && v != "local" && v != "geom") a.fail(i + 1, "all, local or geom");
+      a.choice(i + 1, {"all", "local", "geom"});
     } else
       a.fail(i, "a velocity keyword: sum, units, mom, rot, dist, loop");
   }

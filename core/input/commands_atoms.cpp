@@ -122,9 +122,7 @@ void cmd_create_atoms(Simulation& sim, const Args& a) {
     bool lattice_units = sim.lattice.style != "none";
     for (std::size_t i = next; i < a.size(); i += 2) {
       if (a[i] != "units") a.fail(i, "'units box' or 'units lattice'");
-      const std::string& u = a.word(i + 1, "box or lattice");
-      if (u != "box" && u != "lattice") a.fail(i + 1, "box or lattice");
-      lattice_units = u == "lattice" && sim.lattice.style != "none";
+      lattice_units = a.choice(i + 1, {"box", "lattice"}) == 1 && sim.lattice.style != "none";
     }
     if (lattice_units)
       for (int k = 0; k < 3; ++k) x[k] *= sim.lattice.a[k];

@@ -9,6 +9,8 @@
 #include <numbers>
 #include <string_view>
 
+#include "core/engine/random.h"
+
 namespace sable {
 namespace {
 
@@ -48,16 +50,10 @@ class RanMars {
   }
   double gaussian() {
     if (save_) { save_ = false; return second_; }
-    double v1, v2, rsq;
-    do {
-      v1 = 2.0 * uniform() - 1.0;
-      v2 = 2.0 * uniform() - 1.0;
-      rsq = v1 * v1 + v2 * v2;
-    } while (rsq >= 1.0 || rsq == 0.0);
-    double fac = std::sqrt(-2.0 * std::log(rsq) / rsq);
-    second_ = v1 * fac;
+    double g;
+    polar_gaussians([this] { return uniform(); }, second_, g);  // LAMMPS keeps the first for the next call
     save_ = true;
-    return v2 * fac;
+    return g;
   }
 
  private:

@@ -21,6 +21,7 @@
 #include "core/io/dump_file.h"
 #include "core/engine/error.h"
 #include "core/engine/simulation.h"
+#include "core/input/number_format.h"
 #include "core/input/style_registry.h"
 #include "core/io/yade_script.h"
 
@@ -57,7 +58,7 @@ class DumpLocal : public Dump {
       return true;
     }
     const std::string& f = a.word(i + 2, "a printf format with one %e, %f or %g conversion");
-    if (!float_format(f)) a.fail(i + 2, "a printf format with one %e, %f or %g conversion and no other %");
+    if (!number_format_problem(f, false).empty()) a.fail(i + 2, "a printf format with one %e, %f or %g conversion and no other %");
     long n = 0;
     if (w == "float") {
       for (Column& c : cols_) c.format = f;
@@ -104,25 +105,6 @@ class DumpLocal : public Dump {
     Compute* compute = nullptr;  // resolved at init
     std::string format;          // dump_modify format; empty: %g
   };
-
-  // One printf conversion of a double (flags, width, precision, then e/E/f/F/g/G),
-  // checked here so that a bad format fails at its line, not inside snprintf.
-  static bool float_format(const std::string& f) {
-    int conversions = 0;
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      if (f[i] != '%') continue;
-      if (i + 1 < f.size() && f[i + 1] == '%') {
-        ++i;
-        continue;
-      }
-      std::size_t j = i + 1;
-      while (j < f.size() && std::strchr("-+ #0123456789.", f[j])) ++j;
-      if (j >= f.size() || !std::strchr("eEfFgG", f[j])) return false;
-      ++conversions;
-      i = j;
-    }
-    return conversions == 1 && f.size() < 64;
-  }
 
   Column parse(const Args& a, std::size_t i) {
     Column c;

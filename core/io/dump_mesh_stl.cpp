@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/io/dump.h"
+#include "core/io/dump_meshes.h"
 #include "core/engine/error.h"
 #include "core/geometry/mesh.h"
 #include "core/engine/simulation.h"
@@ -19,24 +20,15 @@ namespace sable {
 class DumpMeshStl : public Dump {
  public:
   DumpMeshStl(Simulation& s, const Args& a) : Dump(s, a) {
-    for (std::size_t i = 6; i < a.size(); ++i) {
-      if (!dynamic_cast<MeshHolder*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
-      ids_.push_back(a[i]);
-    }
+    for (std::size_t i = 6; i < a.size(); ++i) meshes_.name(s, a, i);
   }
-  void init() override {
-    meshes_.clear();
-    for (auto& f : sim.fixes)
-      if (auto* m = dynamic_cast<MeshHolder*>(f.get()))
-        if (ids_.empty() || std::find(ids_.begin(), ids_.end(), f->id) != ids_.end()) meshes_.push_back({f->id, m});
-    if (meshes_.empty()) args.fail_line("dump mesh/stl: no fix mesh/surface to write");
-  }
+  void init() override { meshes_.find(sim, args, style); }
 
  protected:
   void write_snapshot(long step, const std::string& path, bool append) override {
     FILE* f = std::fopen(path.c_str(), append ? "ab" : "wb");
     if (!f) fail("dump mesh/stl: cannot open '" + path + "' for writing");
-    for (auto& [id, m] : meshes_) {
+    for (auto& [id, m] : meshes_.meshes) {
       m->update_pose();
       const TriMesh& mesh = m->mesh();
       std::fprintf(f, "solid %s_step_%ld\n", id.c_str(), step);
@@ -55,8 +47,7 @@ class DumpMeshStl : public Dump {
   }
 
  private:
-  std::vector<std::string> ids_;
-  std::vector<std::pair<std::string, MeshHolder*>> meshes_;  // fix ID, its mesh
+  DumpedMeshes meshes_;
 };
 
 SABLE_DUMP("mesh/stl", DumpMeshStl);

@@ -17,6 +17,7 @@
 #include <cstdio>
 
 #include "core/io/dump.h"
+#include "core/io/dump_meshes.h"
 #include "core/engine/error.h"
 #include "core/geometry/mesh.h"
 #include "core/engine/simulation.h"
@@ -28,57 +29,36 @@ class DumpMeshVtk : public Dump {
  public:
   DumpMeshVtk(Simulation& s, const Args& a) : Dump(s, a) {
     std::size_t i = 6;
-    for (; i < a.size() && ids_.empty(); ++i) {
+    for (; i < a.size() && meshes_.ids.empty(); ++i) {
       const std::string& w = a[i];
       if (w == "output") {
         if (a.word(i + 1, "face (the output sable writes)") != "face")
           a.fail(i + 1, "face (sable writes cell data; interpolate and original are not supported)");
         ++i;
-      } else if (w == "id") {
-        id_ = true;
-      } else if (w == "stress") {
-        stress_ = true;
-      } else if (w == "stresscomponents") {
-        components_ = true;
-      } else if (w == "vel") {
-        vel_ = true;
-      } else if (w == "area") {
-        area_ = true;
-      } else if (w == "wear") {
-        wear_ = true;
+      } else if (bool* field = identifier(w)) {
+        *field = true;
       } else if (w == "owner" || w == "aedges" || w == "acorners" || w == "nneighs") {
         a.fail(i, "a dump identifier sable writes: id, stress, stresscomponents, vel, area, wear ('" + w + "' is not supported)");
       } else {
-        if (!dynamic_cast<MeshHolder*>(s.find_fix(w)))
-          a.fail(i, "a dump identifier (id, stress, stresscomponents, vel, area, wear) or the ID of a fix mesh/surface");
-        ids_.push_back(w);
+        meshes_.name(s, a, i, "a dump identifier (id, stress, stresscomponents, vel, area, wear) or the ID of a fix mesh/surface");
       }
     }
-    for (; i < a.size(); ++i) {
-      if (!dynamic_cast<MeshHolder*>(s.find_fix(a[i]))) a.fail(i, "the ID of a fix mesh/surface");
-      ids_.push_back(a[i]);
-    }
+    for (; i < a.size(); ++i) meshes_.name(s, a, i);
   }
-  void init() override {
-    meshes_.clear();
-    for (auto& f : sim.fixes)
-      if (auto* m = dynamic_cast<MeshHolder*>(f.get()))
-        if (ids_.empty() || std::find(ids_.begin(), ids_.end(), f->id) != ids_.end()) meshes_.push_back(m);
-    if (meshes_.empty()) args.fail_line("dump " + style + ": no fix mesh/surface to write");
-  }
+  void init() override { meshes_.find(sim, args, style); }
 
  protected:
   void write_snapshot(long step, const std::string& path, bool) override {
     FILE* f = std::fopen(path.c_str(), "wb");  // one snapshot per file: VTK holds one
     if (!f) fail("dump " + style + ": cannot open '" + path + "' for writing");
     std::size_t ntri = 0;
-    for (MeshHolder* m : meshes_) {
+    for (auto& [fix, m] : meshes_.meshes) {
       m->update_pose();
       ntri += m->mesh().ntri();
     }
     std::fprintf(f, "# vtk DataFile Version 2.0\nsable meshes, step %ld\nASCII\nDATASET POLYDATA\nPOINTS %zu double\n", step,
                  3 * ntri);
-    for (MeshHolder* m : meshes_) {
+    for (auto& [fix, m] : meshes_.meshes) {
       const TriMesh& mesh = m->mesh();
       for (std::size_t t = 0; t < mesh.ntri(); ++t)
         for (int k = 0; k < 3; ++k) {
@@ -89,25 +69,33 @@ class DumpMeshVtk : public Dump {
     std::fprintf(f, "POLYGONS %zu %zu\n", ntri, 4 * ntri);
     for (std::size_t t = 0; t < ntri; ++t) std::fprintf(f, "3 %zu %zu %zu\n", 3 * t, 3 * t + 1, 3 * t + 2);
     std::fprintf(f, "CELL_DATA %zu\nSCALARS mesh int 1\nLOOKUP_TABLE default\n", ntri);
-    for (std::size_t m = 0; m < meshes_.size(); ++m)
-      for (std::size_t t = 0; t < meshes_[m]->mesh().ntri(); ++t) std::fprintf(f, "%zu\n", m);
+    for (std::size_t m = 0; m < meshes_.meshes.size(); ++m)
+      for (std::size_t t = 0; t < meshes_.meshes[m].second->mesh().ntri(); ++t) std::fprintf(f, "%zu\n", m);
     std::fprintf(f, "SCALARS type int 1\nLOOKUP_TABLE default\n");
-    for (MeshHolder* m : meshes_)
+    for (auto& [fix, m] : meshes_.meshes)
       for (std::size_t t = 0; t < m->mesh().ntri(); ++t) std::fprintf(f, "%d\n", m->wall_type());
     write_fields(f);
     if (std::fclose(f) != 0) fail("dump " + style + ": writing '" + path + "' failed");
   }
 
  private:
-  std::vector<std::string> ids_;
-  std::vector<MeshHolder*> meshes_;
+  DumpedMeshes meshes_;
   bool id_ = false, stress_ = false, components_ = false, vel_ = false, area_ = false, wear_ = false;
+
+  // A LIGGGHTS dump identifier sable writes: the field it turns on (nullptr for any other word).
+  bool* identifier(const std::string& w) {
+    const std::pair<const char*, bool*> known[] = {{"id", &id_},   {"stress", &stress_}, {"stresscomponents", &components_},
+                                                   {"vel", &vel_}, {"area", &area_},     {"wear", &wear_}};
+    for (auto& [name, field] : known)
+      if (w == name) return field;
+    return nullptr;
+  }
 
   // fn(mesh, triangle) -> the values of one cell, for every triangle of every mesh.
   template <class Fn>
   void cells(FILE* f, const char* head, Fn fn) {
     std::fprintf(f, "%s", head);
-    for (MeshHolder* m : meshes_)
+    for (auto& [fix, m] : meshes_.meshes)
       for (std::size_t t = 0; t < m->mesh().ntri(); ++t) fn(m->mesh(), static_cast<int>(t));
   }
   static Vec3d load(const TriMesh& m, int t) {

@@ -100,33 +100,53 @@ std::vector<std::string> h5_members(hid_t f) {
   return out;
 }
 
-Column read_hdf5(const std::string& path, const std::string& spec, std::string dataset) {
+// Opens an HDF5 file to read, also one a run is still writing (SWMR); negative when it cannot.
+hid_t h5_open(const std::string& path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);  // a run still writing
-  if (f < 0) throw Error("file '" + path + "': cannot open as HDF5");
-  if (dataset.empty()) dataset = "values";  // fix ave/time
-  if (H5Lexists(f, dataset.c_str(), H5P_DEFAULT) <= 0) {
+  return f;
+}
+
+// Dataset `name` of the open file f as doubles (row-major), its shape in dims. Errors close f first;
+// a missing dataset's error lists the file's datasets, `hint` saying how to choose another.
+Vec h5_doubles(hid_t f, const std::string& path, const std::string& name, std::vector<std::size_t>& dims,
+               const std::string& hint) {
+  if (H5Lexists(f, name.c_str(), H5P_DEFAULT) <= 0) {
     const std::string m = joined(h5_members(f));
     H5Fclose(f);
-    throw Error("file '" + path + "': no dataset '" + dataset + "' (it has: " + m + "; choose with --dataset)");
+    throw Error("file '" + path + "': no dataset '" + name + "' (it has: " + m + hint + ")");
   }
-  const hid_t d = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
   const hid_t space = H5Dget_space(d);
   const int rank = H5Sget_simple_extent_ndims(space);
-  std::vector<hsize_t> dims(std::max(rank, 1), 1);
-  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  std::vector<hsize_t> h(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space, h.data(), nullptr);
   std::size_t total = 1;
-  for (int i = 0; i < rank; ++i) total *= dims[i];
+  dims.assign(h.begin(), h.end());
+  for (std::size_t n : dims) total *= n;
   Vec all(total);
   const bool ok = total == 0 || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()) >= 0;
-  std::vector<std::string> names = h5_strings(f, "columns");
-  if (names.empty()) names = h5_strings(f, "values");
   H5Sclose(space);
   H5Dclose(d);
+  if (!ok) {
+    H5Fclose(f);
+    throw Error("file '" + path + "': cannot read dataset '" + name + "' as numbers");
+  }
+  return all;
+}
+
+Column read_hdf5(const std::string& path, const std::string& spec, std::string dataset) {
+  const hid_t f = h5_open(path);
+  if (f < 0) throw Error("file '" + path + "': cannot open as HDF5");
+  if (dataset.empty()) dataset = "values";  // fix ave/time
+  std::vector<std::size_t> dims;
+  const Vec all = h5_doubles(f, path, dataset, dims, "; choose with --dataset");
+  std::vector<std::string> names = h5_strings(f, "columns");
+  if (names.empty()) names = h5_strings(f, "values");
   H5Fclose(f);
-  if (!ok) throw Error("file '" + path + "': cannot read dataset '" + dataset + "' as numbers");
-  const std::size_t ncols = rank <= 1 ? 1 : dims[rank - 1];  // [rows] or [rows][cols] or [rows][nrows][cols]
+  const std::size_t total = all.size();
+  const std::size_t ncols = dims.size() <= 1 ? 1 : dims.back();  // [rows] or [rows][cols] or [rows][nrows][cols]
   if (names.size() != ncols) names.clear();
   const std::size_t k = resolve(path + "' dataset '" + dataset, spec, names, ncols);
   Column c;
@@ -227,9 +247,7 @@ bool is_hdf5_file(const std::string& path) { return is_hdf5(path); }
 
 bool h5_has_dataset(const std::string& path, const std::string& name) {
   if (!is_hdf5(path)) return false;
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+  const hid_t f = h5_open(path);
   if (f < 0) return false;
   const bool has = H5Lexists(f, name.c_str(), H5P_DEFAULT) > 0;
   H5Fclose(f);
@@ -237,29 +255,10 @@ bool h5_has_dataset(const std::string& path, const std::string& name) {
 }
 
 Vec read_h5_array(const std::string& path, const std::string& name, std::vector<std::size_t>& dims) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);  // a run still writing
+  const hid_t f = h5_open(path);
   if (f < 0) throw Error("file '" + path + "': cannot open as HDF5");
-  if (H5Lexists(f, name.c_str(), H5P_DEFAULT) <= 0) {
-    const std::string m = joined(h5_members(f));
-    H5Fclose(f);
-    throw Error("file '" + path + "': no dataset '" + name + "' (it has: " + m + ")");
-  }
-  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
-  const hid_t space = H5Dget_space(d);
-  const int rank = H5Sget_simple_extent_ndims(space);
-  std::vector<hsize_t> h(static_cast<std::size_t>(std::max(rank, 0)));
-  if (rank > 0) H5Sget_simple_extent_dims(space, h.data(), nullptr);
-  std::size_t total = 1;
-  dims.assign(h.begin(), h.end());
-  for (std::size_t n : dims) total *= n;
-  Vec all(total);
-  const bool ok = total == 0 || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()) >= 0;
-  H5Sclose(space);
-  H5Dclose(d);
+  Vec all = h5_doubles(f, path, name, dims, "");
   H5Fclose(f);
-  if (!ok) throw Error("file '" + path + "': cannot read dataset '" + name + "' as numbers");
   return all;
 }
 

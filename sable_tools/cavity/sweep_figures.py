@@ -359,14 +359,20 @@ def point_table(S):
     return L + ['']
 
 
+def fit_section(title, fit, missing, rows):
+    """A fit's section: its title, then rows(fit, its row), or `missing` while there is no fit yet."""
+    return [title, ''] + ([missing, ''] if fit is None else rows(fit, fit['row']))
+
+
 def eq4_section(e4, S):
-    L = ['## Eq. 4 refit (`fit-sigmoid`)', '']
-    if e4 is None:
-        return L + ['Not enough points yet (4 needed).', '']
-    r = e4['row']
+    return fit_section('## Eq. 4 refit (`fit-sigmoid`)', e4, 'Not enough points yet (4 needed).',
+                       lambda e4, r: eq4_rows(e4, r, S))
+
+
+def eq4_rows(e4, r, S):
     how = ('weighted by the seed SEs (1.96 intervals)' if e4['weighted'] else
            '**preliminary: fewer than 4 points have 2 seeds, so unweighted (errors from the scatter)**')
-    L += [f'Over {len(e4["points"])} points, {how}; chi2 {r["chi2"]:.3g} / {r["dof"]:.0f} dof, '
+    L = [f'Over {len(e4["points"])} points, {how}; chi2 {r["chi2"]:.3g} / {r["dof"]:.0f} dof, '
           f'R² {r["r_squared"]:.3f}.', ''] + param_lines(r, PAPER_EQ4) + ['']
     if e4['row_u']:
         L += ['A check of the weights, outside the plan: the same means unweighted (errors from the scatter, '
@@ -414,21 +420,22 @@ def pair_section(P, S):
 
 
 def eq5_section(e5, S):
-    L = ['## Eq. 5 (`fit-linear`, F̄/(PLd) = c1 - c2 ℓ/L over I_M > 1e-2)', '']
-    if e5 is None:
-        return L + ['Not enough points yet (3 with ℓ/L and I_M > 1e-2).', '']
-    r = e5['row']
-    L += [f'Seed means of {len(e5["points"])} points, unweighted (ℓ/L carries its own scatter; errors from the '
+    return fit_section('## Eq. 5 (`fit-linear`, F̄/(PLd) = c1 - c2 ℓ/L over I_M > 1e-2)', e5,
+                       'Not enough points yet (3 with ℓ/L and I_M > 1e-2).', eq5_rows)
+
+
+def eq5_rows(e5, r):
+    L = [f'Seed means of {len(e5["points"])} points, unweighted (ℓ/L carries its own scatter; errors from the '
           f'residuals, Student intervals); R² {r["r_squared"]:.3f} (paper 0.96).', '']
     return L + param_lines(r, PAPER_EQ5) + ['']
 
 
 def eq20_section(e20):
-    L = ['## Eq. 20 (local rheology)', '']
-    if e20 is None:
-        return L + ['No rheology nodes yet.', '']
-    r = e20['row']
-    L += [f'`fit-sigmoid` (unweighted, the fit `local-rheology --fit` makes for one run) of the {e20["n"]} '
+    return fit_section('## Eq. 20 (local rheology)', e20, 'No rheology nodes yet.', eq20_rows)
+
+
+def eq20_rows(e20, r):
+    L = [f'`fit-sigmoid` (unweighted, the fit `local-rheology --fit` makes for one run) of the {e20["n"]} '
           'paper-region nodes (I, μ_loc) of all sable runs pooled, against the paper\'s (0.12, 0.40, 0.13). '
           'The nodes are not independent (neighbours share grains through the kernel; every seed\'s and every '
           'point\'s nodes), so the intervals are too narrow and nothing is tested (PLAN). The fields are planar '
