@@ -56,11 +56,8 @@ def test_version_prints_cmake_version_and_commit(sable, tmp_path):
     assert not (tmp_path / "log.sable").exists()  # --version runs nothing
 
 
-def test_version_agrees_with_citation_and_changelog():
-    v = project_version()
-    cff = open(repo_path("CITATION.cff")).read()
-    assert re.search(r"^version: %s$" % re.escape(v), cff, re.M), cff
-    assert "## [%s]" % v in open(repo_path("CHANGELOG.md")).read()
+def test_changelog_has_the_version():  # (CITATION.cff's: test_version_stamp.py)
+    assert "## [%s]" % project_version() in open(repo_path("CHANGELOG.md")).read()
 
 
 @pytest.mark.parametrize("flag", ["-h", "--help"])
