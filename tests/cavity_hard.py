@@ -182,7 +182,7 @@ def run(extra, tag, inp=None):
 
 def loops(out):
     """(steps, atoms, neighbour builds) of each run's 'Loop time' line and the 'Total # of neighbors' values."""
-    lp = [tuple(int(x) for x in t) for t in re.findall(r"Loop time of \S+ s on \d+ process\w* for (\d+) steps with (\d+) atoms:.*?(\d+) neighbor builds", out)]
+    lp = [(int(n), int(m), int(b)) for _, n, m, _, b in screen.SABLE_LOOP.findall(out)]
     nb = [int(x) for x in re.findall(r"Total # of neighbors = (\d+)", out)]
     return lp, nb
 

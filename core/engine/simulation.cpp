@@ -30,12 +30,14 @@ double Simulation::wall_seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
 }
 
-void Simulation::print(const std::string& line) {
-  if (screen) {
+void Simulation::print(const std::string& line) { print_to(line, true, true); }
+
+void Simulation::print_to(const std::string& line, bool to_screen, bool to_log) {
+  if (screen && to_screen) {
     std::fprintf(screen, "%s\n", line.c_str());
     std::fflush(screen);
   }
-  if (logfile) {
+  if (logfile && to_log) {
     std::fprintf(logfile, "%s\n", line.c_str());
     std::fflush(logfile);
   }
@@ -646,14 +648,15 @@ void Simulation::run(long nsteps) {
     after_quiet = q;
 
     const auto now = clock::now();
-    if (std::chrono::duration<double>(now - t_last_progress).count() >= progress_every_s && step < run_last) {
+    if (progress && std::chrono::duration<double>(now - t_last_progress).count() >= progress_every_s &&
+        step < run_last) {
       t_last_progress = now;
       const double el = std::chrono::duration<double>(now - t_start).count();
       const double done = static_cast<double>(step - run_first) / nsteps;
       char buf[256];
       std::snprintf(buf, sizeof buf, "Progress: step %ld, %.1f%% done, %.3g particle-steps/s, %.0f s left", step,
                     100 * done, atoms.n * (step - run_first) / el, el / done * (1 - done));
-      print(buf);
+      print_to(buf, true, false);  // the screen's: the log keeps the thermo table unbroken
     }
   }
   timers.total = std::chrono::duration<double>(clock::now() - t_start).count();
@@ -661,9 +664,10 @@ void Simulation::run(long nsteps) {
   for (auto& f : fixes) f->post_run();
   const double tot = std::max(timers.total, 1e-12);
   char buf[512];
+  // LAMMPS' run marker, word for word (log readers end a run's thermo table at it); sable's rates below.
   std::snprintf(buf, sizeof buf,
-                "Loop time of %g s on 1 process for %ld steps with %zu atoms: %.3g particle-steps/s, %ld neighbor "
-                "builds\nTime split: pair %.1f%%, neigh %.1f%%, integrate %.1f%%, fixes %.1f%%, output %.1f%%",
+                "Loop time of %g on 1 procs for %ld steps with %zu atoms\nPerformance: %.3g particle-steps/s, %ld "
+                "neighbor builds\nTime split: pair %.1f%%, neigh %.1f%%, integrate %.1f%%, fixes %.1f%%, output %.1f%%",
                 timers.total, nsteps, atoms.n, atoms.n * nsteps / tot, neighbor.builds - builds0,
                 100 * timers.pair / tot, 100 * timers.neigh / tot, 100 * timers.integrate / tot,
                 100 * timers.fixes / tot, 100 * timers.output / tot);

@@ -71,6 +71,7 @@ class Simulation {
   bool soft_particles = false;  // `soft_particles yes`: youngsModulus below LIGGGHTS' 5e6 allowed
   bool lost_ignore = false;
   double progress_every_s = 10.0;  // wall seconds between progress lines
+  bool progress = true;            // -progress on|off: those lines (screen only, never the log)
 
   // What read_restart holds until the deck declares the styles that own it again
   // (core/io/restart.h): pair history, injected into the pair's ContactStore at the
@@ -86,15 +87,15 @@ class Simulation {
     std::map<std::string, FixState> fix_states;  // by fix ID
   } restart;
 
-  // Output to screen and log.
+  // Output to screen and log (print_to: to either or both).
   void print(const std::string& line);
+  void print_to(const std::string& line, bool to_screen, bool to_log);
   void warn(const std::string& line);
   // The first time only (a note that each style using it would repeat).
   void print_once(const std::string& line);
   std::set<std::string> printed_once;
   FILE* screen = stdout;
   FILE* logfile = nullptr;
-  bool echo_screen = false, echo_log = true;
   void open_log(const std::string& path);  // "none" closes
 
   // Lookups whose errors say what was expected.

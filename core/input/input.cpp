@@ -179,7 +179,7 @@ void Input::one(const std::string& line, const DeckLocation& where) {
     if (intercept && intercept(line, where)) return;
     std::vector<std::string> words = parse(line, where);
     if (words.empty()) return;
-    if (echo_screen) sim_.print(line);
+    if (echo_screen || echo_log) sim_.print_to(line, echo_screen, echo_log);
     execute(Args(std::move(words), where));
   } catch (const std::exception& e) {
     rethrow_located(e, line, where);
@@ -232,14 +232,19 @@ void Input::execute(const Args& a) {
     return;
   }
   if (c == "echo") {
-    const std::string& m = a.word(1, "none, screen, log or both");
-    if (m != "none" && m != "screen" && m != "log" && m != "both") a.fail(1, "none, screen, log or both");
-    echo_screen = (m == "screen" || m == "both");
+    if (!set_echo(a.word(1, "none, screen, log or both"))) a.fail(1, "none, screen, log or both");
     return;
   }
   const auto* cmd = CommandRegistry::find(c);
   if (!cmd) a.fail(0, "a known command (see the README's command list; e.g. " + CommandRegistry::names().substr(0, 200) + " ...)");
   (*cmd)(sim_, a);
+}
+
+bool Input::set_echo(const std::string& mode) {
+  if (mode != "none" && mode != "screen" && mode != "log" && mode != "both") return false;
+  echo_screen = mode == "screen" || mode == "both";
+  echo_log = mode == "log" || mode == "both";
+  return true;
 }
 
 void Input::cmd_include(const Args& a) {

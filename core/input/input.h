@@ -25,7 +25,9 @@ class Input {
   // Split a line into words after substitution (exposed for tests).
   std::vector<std::string> parse(const std::string& line, const DeckLocation& where);
   const DeckLocation& where() const { return where_; }
-  bool echo_screen = false;
+  // `echo` / -echo: where the deck's commands are echoed (LAMMPS' none, screen, log, both).
+  bool echo_screen = false, echo_log = false;
+  bool set_echo(const std::string& mode);  // false: not one of the four
   // Sees each command line before substitution; returning true consumes it
   // (sable --export-yade translates `run` and `print` instead of executing them).
   std::function<bool(const std::string& line, const DeckLocation& where)> intercept;

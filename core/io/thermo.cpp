@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
+#include <map>
+
+#include <unistd.h>
 
 #include "core/engine/error.h"
 #include "core/engine/rigid_bodies.h"
@@ -168,11 +171,36 @@ void Thermo::modify(const Args& a) {
   }
 }
 
+// The header word LAMMPS and LIGGGHTS print for a thermo keyword (Step, KinEng, Volume, ...);
+// references (c_ID, f_ID[2], v_name) and sable's own keywords as written in the deck.
+static std::string header_word(const std::string& k) {
+  static const std::map<std::string, std::string> lammps{
+      {"step", "Step"}, {"elapsed", "Elapsed"}, {"elaplong", "Elaplong"}, {"dt", "Dt"}, {"time", "Time"},
+      {"cpu", "CPU"}, {"atoms", "Atoms"}, {"ke", "KinEng"}, {"vol", "Volume"}, {"lx", "Lx"}, {"ly", "Ly"},
+      {"lz", "Lz"}, {"xlo", "Xlo"}, {"xhi", "Xhi"}, {"ylo", "Ylo"}, {"yhi", "Yhi"}, {"zlo", "Zlo"}, {"zhi", "Zhi"}};
+  const auto it = lammps.find(k);
+  return it == lammps.end() ? k : it->second;
+}
+
+// The process's resident memory in MB (Linux /proc; 0 where unknown).
+static double resident_mbytes() {
+  long pages = 0, resident = 0;
+  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+    std::fclose(f);
+  }
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+// A run's thermo table opens as in LIGGGHTS: the memory line, which LAMMPS log readers
+// (lammps-logfile, pymatgen) take as a run's start, then the header, starting with Step.
 void Thermo::header() {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "Memory usage per processor = %.4g Mbytes", resident_mbytes());
+  sim_.print(buf);
   std::string s;
-  char buf[64];
   for (auto& c : columns) {
-    std::snprintf(buf, sizeof buf, "%14s ", c.c_str());
+    std::snprintf(buf, sizeof buf, "%14s ", header_word(c).c_str());
     s += buf;
   }
   sim_.print(s);

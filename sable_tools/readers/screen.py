@@ -3,14 +3,22 @@ tables, KEY k=v lines (RESULT, SCENE, ...), and the timing block after each run.
 import math
 import re
 
+# sable's run marker, LAMMPS' wording with its rates on the next line ("Loop time of 1.5 on 1 procs
+# for 10 steps with 2 atoms\nPerformance: 13 particle-steps/s, 0 neighbor builds"), or on the
+# same line as sable wrote it before 0.9.0 ("Loop time of 1.5 s on 1 process for ... atoms: 13 ...").
 SABLE_LOOP = re.compile(
-    r"Loop time of ([0-9.eE+-]+) s on \d+ process(?:es)? for (\d+) steps with (\d+) atoms: "
-    r"([0-9.eE+-]+) particle-steps/s, (\d+) neighbor builds")
+    r"Loop time of ([0-9.eE+-]+)(?: s)? on \d+ (?:procs|process(?:es)?) for (\d+) steps with (\d+) atoms"
+    r"(?::|\nPerformance:) ([0-9.eE+-]+) particle-steps/s, (\d+) neighbor builds")
 SABLE_SPLIT = re.compile(r"Time split: (.*)")
 # "Thread balance (2 threads, busy min / mean / max): pair 0.95 / 0.96 / 0.97 s of 1.08 s (89%); per-atom ..."
 SABLE_BALANCE = re.compile(r"(pair|per-atom passes) ([0-9.eE+-]+) / ([0-9.eE+-]+) / ([0-9.eE+-]+) s of ([0-9.eE+-]+) s")
 LIG_LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 LIG_TIME = re.compile(r"^(\w+)\s+time \(%\) = ([0-9.eE+-]+) \(([0-9.eE+-]+)\)", re.M)
+
+
+# LAMMPS' header words for the thermo keywords whose lower case is not the keyword itself
+# (sable since 0.9.0 and LIGGGHTS print KinEng and Volume; the series keep the keyword).
+HEADER_KEYWORD = {'kineng': 'ke', 'volume': 'vol'}
 
 
 def to_float(s):
@@ -22,7 +30,8 @@ def to_float(s):
 
 def parse_screen(text):
     """OBSERVABLE name value lines, and every thermo table (header starting
-    with Step) as series keyed by lower-case column name, v_/c_/f_ dropped."""
+    with Step) as series keyed by lower-case column name, v_/c_/f_ dropped
+    (LAMMPS' KinEng and Volume as the keywords ke and vol)."""
     obs, series, header = {}, {}, None
     for line in text.splitlines():
         w = line.split()
@@ -30,7 +39,8 @@ def parse_screen(text):
             v = to_float(w[2])
             obs[w[1]] = v if v is not None else math.nan
         elif w and w[0].lower() == 'step' and len(w) > 1:
-            header = [(c[2:] if c[:2] in ('v_', 'c_', 'f_') else c).lower() for c in w[1:]]
+            header = [HEADER_KEYWORD.get(c.lower(), c.lower()) if c[:2] not in ('v_', 'c_', 'f_') else c[2:].lower()
+                      for c in w[1:]]
         elif line.startswith('Loop time'):
             header = None
         elif header and len(w) == len(header) + 1 and all(to_float(x) is not None for x in w):

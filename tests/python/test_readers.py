@@ -395,3 +395,22 @@ def test_loop_times_of_both_codes():
     text = ("Loop time of 0.25 s on 1 process for 10 steps with 2 atoms: 80 particle-steps/s, 1 neighbor builds\n"
             "Loop time of 1.5 on 1 procs for 100 steps with 2 atoms\nLoop time of ? s\n")
     assert screen.loop_times(text) == [0.25, 1.5]
+
+
+def test_sable_loop_reads_the_lammps_wording_and_the_old_line():
+    new = ("Loop time of 0.5 on 1 procs for 100 steps with 20 atoms\nPerformance: 4000 particle-steps/s, 3 neighbor "
+           "builds\nTime split: pair 50.0%, neigh 10.0%, integrate 20.0%, fixes 20.0%, output 0.0%\n")
+    old = "Loop time of 0.5 s on 1 process for 100 steps with 20 atoms: 4000 particle-steps/s, 3 neighbor builds\n"
+    for text in (new, old):
+        d = screen.sable_loop(text)
+        assert (d["loop_s"], d["steps"], d["atoms"], d["psps_printed"], d["builds"]) == (0.5, 100, 20, 4000.0, 3)
+    # a LIGGGHTS block (no Performance line of sable's) is not taken for sable's
+    assert screen.sable_loop("Loop time of 0.5 on 1 procs for 100 steps with 20 atoms\n\nPair  time (%) = 1") == \
+        {"psps": None}
+
+
+def test_parse_screen_keeps_keywords_for_lammps_header_words():
+    text = "   Step  Atoms  KinEng  Volume  v_KinEng\n 0 2 1.5 8 3\n10 2 0.5 8 1\nLoop time of 0.1 on 1 procs\n"
+    _, series = screen.parse_screen(text)
+    assert set(series) == {"atoms", "ke", "vol", "kineng"}  # v_KinEng: a variable's own name, kept
+    assert series["ke"] == [[0.0, 10.0], [1.5, 0.5]]
