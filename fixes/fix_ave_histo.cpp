@@ -203,10 +203,10 @@ class FixAveHisto : public Fix {
       if (k != Global && !opt_.vector_mode)
         args.fail(v.at, std::string("a global value, or 'mode vector' for ") + (k == PerAtom ? "per-atom" : "local") +
                             " values");
-      const std::string what = std::string(v.kind == 'c' ? "compute " : "fix ") + v.id;
+      const std::string what = global_output_name(v.kind, v.id);
       if ((v.kind == 'c' || v.kind == 'f') && k == Global) {
-        const bool scalar = v.c ? v.c->scalar_flag : v.f->scalar_flag != 0;
-        const int size = v.c ? v.c->vector_size : v.f->vector_size;
+        const bool scalar = v.g->scalar_flag != 0;
+        const int size = v.g->vector_size;
         if (!opt_.vector_mode && v.index == 0 && !scalar) args.fail(v.at, "a global scalar (" + what + " has none)");
         if (!opt_.vector_mode && v.index > size)
           args.fail(v.at, "an index within 1.." + std::to_string(size) + " of " + what);
@@ -269,12 +269,10 @@ class FixAveHisto : public Fix {
       return bin_one(x);
     }
     if (kind_ == Global) {
-      const int size = v.c ? v.c->vector_size : v.f->vector_size;
-      auto get = [&](int i) { return v.c ? v.c->vector(i) : v.f->compute_vector(i); };
       if (opt_.vector_mode) {
-        for (int i = 1; i <= size; ++i) bin_one(get(i));
+        for (int i = 1; i <= v.g->vector_size; ++i) bin_one(v.g->global(i));
       } else {
-        bin_one(v.index ? get(v.index) : v.c ? v.c->scalar() : v.f->compute_scalar());
+        bin_one(v.g->global(v.index));
       }
     } else if (kind_ == PerAtom) {
       v.c->peratom_now();

@@ -152,10 +152,11 @@ void Options::check(const Args& a) const {
 }
 
 void Value::resolve(Simulation& sim, const Args& a, const Fix* self, const char* doing) {
-  c = nullptr;
-  f = nullptr;
-  if (kind == 'c' && !(c = sim.find_compute(id))) a.fail(at, "an existing compute ID ('" + id + "' is not defined)");
-  if (kind == 'f' && !(f = sim.find_fix(id))) a.fail(at, "an existing fix ID ('" + id + "' is not defined)");
+  c = kind == 'c' ? sim.find_compute(id) : nullptr;
+  Fix* f = kind == 'f' ? sim.find_fix(id) : nullptr;
+  g = c ? static_cast<GlobalOutput*>(c) : f;
+  if (kind == 'c' && !c) a.fail(at, "an existing compute ID ('" + id + "' is not defined)");
+  if (kind == 'f' && !f) a.fail(at, "an existing fix ID ('" + id + "' is not defined)");
   if (kind == 'f' && f == self) a.fail(at, std::string("another fix (a fix cannot ") + doing + " itself)");
   if (kind == 'v' && !sim.variables->exists(id)) a.fail(at, "a defined variable ('" + id + "' is not)");
 }
@@ -326,9 +327,9 @@ class FixAveTime : public Fix {
           args.fail(v.at, "an equal-style variable (v_" + v.id + " is atom-style)");
         continue;
       }
-      const bool scalar = v.c ? v.c->scalar_flag : v.f->scalar_flag != 0;
-      const int size = v.c ? v.c->vector_size : v.f->vector_size;
-      const std::string what = std::string(v.c ? "compute " : "fix ") + v.id;
+      const bool scalar = v.g->scalar_flag != 0;
+      const int size = v.g->vector_size;
+      const std::string what = global_output_name(v.kind, v.id);
       if (!opt_.vector_mode) {
         if (v.index == 0 && !scalar)
           args.fail(v.at, "a global scalar (" + what + " has none" + (size ? "; use " + v.word + "[I]" : "") + ")");
@@ -350,11 +351,7 @@ class FixAveTime : public Fix {
   void resolve(Value& v) { v.resolve(sim, args, this, "average"); }
 
   double value(const Value& v, int row) {
-    if (v.kind == 'c') return opt_.vector_mode ? v.c->vector(row + 1) : v.index ? v.c->vector(v.index) : v.c->scalar();
-    if (v.kind == 'f')
-      return opt_.vector_mode ? v.f->compute_vector(row + 1)
-             : v.index    ? v.f->compute_vector(v.index)
-                          : v.f->compute_scalar();
+    if (v.g) return v.g->global(opt_.vector_mode ? row + 1 : v.index);
     double x;
     if (!sim.variables->numeric(v.id, x)) args.fail(v.at, "an equal-style variable");
     return x;

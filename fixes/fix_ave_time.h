@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+
+#include "core/engine/global_output.h"
 #include <vector>
 
 #include "core/input/args.h"
@@ -25,8 +27,8 @@ struct Value {
   int index = 0;        // 0: the scalar (or the whole vector in vector mode)
   std::size_t at = 0;   // its word (errors point at it)
   bool off = false;     // ave/time's `off`
-  Compute* c = nullptr;
-  Fix* f = nullptr;
+  GlobalOutput* g = nullptr;  // c_ID's or f_ID's global values
+  Compute* c = nullptr;       // c_ID's compute (per-atom and local values)
   // Finds the compute, fix or variable it names, failing at its word; `self` (the
   // fix reading it) may not read itself (`doing`: what it would do, for the message).
   void resolve(Simulation& sim, const Args& a, const Fix* self, const char* doing);

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/engine/global_output.h"
 #include "core/input/args.h"
 
 namespace sable {
@@ -11,7 +12,7 @@ namespace sable {
 class Simulation;
 class YadeScript;  // core/io/yade_script.h
 
-class Compute {
+class Compute : public GlobalOutput {
  public:
   Compute(Simulation& sim, const Args& args);
   virtual ~Compute() = default;
@@ -26,12 +27,9 @@ class Compute {
 
   virtual void init() {}
 
-  // global scalar (c_ID)
-  bool scalar_flag = false;
-  virtual double compute_scalar() { return 0.0; }
-  // global vector (c_ID[i], 1-based)
-  int vector_size = 0;
-  virtual double compute_vector(int /*i*/) { return 0.0; }
+  // Global scalar c_ID and vector c_ID[i]: GlobalOutput's scalar_flag,
+  // vector_size, compute_scalar() and compute_vector(i) (computes have no arrays).
+  double global(int index, int /*col*/ = 0) override { return index ? vector(index) : scalar(); }
   // per-atom: ncols == 0 for a vector (one value per atom), else columns
   bool peratom_flag = false;
   int peratom_cols = 0;

@@ -15,6 +15,14 @@
 
 namespace sable {
 
+GlobalOutput* find_global_output(Simulation& sim, char kind, const std::string& id) {
+  if (kind == 'c') return sim.find_compute(id);
+  if (kind == 'f') return sim.find_fix(id);
+  return nullptr;
+}
+
+std::string global_output_name(char kind, const std::string& id) { return (kind == 'c' ? "compute " : "fix ") + id; }
+
 void Pair::compute_then(const RangeTail& tail) {
   compute();
   sim.atoms.for_ranges(tail);

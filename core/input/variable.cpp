@@ -50,26 +50,18 @@ class SimContext : public ExprContext {
         out = c->peratom[atom * nc + std::max(0, index - 1)];
         return true;
       }
-      // No global scalar, or no such element: the caller names the reference in its error.
-      if (index == 0 ? !c->scalar_flag : index > c->vector_size) return false;
-      out = index == 0 ? c->scalar() : c->vector(index);
-      return true;
     }
-    if (atom != Atoms::npos && !column) {  // a fix's per-atom values: the Atoms column f_ID (fix heat/gran's Temp ...)
+    if (kind == 'f' && atom != Atoms::npos && !column) {  // a fix's per-atom values: the Atoms column f_ID (fix heat/gran's Temp ...)
       const int h = sim.atoms.find_column("f_" + id);
       if (h >= 0 && index <= sim.atoms.column_stride(h)) {
         out = sim.atoms.column(h)[atom * sim.atoms.column_stride(h) + std::max(0, index - 1)];
         return true;
       }
     }
-    Fix* f = sim.find_fix(id);
-    if (f && column) {
-      if (index > f->array_rows || column > f->array_cols) return false;
-      out = f->compute_array(index, column);
-      return true;
-    }
-    if (!f || (index == 0 ? !f->scalar_flag : index > f->vector_size)) return false;
-    out = index == 0 ? f->compute_scalar() : f->compute_vector(index);
+    // No such global value: the caller names the reference in its error.
+    GlobalOutput* g = find_global_output(sim, kind, id);
+    if (!g || !g->has_global(index, column)) return false;
+    out = g->global(index, column);
     return true;
   }
   static bool atom_field(const Atoms& a, const std::string& name, std::size_t i, double& out) {

@@ -102,15 +102,9 @@ double Thermo::column(const std::string& w, const Args& where) {
     if (!sim_.variables->numeric(id, v)) where.fail_line("thermo column '" + w + "': variable '" + id + "' is not defined or not equal-style");
     return v;
   }
-  if (kind == 'c') {
-    Compute* c = sim_.find_compute(id);
-    if (!c) where.fail_line("thermo column '" + w + "': no compute with ID '" + id + "'");
-    return index == 0 ? c->scalar() : c->vector(index);
-  }
-  Fix* f = sim_.find_fix(id);
-  if (!f) where.fail_line("thermo column '" + w + "': no fix with ID '" + id + "'");
-  if (col) return f->compute_array(index, col);
-  return index == 0 ? f->compute_scalar() : f->compute_vector(index);
+  GlobalOutput* g = find_global_output(sim_, kind, id);
+  if (!g) where.fail_line("thermo column '" + w + "': no " + (kind == 'c' ? "compute" : "fix") + " with ID '" + id + "'");
+  return g->global(index, col);
 }
 
 void Thermo::set_style(const Args& a) {
