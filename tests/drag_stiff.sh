@@ -2,7 +2,10 @@
 # Issue 21's hard case in short: E = 1.5 GPa beads, dt at 19 % of the Rayleigh
 # time, the 832-triangle cylinder turning (here 5 rev/s, 2 turns, ~700 grains).
 # Passes when the run ends with finite, positive drags and no grain lost; a
-# step over 20 % of the Rayleigh time must be refused before the first step.
+# step over sable's stability bound (30 % of the contact time) must be refused
+# before the first step: dtf 1.5 is 46.7 % of it here, and with timestep_check
+# accept this scene loses all but 6 grains during the turns (dtf 0.9, 28.0 %,
+# keeps all 689: input_scripts/stability/REPORT.md).
 set -u
 sable=$1; src=$2; work=$3
 mkdir -p "$work" && cd "$work" || exit 1
@@ -23,8 +26,8 @@ for k in ('F_first', 'F_stat', 'F_stat_err'):
 ok = ok and float(kv['F_first']) > 0 and float(kv['F_stat']) > 0 and float(kv['F_stat_err']) < float(kv['F_stat'])
 sys.exit(0 if ok else 1)
 PY
-"$sable" -in "$src/input_scripts/drag/drag.in" $scene -var dtf 0.25 -var out over > over.out 2>&1
-if [ $? -eq 0 ] || ! grep -q "exceeds 20% of the Rayleigh time" over.out; then
-  echo "a step at 25 % of the Rayleigh time was not refused"; tail -5 over.out; exit 1
+"$sable" -in "$src/input_scripts/drag/drag.in" $scene -var dtf 1.5 -var out over > over.out 2>&1
+if [ $? -eq 0 ] || ! grep -q "exceeds sable's stability bound, 30% of the contact time" over.out; then
+  echo "a step at 47 % of the contact time was not refused"; tail -5 over.out; exit 1
 fi
-grep -o "drag.in:[0-9]*: 'timestep [^']*' exceeds 20% of the Rayleigh time" over.out
+grep -o "drag.in:[0-9]*: 'timestep [^']*' exceeds sable's stability bound, 30% of the contact time" over.out

@@ -10,7 +10,7 @@ Scene: N 500, mu 0.3, delta 0.5, locked rotation, 3 cycles (cycle 1 and 3's mu_M
 3 seeds. Knobs (the first value is the knob's reference, the finest):
   thr     1e-4, 3e-4, 1e-3 (default), 3e-3, 1e-2
   ramp    3e-5, 1e-4 (default), 3e-4, 1e-3     piston travel per step, R_av
-  dtfrac  0.01, 0.02 (default), 0.04 (0.05 exceeds 20 % of the Rayleigh time at delta 0.5: refused)
+  dtfrac  0.01, 0.02 (default), 0.04 (0.05 exceeds 20 % of the Rayleigh time at delta 0.5: above sable's rule of thumb)
   deps    0.005, 0.01 (default), 0.015, 0.025  (changes the circles fitted, not just the path)
   E       95.04e9 (default), 1e9                (Hertz scaling: the same steps, the same mu_M)
   N       2000, 1000, 500 (default), 300        (finite size, not a numerical knob)

@@ -323,8 +323,8 @@ variable fz equal f_floor[3]
 
 class Quartz : public ::testing::TestWithParam<double> {};
 
-// dt = 18 % of the Rayleigh time of the smallest grain (sable refuses more
-// than 20 %), 140 000 steps (27 ms: the grains fall their gaps within about
+// dt = 18 % of the Rayleigh time of the smallest grain (sable warns above
+// 20 %), 140 000 steps (27 ms: the grains fall their gaps within about
 // 8 ms, then the pile rings down). The Rayleigh bound is conservative here: the same
 // pile stayed stable at 2 Rayleigh times (accepted with timestep_check) and
 // lost grains at 5; its contacts at these loads are far softer than a Rayleigh
