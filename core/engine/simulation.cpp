@@ -364,8 +364,9 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
 // the contact time collisions and settled beds go wrong (energy created from 40%, beds lost
 // from 45%), so that stops; between the usual rule of thumb (20% of the Rayleigh time, 10% of
 // the contact time) and that bound the run goes on with one warning.
-void Simulation::stability_check() {
+void Simulation::stability_check(bool mid_run) {
   constexpr double kRuleRayleigh = 0.2, kRuleContact = 0.1, kStopContact = 0.3;
+  stability_pending_ = pair && atoms.n == 0;
   const StepBounds b = step_bounds();
   if (!b.valid) return;
   char ray[128] = "no Rayleigh time (no youngsModulus: stiffness model)";
@@ -377,7 +378,8 @@ void Simulation::stability_check() {
                 "Time-step check: dt = %g s is %s and %.1f%% of the contact time %g s at v_rel = %g m/s "
                 "(rule of thumb 10%%, stability bound 30%%); skin / (2 v dt) = %.3g",
                 dt, ray, 100 * dt / b.hertz, b.hertz, 2 * b.speed, b.skin_ratio);
-  print(buf);
+  print_to(mid_run ? "Step " + std::to_string(step) + ", the first with grains: " + buf : std::string(buf), true,
+           !mid_run);
   const std::string where = dt_where.file + ":" + std::to_string(dt_where.line) + ": '" + dt_line + "' ";
   if (dt > kStopContact * b.hertz) {
     char why[512];
@@ -680,6 +682,7 @@ void Simulation::run(long nsteps) {
     fused_steps += q;
     folded_steps += q && plan.folded;
     after_quiet = q;
+    if (stability_pending_ && atoms.n > 0) stability_check(true);  // the first grains were inserted
 
     const auto now = clock::now();
     if (progress && std::chrono::duration<double>(now - t_last_progress).count() >= progress_every_s &&

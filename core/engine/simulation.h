@@ -152,7 +152,11 @@ class Simulation {
   } timers;
 
  private:
-  void stability_check();
+  // The time-step guard (at setup; in a run that starts without grains, at
+  // the first step that has some: insertion). mid_run: the summary line goes
+  // to the screen only, the log's thermo table stays unbroken.
+  void stability_check(bool mid_run = false);
+  bool stability_pending_ = false;
   void check_atoms(bool positions);  // NaN velocities (and positions): stop with step, atom, cause
   void force_and_history();
   void rebuild_if_due();

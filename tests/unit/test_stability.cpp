@@ -112,6 +112,43 @@ TEST(Stability, BoundStopsNamingItTheStepAndWhatToDo) {
   EXPECT_EQ(d->step, 0);
 }
 
+// A deck whose grains all come from insertion (the usual LIGGGHTS pour) has no
+// grains at setup: the guard then looks at the first step that has some.
+std::string pour(double dt) {
+  return R"D(units si
+atom_style granular
+boundary f f f
+region box block -0.01 0.01 -0.01 0.01 -0.01 0.01 units box
+create_box 1 box
+neighbor 0.0005 bin
+fix m1 all property/global youngsModulus peratomtype 1.5e9
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+fix pts all particletemplate/sphere 15485863 atom_type 1 density constant 2500 radius constant 0.001
+fix pdd all particledistribution/discrete 32452843 1 pts 1.0
+fix ins all insert/pack seed 32452867 distributiontemplate pdd insert_every once overlapcheck yes particles_in_region 5 region box
+timestep )D" + num(dt) + "\nfix i all nve/sphere\nrun 3\n";
+}
+
+TEST(Stability, InsertedGrainsAreCheckedAtTheFirstStepThatHasThem) {
+  Deck ok;
+  ok(pour(1e-7));
+  EXPECT_EQ(ok->atoms.n, 5u);
+  Deck d;
+  try {
+    d(pour(1e-4));
+    FAIL() << "a step far beyond 30 % of the contact time must stop once grains are inserted";
+  } catch (const sable::SableError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("test:16: 'timestep 0.0001' exceeds sable's stability bound"), std::string::npos) << m;
+  }
+  EXPECT_EQ(d->step, 1);  // inserted at step 1, stopped there
+  EXPECT_EQ(d->atoms.n, 5u);
+}
+
 TEST(Stability, AcceptRunsBeyondTheBoundWithAWarning) {
   const double dt = 0.31 * contact_time(1.5e9, 0.2);
   Deck d;
