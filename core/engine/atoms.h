@@ -34,7 +34,7 @@ class Atoms {
   // (integrators, rigid bodies, damping, erotate): mass = pi r^2 rho when
   // area_density (2D, as LIGGGHTS: `density` is per area), else 4/3 pi r^3 rho;
   // I = inertia_factor m r^2 (2/5 sphere, 1/2 disk). Set by `dimension 2 [grains
-  // disks|spheres]` and `fix nve/sphere ... disc` (README, "2D").
+  // disks|spheres]` and `fix nve/sphere ... disc` (docs/commands, "2D").
   bool area_density = false;
   double inertia_factor = 0.4;
   double mass_of(double r, double rho) const;
