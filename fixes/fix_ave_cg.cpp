@@ -9,16 +9,30 @@
 // window readable; `step` is written last, its length counts the windows):
 //   growing, one row per window: rho, phi [nx ny nz]; u [nx ny nz 3];
 //     stress, stress_contact, stress_kinetic [nx ny nz 6] (xx yy zz xy xz yz);
-//     samples (samples in the window), step (its last step);
-//   constants: x, y, z (node coordinates along each axis), shape (nx ny nz),
-//     bounds (xlo xhi ylo yhi zlo zhi), width, support;
+//     samples (samples in the window), time (its end, attributes units and
+//     timestep), step (its last step);
+//   constants: x, y, z (node coordinates along each axis), points ([nodes 3],
+//     every node's x y z, z fastest), shape (nx ny nz), bounds (xlo xhi ylo
+//     yhi zlo zhi), width, support;
 //   attributes: fields, stress_components, kernel, normalised (per volume, or
-//     per area in 2D: the units), frame, nodes, compute, fix.
+//     per area in 2D: the units), frame, nodes, compute, fix, units, timestep.
+// Beside F.h5, F.xdmf (XDMF 2) lets ParaView open the windows as a time series
+// (its "XDMF Reader"): a temporal collection with one grid per window on disk,
+// rewritten (atomically) whenever a block of windows reaches F.h5, so that it
+// is valid after a kill. The grid is a 3DSMesh whose XYZ geometry is `points`:
+// the arrays are [nx][ny][nz] (z fastest) and XDMF's regular meshes
+// (3DCoRectMesh, 3DRectMesh) take the fastest index as x, which would swap x
+// and z. Each field is a HyperSlab of its dataset (one window): rho and phi
+// Scalar, u Vector, the stresses Matrix (6 components, xx yy zz xy xz yz;
+// not Tensor6, whose order is xx xy xz yy yz zz).
 // f_ID[i]: the last window's mean, laid out as the compute's vector.
+#include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include "computes/compute_stress_cg.h"
 #include "core/io/h5_series.h"
+#include "core/io/text_file.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
 
@@ -72,8 +86,13 @@ class FixAveCG : public Fix {
   long nfreq_ = 1, count_ = 0;
   std::size_t size_ = 0;
   std::vector<double> sum_, mean_;
+  // The windows' steps and times (the sidecar's), declared before h5_: its
+  // destructor may still write a block and call back.
+  std::vector<long> steps_;
+  std::vector<double> times_;
+  std::string xdmf_path_, h5_name_;
   std::unique_ptr<H5Series> h5_;
-  int series_[6] = {}, samples_ = -1, step_ = -1;
+  int series_[6] = {}, samples_ = -1;
 
   void resolve() {
     Compute* c = sim.find_compute(cid_);
@@ -103,6 +122,11 @@ class FixAveCG : public Fix {
       for (int i = 0; i < n[k]; ++i) c[i] = g.coord(k, i);
       h5_->constant(std::string(1, "xyz"[k]), c);
     }
+    std::vector<double> points;
+    for (int i = 0; i < n[0]; ++i)
+      for (int j = 0; j < n[1]; ++j)
+        for (int k = 0; k < n[2]; ++k) points.insert(points.end(), {g.coord(0, i), g.coord(1, j), g.coord(2, k)});
+    h5_->constant("points", points, {g.nodes(), 3});
     h5_->constant("shape", {double(n[0]), double(n[1]), double(n[2])});
     h5_->constant("bounds", {cg_->lo()[0], cg_->hi()[0], cg_->lo()[1], cg_->hi()[1], cg_->lo()[2], cg_->hi()[2]});
     h5_->constant("width", {g.kernel().w()});
@@ -113,8 +137,47 @@ class FixAveCG : public Fix {
       series_[s] = h5_->series(CgField::kGroups[s].name, shape, false);
     }
     samples_ = h5_->series("samples", {}, false);
-    step_ = h5_->series("step", {}, true);
+    h5_->time_axis(sim.units);
     h5_->start();
+    const std::filesystem::path p(path);
+    h5_name_ = p.filename().string();
+    xdmf_path_ = (p.extension() == ".h5" || p.extension() == ".hdf5" ? std::filesystem::path(p).replace_extension()
+                                                                       : p).string() + ".xdmf";
+    h5_->on_written = [this](std::size_t windows) { write_file_atomic(xdmf_path_, xdmf(windows), "fix " + id); };
+  }
+
+  // The sidecar: one grid per window in the file (the first `windows` rows).
+  std::string xdmf(std::size_t windows) const {
+    const int* n = cg_->field().shape();
+    const std::string dims = std::to_string(n[0]) + " " + std::to_string(n[1]) + " " + std::to_string(n[2]);
+    const std::string h5 = xml_escape(h5_name_);
+    auto hdf = [&](const std::string& indent, const std::string& d, const std::string& name) {
+      return indent + "<DataItem Dimensions=\"" + d + "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5 +
+             ":/" + name + "</DataItem>\n";
+    };
+    std::ostringstream x;
+    x.precision(17);
+    x << "<?xml version=\"1.0\"?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+      << "  <Grid Name=\"" << xml_escape(id) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (std::size_t w = 0; w < windows; ++w) {
+      x << "   <Grid Name=\"step " << steps_[w] << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[w]
+        << "\"/>\n    <Topology TopologyType=\"3DSMesh\" Dimensions=\"" << dims << "\"/>\n"
+        << "    <Geometry GeometryType=\"XYZ\">\n"
+        << hdf("     ", std::to_string(cg_->field().nodes()) + " 3", "points") << "    </Geometry>\n";
+      for (const auto& grp : CgField::kGroups) {
+        const bool vec = grp.count > 1;
+        const std::string c = vec ? " " + std::to_string(grp.count) : "";
+        x << "    <Attribute Name=\"" << grp.name << "\" AttributeType=\""
+          << (grp.count == 1 ? "Scalar" : grp.count == 3 ? "Vector" : "Matrix") << "\" Center=\"Node\">\n"
+          << "     <DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"" << dims << c << "\">\n"
+          << "      <DataItem Dimensions=\"3 " << (vec ? 5 : 4) << "\" Format=\"XML\">" << w << " 0 0 0" << (vec ? " 0" : "")
+          << "  1 1 1 1" << (vec ? " 1" : "") << "  1 " << dims << c << "</DataItem>\n"
+          << hdf("      ", std::to_string(windows) + " " + dims + c, grp.name) << "     </DataItem>\n    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+    return x.str();
   }
 
   void write() {
@@ -131,7 +194,9 @@ class FixAveCG : public Fix {
     }
     const double samples = static_cast<double>(count_);
     h5_->append(samples_, &samples);
-    h5_->append(step_, static_cast<std::int64_t>(sim.step));  // last: the window is complete
+    steps_.push_back(sim.step);
+    times_.push_back(sim.time);
+    h5_->end_record(sim.step, sim.time, sim.dt);  // last: the window is complete
     std::fill(sum_.begin(), sum_.end(), 0.0);
     count_ = 0;
   }

@@ -8,8 +8,9 @@
 // c_ID is a global scalar/vector, a per-atom vector (c_ID[I]: column I) or a
 // local array column (c_ID[I]). Nbin equal bins on [lo, hi]; a value on a bin
 // boundary goes to the upper bin, hi to the last. Outputs f_ID[1..4] = total
-// counts, missing counts, min, max. `hdf5 F` writes `step` (N), `stats`
-// (N x 4), `counts` and `fraction` (N x nbins), constant `coord` (nbins).
+// counts, missing counts, min, max. `hdf5 F` writes `step` and `time` (N; the
+// time axis of core/io/h5_series.h), `stats` (N x 4), `counts` and `fraction`
+// (N x nbins), constant `coord` (nbins).
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -96,7 +97,7 @@ class FixAveHisto : public Fix {
       h5_stats_ = h5_->series("stats", {4}, false);
       h5_counts_ = h5_->series("counts", {static_cast<std::size_t>(nbins_)}, false);
       h5_fraction_ = h5_->series("fraction", {static_cast<std::size_t>(nbins_)}, false);
-      h5_step_ = h5_->series("step", {}, true);
+      h5_->time_axis(sim.units);
       h5_->start();
     }
     sched_.begin(s.step);
@@ -178,7 +179,7 @@ class FixAveHisto : public Fix {
   std::vector<double> atom_values_;
   ave::TextFile text_;
   std::unique_ptr<ave::H5Series> h5_;
-  int h5_stats_ = -1, h5_counts_ = -1, h5_fraction_ = -1, h5_step_ = -1;
+  int h5_stats_ = -1, h5_counts_ = -1, h5_fraction_ = -1;
 
   void resolve(Value& v) { v.resolve(sim, args, this, "histogram"); }
 
@@ -306,7 +307,7 @@ class FixAveHisto : public Fix {
       h5_->append(h5_stats_, stats_total_);
       h5_->append(h5_counts_, bin_total_.data());
       h5_->append(h5_fraction_, frac.data());
-      h5_->append(h5_step_, static_cast<std::int64_t>(sim.step));  // last: the record is complete
+      h5_->end_record(sim.step, sim.time, sim.dt);  // last: the record is complete
     }
   }
 };

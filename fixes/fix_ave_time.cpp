@@ -5,7 +5,8 @@
 // LIGGGHTS 3.8 semantics and file format (fix_ave_time.cpp): values sampled on
 // Nrepeat steps Nevery apart ending on each multiple of Nfreq, averaged, then
 // combined across Nfreq outputs per `ave`. Outputs f_ID (first value) and
-// f_ID[i] (value i; row i in vector mode). `hdf5 F` writes datasets `step` (N)
+// f_ID[i] (value i; row i in vector mode). `hdf5 F` writes datasets `step` and
+// `time` (N; the time axis of core/io/h5_series.h: attributes units, timestep)
 // and `values` (N x nvalues, or N x nrows x nvalues), attribute `columns`.
 // Global arrays (c_ID[I] in vector mode) are not available: sable's computes and
 // fixes have none.
@@ -238,7 +239,7 @@ class FixAveTime : public Fix {
       std::vector<std::size_t> shape{values_.size()};
       if (opt_.vector_mode) shape.insert(shape.begin(), nrows_);
       h5_values_ = h5_->series("values", shape, false);
-      h5_step_ = h5_->series("step", {}, true);
+      h5_->time_axis(sim.units);
       h5_->start();
     }
     sched_.begin(s.step);
@@ -313,7 +314,7 @@ class FixAveTime : public Fix {
   std::vector<double> sample_, total_, window_;  // [row * nvalues + value]
   ave::TextFile text_;
   std::unique_ptr<ave::H5Series> h5_;
-  int h5_values_ = -1, h5_step_ = -1;
+  int h5_values_ = -1;
 
   // Errors at the value's own word, with what was expected there.
   void check_values() {
@@ -382,7 +383,7 @@ class FixAveTime : public Fix {
     }
     if (h5_) {
       h5_->append(h5_values_, out.data());
-      h5_->append(h5_step_, static_cast<std::int64_t>(sim.step));  // last: the record is complete
+      h5_->end_record(sim.step, sim.time, sim.dt);  // last: the record is complete
     }
   }
 };

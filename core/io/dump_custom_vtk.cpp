@@ -1,14 +1,26 @@
 // dump ID group custom/vtk N file col ...: one VTK file per snapshot that
 // ParaView opens, chosen by extension as in LIGGGHTS: .vtu (XML unstructured
 // grid), .vtp (XML poly data), .pvtu/.pvtp (parallel wrapper + one piece),
-// anything else legacy ASCII .vtk POLYDATA. Points are always written; vx vy vz
+// anything else legacy .vtk POLYDATA. Points are always written; vx vy vz
 // (f, omega, tq alike) become one 3-component array "v" when all three are
 // given; duplicates are dropped. As LIGGGHTS does, the box goes to a separate
-// *boundingBox* file (rectilinear grid). ASCII only.
+// *boundingBox* file (rectilinear grid, always ASCII: six numbers).
+// dump_modify ID binary yes|no (LIGGGHTS' keyword and default, no): with yes
+// the XML files (.vtu/.vtp and the pieces of .pvtu/.pvtp) keep their arrays as
+// raw bytes appended after the XML (VTK's format="appended", <AppendedData
+// encoding="raw">, each block after its UInt64 byte count, header_type
+// UInt64, the machine's byte order), and a legacy .vtk is BINARY (big-endian,
+// as that format requires). Values are the same doubles and ints, full
+// precision (ASCII prints 12 significant digits).
+#include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "core/io/dump_columns.h"
+#include "core/io/text_file.h"
 #include "core/input/style_registry.h"
 
 namespace sable {
@@ -20,27 +32,77 @@ bool ends_with(const std::string& s, const std::string& e) {
   return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
 }
 
-// Content goes to path.tmp, then is renamed: readers never see a half-written file.
 void write_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) fail("dump custom/vtk: cannot open '" + tmp + "' for writing");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) fail("dump custom/vtk: writing '" + tmp + "' failed");
-  std::filesystem::rename(tmp, path);
+  write_file_atomic(path, text, "dump custom/vtk");
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    if (c == '&') r += "&amp;";
-    else if (c == '<') r += "&lt;";
-    else if (c == '>') r += "&gt;";
-    else if (c == '"') r += "&quot;";
-    else r += c;
-  }
-  return r;
+void put(std::string& s, double v, bool integer) {
+  char buf[40];
+  const int len = integer ? std::snprintf(buf, sizeof buf, "%ld", static_cast<long>(v))
+                          : std::snprintf(buf, sizeof buf, "%.12g", v);
+  s.append(buf, len);
 }
+// Values, one tuple per line.
+void tuples(std::string& s, const std::vector<double>& v, std::size_t nc, bool integer, const char* indent) {
+  for (std::size_t j = 0; j < v.size(); j += nc) {
+    s += indent;
+    for (std::size_t k = 0; k < nc; ++k) {
+      if (k) s += ' ';
+      put(s, v[j + k], integer);
+    }
+    s += '\n';
+  }
+}
+
+// One value as 4 bytes (int32) or 8 (double), in big-endian or the machine's order.
+void put_binary(std::string& out, double v, bool integer, bool big_endian) {
+  unsigned char b[8];
+  std::size_t len = 8;
+  if (integer) {
+    const auto i = static_cast<std::int32_t>(v);
+    std::memcpy(b, &i, len = 4);
+  } else {
+    std::memcpy(b, &v, 8);
+  }
+  if (big_endian != (std::endian::native == std::endian::big)) std::reverse(b, b + len);
+  out.append(reinterpret_cast<const char*>(b), len);
+}
+
+// The arrays of one XML file: inline ASCII, or binary blocks kept in `appended`
+// and written after the XML, each preceded by its byte count (UInt64).
+struct XmlArrays {
+  bool binary = false;
+  std::string appended;
+
+  std::string file_tag(const std::string& type) const {
+    // header_type (the byte counts' type) needs version 1.0; ASCII files keep 0.1.
+    return "<VTKFile type=\"" + type + "\" version=\"" + (binary ? "1.0" : "0.1") + "\" byte_order=\"" +
+           (std::endian::native == std::endian::big ? "BigEndian" : "LittleEndian") + "\"" +
+           (binary ? " header_type=\"UInt64\"" : "") + ">\n";
+  }
+  // A <DataArray> element: its values inline, or an offset into the appended blocks.
+  std::string array(const std::string& name, bool integer, std::size_t nc, const std::vector<double>& v) {
+    std::string s = std::string("        <DataArray type=\"") + (integer ? "Int32" : "Float64") + "\" Name=\"" +
+                    xml_escape(name) + "\"" + (nc > 1 ? " NumberOfComponents=\"" + std::to_string(nc) + "\"" : "");
+    if (binary) {
+      s += " format=\"appended\" offset=\"" + std::to_string(appended.size()) + "\"/>\n";
+      const std::uint64_t bytes = v.size() * (integer ? 4 : 8);
+      unsigned char b[8];
+      std::memcpy(b, &bytes, 8);
+      appended.append(reinterpret_cast<const char*>(b), 8);
+      for (double x : v) put_binary(appended, x, integer, std::endian::native == std::endian::big);
+      return s;
+    }
+    s += " format=\"ascii\">\n";
+    tuples(s, v, nc, integer, "          ");
+    return s + "        </DataArray>\n";
+  }
+  // The XML closed by </VTKFile>, with the appended blocks before that tag.
+  std::string finish(std::string xml) const {
+    if (!binary) return xml + "</VTKFile>\n";
+    return xml + "  <AppendedData encoding=\"raw\">\n_" + appended + "\n  </AppendedData>\n</VTKFile>\n";
+  }
+};
 
 class DumpCustomVTK : public Dump {
  public:
@@ -84,9 +146,9 @@ class DumpCustomVTK : public Dump {
     if (Dump::modify_param(a, i) || filter_.parse(sim, a, i)) return true;
     const std::string& k = a[i];
     if (k == "binary") {
-      if (a.yes_no(i + 1, "no")) a.fail(i + 1, "'no' (sable writes ASCII VTK only)");
+      binary_ = a.yes_no(i + 1, "yes (binary VTK) or no (ASCII)");
     } else if (k == "compressor") {
-      if (a.word(i + 1, "none") != "none") a.fail(i + 1, "'none' (sable writes ASCII VTK only)");
+      if (a.word(i + 1, "none") != "none") a.fail(i + 1, "'none' (sable writes VTK uncompressed)");
     } else {
       return false;
     }
@@ -137,23 +199,6 @@ class DumpCustomVTK : public Dump {
     bool integer() const { return comps[0].integer(); }
   };
 
-  static void put(std::string& s, double v, bool integer) {
-    char buf[40];
-    const int len = integer ? std::snprintf(buf, sizeof buf, "%ld", static_cast<long>(v))
-                            : std::snprintf(buf, sizeof buf, "%.12g", v);
-    s.append(buf, len);
-  }
-  // Values, one tuple per line.
-  static void tuples(std::string& s, const std::vector<double>& v, std::size_t nc, bool integer, const char* indent) {
-    for (std::size_t j = 0; j < v.size(); j += nc) {
-      s += indent;
-      for (std::size_t k = 0; k < nc; ++k) {
-        if (k) s += ' ';
-        put(s, v[j + k], integer);
-      }
-      s += '\n';
-    }
-  }
   static std::vector<double> points(std::size_t n, const std::vector<double> (&xyz)[3]) {
     std::vector<double> p(3 * n);
     for (std::size_t j = 0; j < n; ++j)
@@ -164,43 +209,44 @@ class DumpCustomVTK : public Dump {
   std::string legacy(long step, std::size_t n, const std::vector<double> (&xyz)[3],
                      const std::vector<std::vector<double>>& data) const {
     // Version 3.0 (VERTICES as "1 i" cells): readable by every ParaView, old and new.
-    std::string s = "# vtk DataFile Version 3.0\nGenerated by sable, step " + std::to_string(step) +
-                    "\nASCII\nDATASET POLYDATA\nPOINTS " + std::to_string(n) + " double\n";
-    tuples(s, points(n, xyz), 3, false, "");
+    std::string s = "# vtk DataFile Version 3.0\nGenerated by sable, step " + std::to_string(step) + "\n" +
+                    (binary_ ? "BINARY" : "ASCII") + "\nDATASET POLYDATA\nPOINTS " + std::to_string(n) + " double\n";
+    legacy_values(s, points(n, xyz), 3, false);
     s += "VERTICES " + std::to_string(n) + " " + std::to_string(2 * n) + "\n";
-    for (std::size_t j = 0; j < n; ++j) s += "1 " + std::to_string(j) + "\n";
+    std::vector<double> cells(2 * n, 1.0);
+    for (std::size_t j = 0; j < n; ++j) cells[2 * j + 1] = static_cast<double>(j);
+    legacy_values(s, cells, 2, true);
     if (n == 0 || arrays_.empty()) return s;
     s += "POINT_DATA " + std::to_string(n) + "\nFIELD FieldData " + std::to_string(arrays_.size()) + "\n";
     for (std::size_t a = 0; a < arrays_.size(); ++a) {
       const Array& arr = arrays_[a];
       s += arr.name + " " + std::to_string(arr.comps.size()) + " " + std::to_string(n) +
            (arr.integer() ? " int\n" : " double\n");
-      tuples(s, data[a], arr.comps.size(), arr.integer(), "");
+      legacy_values(s, data[a], arr.comps.size(), arr.integer());
     }
     return s;
   }
 
-  std::string data_array(const std::string& name, bool integer, std::size_t nc, const std::vector<double>& v) const {
-    std::string s = std::string("        <DataArray type=\"") + (integer ? "Int32" : "Float64") + "\" Name=\"" +
-                    xml_escape(name) + "\"" + (nc > 1 ? " NumberOfComponents=\"" + std::to_string(nc) + "\"" : "") +
-                    " format=\"ascii\">\n";
-    tuples(s, v, nc, integer, "          ");
-    return s + "        </DataArray>\n";
+  // A legacy block's values: one tuple per line, or big-endian bytes and a newline.
+  void legacy_values(std::string& s, const std::vector<double>& v, std::size_t nc, bool integer) const {
+    if (!binary_) return tuples(s, v, nc, integer, "");
+    for (double x : v) put_binary(s, x, integer, true);
+    if (!v.empty()) s += '\n';
   }
 
   std::string xml(std::size_t n, const std::vector<double> (&xyz)[3], const std::vector<std::vector<double>>& data,
                   bool unstructured) const {
     const std::string N = std::to_string(n);
-    const char* type = unstructured ? "UnstructuredGrid" : "PolyData";
-    std::string s = std::string("<?xml version=\"1.0\"?>\n<VTKFile type=\"") + type +
-                    "\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <" + type + ">\n";
+    const std::string type = unstructured ? "UnstructuredGrid" : "PolyData";
+    XmlArrays out{binary_, {}};
+    std::string s = "<?xml version=\"1.0\"?>\n" + out.file_tag(type) + "  <" + type + ">\n";
     s += unstructured ? "    <Piece NumberOfPoints=\"" + N + "\" NumberOfCells=\"" + N + "\">\n"
                       : "    <Piece NumberOfPoints=\"" + N + "\" NumberOfVerts=\"" + N +
                             "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
     s += "      <PointData>\n";
     for (std::size_t a = 0; a < arrays_.size(); ++a)
-      s += data_array(arrays_[a].name, arrays_[a].integer(), arrays_[a].comps.size(), data[a]);
-    s += "      </PointData>\n      <Points>\n" + data_array("Points", false, 3, points(n, xyz)) + "      </Points>\n";
+      s += out.array(arrays_[a].name, arrays_[a].integer(), arrays_[a].comps.size(), data[a]);
+    s += "      </PointData>\n      <Points>\n" + out.array("Points", false, 3, points(n, xyz)) + "      </Points>\n";
     // One vertex cell per point.
     std::vector<double> conn(n), offs(n), types(n, 1.0);  // 1 = VTK_VERTEX
     for (std::size_t j = 0; j < n; ++j) {
@@ -208,16 +254,17 @@ class DumpCustomVTK : public Dump {
       offs[j] = static_cast<double>(j + 1);
     }
     s += unstructured ? "      <Cells>\n" : "      <Verts>\n";
-    s += data_array("connectivity", true, 1, conn) + data_array("offsets", true, 1, offs);
-    if (unstructured) s += data_array("types", true, 1, types);
+    s += out.array("connectivity", true, 1, conn);
+    s += out.array("offsets", true, 1, offs);
+    if (unstructured) s += out.array("types", true, 1, types);
     s += unstructured ? "      </Cells>\n" : "      </Verts>\n";
-    return s + "    </Piece>\n  </" + type + ">\n</VTKFile>\n";
+    return out.finish(s + "    </Piece>\n  </" + type + ">\n");
   }
 
   std::string pxml(const std::string& piece, bool unstructured) const {
     const std::string type = unstructured ? "PUnstructuredGrid" : "PPolyData";
-    std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
-                    "\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <" + type + " GhostLevel=\"0\">\n    <PPointData>\n";
+    std::string s = "<?xml version=\"1.0\"?>\n" + XmlArrays{binary_, {}}.file_tag(type) + "  <" + type +
+                    " GhostLevel=\"0\">\n    <PPointData>\n";
     for (const Array& arr : arrays_)
       s += std::string("      <PDataArray type=\"") + (arr.integer() ? "Int32" : "Float64") + "\" Name=\"" +
            xml_escape(arr.name) + "\"" +
@@ -249,10 +296,11 @@ class DumpCustomVTK : public Dump {
       }
       return s;
     }
-    s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    XmlArrays out;  // ASCII: six numbers
+    s = "<?xml version=\"1.0\"?>\n" + out.file_tag("RectilinearGrid") +
         "  <RectilinearGrid WholeExtent=\"0 1 0 1 0 1\">\n    <Piece Extent=\"0 1 0 1 0 1\">\n      <Coordinates>\n";
-    for (int k = 0; k < 3; ++k) s += data_array(std::string(1, char('x' + k)), false, 1, {d.lo[k], d.hi[k]});
-    return s + "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n</VTKFile>\n";
+    for (int k = 0; k < 3; ++k) s += out.array(std::string(1, char('x' + k)), false, 1, {d.lo[k], d.hi[k]});
+    return out.finish(s + "      </Coordinates>\n    </Piece>\n  </RectilinearGrid>\n");
   }
 
   static void write_plain(const std::string& path, const std::string& text) {
@@ -263,6 +311,7 @@ class DumpCustomVTK : public Dump {
   }
 
   VtkFormat format_ = VtkFormat::Legacy;
+  bool binary_ = false;  // dump_modify binary yes
   std::vector<Array> arrays_;
   DumpFilter filter_;
 };

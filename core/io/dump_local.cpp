@@ -9,16 +9,26 @@
 // a space (LAMMPS' default formats; `dump_modify ID format float %.17g` or
 // `format N FMT` for more digits). A step with no rows writes its header with
 // 0 entries.
+// A file name ending in .h5 or .hdf5 chooses HDF5 (sable's, for long
+// recordings: one file, full precision; LIGGGHTS would write text under that
+// name), through core/io/h5_series.h (blocks, readable after a kill):
+//   entries [rows, values] (every snapshot's rows one after the other, the
+//     values in the deck's order, index as 1, 2, ...; root attribute columns);
+//   first, count [snapshots] (each snapshot's first row in entries and its rows);
+//   time, step [snapshots] (the time axis: attributes units, timestep).
+// No '*' (one file holds every snapshot) and no dump_modify format.
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <algorithm>
 #include <cstring>
+#include <memory>
 
 #include "core/engine/compute.h"
 #include "core/io/dump.h"
 #include "core/io/dump_file.h"
+#include "core/io/h5_series.h"
 #include "core/engine/error.h"
 #include "core/engine/simulation.h"
 #include "core/input/number_format.h"
@@ -39,6 +49,8 @@ class DumpLocal : public Dump {
       header_ += (i > 6 ? " " : "") + a[i];
     }
     if (!any_compute) a.fail(6, "at least one c_ID[k] (index alone names no contacts)");
+    const std::string ext = file.substr(std::min(file.size(), file.find_last_of('.')));
+    if (ext == ".h5" || ext == ".hdf5") open_h5(a);
   }
 
   void init() override {
@@ -51,6 +63,7 @@ class DumpLocal : public Dump {
   bool modify_param(const Args& a, std::size_t& i) override {
     if (a[i] == "sort") a.fail(i, "a dump_modify keyword dump local supports (format); LAMMPS cannot sort it by id either");
     if (a[i] != "format") return Dump::modify_param(a, i);
+    if (h5_) a.fail(i, "a dump_modify keyword of an HDF5 dump local (it keeps full precision: no format)");
     const std::string& w = a.word(i + 1, "float, a column number or none");
     if (w == "none") {
       for (Column& c : cols_) c.format.clear();
@@ -76,6 +89,7 @@ class DumpLocal : public Dump {
     if (!multifile && append && step == last_step_) return;  // a run starting where the last ended
     last_step_ = step;
     const std::size_t n = gather();
+    if (h5_) return write_h5(step, n);
     std::string out;
     out.reserve(256 + n * cols_.size() * 14);
     char buf[256];
@@ -150,7 +164,39 @@ class DumpLocal : public Dump {
     return n;
   }
 
+  void open_h5(const Args& a) {
+    if (multifile) a.fail(5, "an HDF5 file name without '*' (one file holds every snapshot)");
+    h5_ = std::make_unique<H5Series>(file);
+    std::vector<std::string> names;
+    for (std::size_t i = 6; i < a.size(); ++i) names.push_back(a[i]);
+    h5_->attribute("columns", names);
+    h5_->attribute("dump", {a.joined()});
+    entries_ = h5_->series("entries", {cols_.size()}, false);
+    first_row_ = h5_->series("first", {}, true);
+    count_ = h5_->series("count", {}, true);
+    h5_->time_axis(sim.units);
+    h5_->start();
+  }
+
+  void write_h5(long step, std::size_t n) {
+    std::vector<double> row(cols_.size());
+    for (std::size_t r = 0; r < n; ++r) {
+      for (std::size_t k = 0; k < cols_.size(); ++k) {
+        const Column& c = cols_[k];
+        row[k] = c.compute ? c.compute->local[r * c.compute->local_cols + c.col] : static_cast<double>(r + 1);
+      }
+      h5_->append(entries_, row.data());
+    }
+    h5_->append(first_row_, static_cast<std::int64_t>(rows_));
+    h5_->append(count_, static_cast<std::int64_t>(n));
+    h5_->end_record(step, sim.time, sim.dt);
+    rows_ += n;
+  }
+
   std::vector<Column> cols_;
+  std::unique_ptr<H5Series> h5_;  // a .h5 file: HDF5 instead of text
+  int entries_ = -1, first_row_ = -1, count_ = -1;
+  std::size_t rows_ = 0;          // rows in entries so far
   std::string header_;  // the value words joined by spaces (LAMMPS' ENTRIES line)
   DumpFile file_;
   long last_step_ = -1;
@@ -164,6 +210,7 @@ class DumpLocal : public Dump {
 // its wall pass's order, atom memory order).
 void DumpLocal::export_yade(YadeScript& s) const {
   const Args& a = args;  // dump ID group local N file values...
+  if (h5_) a.fail(5, "a text file (export-yade translates no HDF5 dump local)");
   std::string comp, rows;
   std::vector<std::pair<std::string, std::string>> cols;  // format, Python of row r (None: index)
   for (std::size_t k = 6; k < a.size(); ++k) {

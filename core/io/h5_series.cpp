@@ -25,12 +25,54 @@ std::vector<H5Series*>& live() {
   return all;
 }
 
-hid_t open_for_append(const std::string& path) {
+hid_t open_rdwr(const std::string& path, unsigned flags) {
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
-  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR | H5F_ACC_SWMR_WRITE, fapl);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR | flags, fapl);
   H5Pclose(fapl);
   return file;
+}
+hid_t open_for_append(const std::string& path) { return open_rdwr(path, H5F_ACC_SWMR_WRITE); }
+
+// Attributes of a file or dataset: strings (variable length; a list or one), or one double.
+bool write_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  std::vector<const char*> p;
+  for (auto& v : values) p.push_back(v.c_str());
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  const hsize_t n = values.size();
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t attr = H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Awrite(attr, type, p.data()) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+  return ok;
+}
+bool write_string(hid_t obj, const std::string& name, const std::string& value) {
+  const char* p = value.c_str();
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t attr = H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Awrite(attr, type, &p) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+  return ok;
+}
+bool write_double(hid_t obj, const std::string& name, double value) {
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t attr = H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
+  const bool ok = attr >= 0 && H5Awrite(attr, H5T_NATIVE_DOUBLE, &value) >= 0;
+  if (attr >= 0) H5Aclose(attr);
+  H5Sclose(space);
+  return ok;
+}
+
+// The unit of time of a deck's unit style (sable's `units` accepts si only).
+std::string time_unit(const std::string& style) {
+  return style == "si" || style == "cgs" ? "s" : style == "lj" ? "tau" : "unknown (units " + style + ")";
 }
 
 }  // namespace
@@ -58,23 +100,13 @@ H5Series::~H5Series() {
 }
 
 void H5Series::attribute(const std::string& name, const std::vector<std::string>& values) {
-  std::vector<const char*> p;
-  for (auto& v : values) p.push_back(v.c_str());
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, H5T_VARIABLE);
-  const hsize_t n = values.size();
-  const hid_t space = H5Screate_simple(1, &n, nullptr);
-  const hid_t attr = H5Acreate2(file_, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
-  const bool ok = attr >= 0 && H5Awrite(attr, type, p.data()) >= 0;
-  if (attr >= 0) H5Aclose(attr);
-  H5Sclose(space);
-  H5Tclose(type);
-  if (!ok) h5fail(path_, "write attribute '" + name + "'");
+  if (!write_strings(file_, name, values)) h5fail(path_, "write attribute '" + name + "'");
 }
 
-void H5Series::constant(const std::string& name, const std::vector<double>& values) {
-  const hsize_t n = values.size();
-  const hid_t space = H5Screate_simple(1, &n, nullptr);
+void H5Series::constant(const std::string& name, const std::vector<double>& values, std::vector<std::size_t> shape) {
+  if (shape.empty()) shape.push_back(values.size());
+  const std::vector<hsize_t> dims(shape.begin(), shape.end());
+  const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
   const hid_t d = H5Dcreate2(file_, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   const bool ok = d >= 0 && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0;
   if (d >= 0) H5Dclose(d);
@@ -83,6 +115,7 @@ void H5Series::constant(const std::string& name, const std::vector<double>& valu
 }
 
 int H5Series::series(const std::string& name, const std::vector<std::size_t>& row_shape, bool integer) {
+  if (step_ >= 0) h5fail(path_, "declare series '" + name + "' before the time axis");
   Series s;
   s.integer = integer;
   std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{1};
@@ -108,6 +141,35 @@ int H5Series::series(const std::string& name, const std::vector<std::size_t>& ro
   s.row_bytes = static_cast<std::size_t>(row) * 8;  // 64-bit values
   series_.push_back(s);
   return static_cast<int>(series_.size()) - 1;
+}
+
+void H5Series::time_axis(const std::string& unit_style) {
+  time_ = series("time", {}, false);
+  step_ = series("step", {}, true);
+  const hid_t d = H5Dopen2(file_, "time", H5P_DEFAULT);
+  const bool ok = d >= 0 && write_string(d, "units", time_unit(unit_style)) && write_string(file_, "units", unit_style);
+  if (d >= 0) H5Dclose(d);
+  if (!ok) h5fail(path_, "write the attributes 'units' of the file and of dataset 'time'");
+}
+
+void H5Series::end_record(long step, double time, double dt) {
+  if (time_ < 0) h5fail(path_, "end a record: its layout has no time axis (time_axis())");
+  if (!dt_written_ && dt_ == 0.0) dt_ = dt;
+  append(time_, &time);
+  append(step_, static_cast<std::int64_t>(step));
+}
+
+// Attributes cannot be added in SWMR mode: the time step goes in with a plain
+// open before the first block (the deck's `timestep` may follow the output's line).
+void H5Series::write_timestep() {
+  const hid_t file = open_rdwr(path_, 0);
+  if (file < 0) h5fail(path_, "be opened to write its time step (was it moved or opened elsewhere?)");
+  const hid_t d = H5Dopen2(file, "time", H5P_DEFAULT);
+  bool ok = d >= 0 && write_double(d, "timestep", dt_) && write_double(file, "timestep", dt_);
+  if (d >= 0) H5Dclose(d);
+  ok = H5Fclose(file) >= 0 && ok;
+  if (!ok) h5fail(path_, "write the attribute 'timestep'");
+  dt_written_ = true;
 }
 
 // Closed between blocks, so that a killed run leaves a file marked consistent.
@@ -161,6 +223,7 @@ bool H5Series::write_series(hid_t file, Series& s) {
 // the error is raised once (a later flush, e.g. on the error's way out, has nothing to write).
 void H5Series::flush() {
   if (pending_bytes_ == 0) return;
+  if (time_ >= 0 && !dt_written_) write_timestep();
   const hid_t file = open_for_append(path_);
   bool ok = file >= 0;
   for (Series& s : series_) {
@@ -172,6 +235,7 @@ void H5Series::flush() {
   if (file >= 0) ok = H5Fclose(file) >= 0 && ok;
   if (file < 0) h5fail(path_, "be opened to append records (was it moved or opened elsewhere?)");
   if (!ok) h5fail(path_, "append to a dataset (disk full?)");
+  if (on_written) on_written(static_cast<std::size_t>(series_.back().rows));
 }
 
 void H5Series::flush_all() {

@@ -1,6 +1,7 @@
 #pragma once
 // Output: HDF5 time series (fix ave/time, fix ave/histo, field outputs).
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ namespace sable {
 // kill loses fewer than block_rows records, and no more than the file
 // already holds, plus the one being appended. A kill inside a block's write
 // leaves the file readable with H5F_ACC_SWMR_READ (h5py: swmr=True).
+// The time axis (time_axis(), every file sable's deck writes has one): the
+// root attribute `units` (the deck's unit style), then two series declared
+// last, `time` (the simulated time of each record; attribute `units`, the
+// style's time unit) and `step`. Both `time` and the root carry the attribute
+// `timestep` (dt of the first record: the deck may set it after the output's
+// line; `time` holds each record's own time when dt changes between runs).
 class H5Series {
  public:
   // Records per block, chosen so that a row every step costs a small run < 5 %
@@ -36,11 +43,19 @@ class H5Series {
   ~H5Series();  // writes the buffered rows (a failure is printed: destructors do not throw)
   // Before start(): root attributes, constant datasets, growing datasets.
   void attribute(const std::string& name, const std::vector<std::string>& values);
-  void constant(const std::string& name, const std::vector<double>& values);
+  // A constant dataset, 1-D or of the given shape (its product is values.size()).
+  void constant(const std::string& name, const std::vector<double>& values, std::vector<std::size_t> shape = {});
   int series(const std::string& name, const std::vector<std::size_t>& row_shape, bool integer);
+  // The time and step series, declared last (after every series()).
+  void time_axis(const std::string& unit_style);
   void start();
   void append(int series, const double* row);
   void append(int series, std::int64_t value);  // integer series of scalars (steps)
+  // Ends a record of a file with a time axis: its time, then its step. dt: the time step
+  // (written as the `timestep` attribute with the first block).
+  void end_record(long step, double time, double dt);
+  // Called after each block reaches the file, with the complete records it holds (sidecars).
+  std::function<void(std::size_t records)> on_written;
   void flush();  // writes the buffered rows now (nothing to do: the file is not opened)
   // flush() on every H5Series alive. Inside an exception handler a failure is
   // printed, not thrown, so the error being handled stays the one reported.
@@ -61,6 +76,10 @@ class H5Series {
   std::int64_t file_ = -1;
   bool started_ = false;
   std::size_t block_rows_, block_ = 1, records_ = 0, pending_bytes_ = 0;  // block_: records in the next block
+  int time_ = -1, step_ = -1;         // the time axis' series
+  double dt_ = 0.0;                   // the first record's time step, until written
+  bool dt_written_ = false;
+  void write_timestep();
   std::vector<Series> series_;
   void append_raw(int series, const void* row);
   bool write_series(std::int64_t file, Series& s);

@@ -234,4 +234,75 @@ TEST(H5Series, DeckRowsAreOnDiskWhenAnErrorStopsTheRun) {
   EXPECT_EQ(h5_steps(tmp / "a.h5"), text);
 }
 
+// The time axis: declared last (a series after it is refused, so `step` stays
+// the record's end), a record ended without it is refused; the root's `units`,
+// `time` with each record's time, and `timestep`, the first record's dt (given
+// with the record: a deck may set dt after the output's line).
+TEST(H5Series, TimeAxisLastWithUnitsAndTheFirstRecordsTimestep) {
+  TempDir tmp;
+  const std::string path = tmp / "t.h5";
+  auto message = [](auto&& f) -> std::string {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  {
+    H5Series plain(tmp / "plain.h5");
+    plain.series("v", {}, false);
+    plain.start();
+    EXPECT_NE(message([&] { plain.end_record(1, 0.1, 0.1); }).find("has no time axis"), std::string::npos);
+  }
+  H5Series h(path, 1);
+  const int v = h.series("v", {}, false);
+  h.time_axis("si");
+  EXPECT_NE(message([&] { h.series("late", {}, false); }).find("declare series 'late' before the time axis"),
+            std::string::npos);
+  h.start();
+  std::size_t written = 0;
+  h.on_written = [&](std::size_t records) { written = records; };
+  const double x[3] = {1.5, 2.5, 3.5};
+  for (int r = 0; r < 3; ++r) {
+    h.append(v, &x[r]);
+    h.end_record(10 * (r + 1), 1e-3 * (r + 1), r == 0 ? 1e-4 : 2e-4);  // dt of the first record: 1e-4
+  }
+  h.flush();
+  EXPECT_EQ(written, 3u);
+  const Read t = read_dataset(path, "time", false), step = read_dataset(path, "step", true);
+  ASSERT_EQ(t.dims, (std::vector<hsize_t>{3}));
+  double times[3];
+  std::memcpy(times, t.bits.data(), sizeof times);
+  EXPECT_EQ(times[2], 3e-3);
+  EXPECT_EQ(step.bits[2], 30u);
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t d = H5Dopen2(f, "time", H5P_DEFAULT);
+  for (hid_t obj : {f, d}) {
+    double dt = 0;
+    const hid_t a = H5Aopen(obj, "timestep", H5P_DEFAULT);
+    ASSERT_GE(a, 0);
+    EXPECT_GE(H5Aread(a, H5T_NATIVE_DOUBLE, &dt), 0);
+    EXPECT_EQ(dt, 1e-4);
+    H5Aclose(a);
+  }
+  auto text_attr = [](hid_t obj, const char* name) {
+    const hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    if (a < 0) return std::string("(none)");
+    const hid_t type = H5Aget_type(a);
+    char* s = nullptr;
+    H5Aread(a, type, &s);
+    std::string r = s ? s : "";
+    H5free_memory(s);
+    H5Tclose(type);
+    H5Aclose(a);
+    return r;
+  };
+  EXPECT_EQ(text_attr(f, "units"), "si");
+  EXPECT_EQ(text_attr(d, "units"), "s");
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
 }  // namespace test_h5_series
