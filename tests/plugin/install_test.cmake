@@ -16,7 +16,7 @@ file(REMOVE_RECURSE ${WORK})
 set(prefix ${WORK}/prefix)
 run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
 foreach(f bin/sable bin/sable-analyze include/sable/contact_models/registry.h
-          include/sable/contact_models/builtin_models.h
+          include/sable/contact_models/builtin_models.h include/sable/sable_plugin_version.h
           lib/cmake/sable/sableConfig.cmake lib/cmake/sable/sableConfigVersion.cmake
           lib/cmake/sable/sableTargets.cmake)
   if(NOT EXISTS ${prefix}/${f})
