@@ -1,7 +1,6 @@
 // Box, style-creation and run-control commands (the deck's skeleton).
 #include <cctype>
 #include <cmath>
-#include <dlfcn.h>
 
 #include "core/engine/error.h"
 #include "core/input/removed_styles.h"
@@ -343,13 +342,6 @@ void cmd_write_dump(Simulation& sim, const Args& a) {
   d->flush();
 }
 
-// plugin load FILE: a shared library whose static registrars add styles/models.
-void cmd_plugin(Simulation&, const Args& a) {
-  if (a.word(1, "'load'") != "load") a.fail(1, "'load'");
-  const std::string& path = a.word(2, "a shared library file");
-  if (!dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL)) a.fail(2, std::string("a loadable shared library (") + dlerror() + ")");
-}
-
 }  // namespace
 
 SABLE_COMMAND("units", cmd_units);
@@ -382,6 +374,5 @@ SABLE_COMMAND("dump", cmd_dump);
 SABLE_COMMAND("undump", cmd_undump);
 SABLE_COMMAND("dump_modify", cmd_dump_modify);
 SABLE_COMMAND("write_dump", cmd_write_dump);
-SABLE_COMMAND("plugin", cmd_plugin);
 
 }  // namespace sable

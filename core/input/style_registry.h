@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/input/plugin_abi.h"  // every source that registers carries the plugin tag
+
 namespace sable {
 
 class Simulation;

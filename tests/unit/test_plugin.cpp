@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -26,6 +27,7 @@
 
 #include <unistd.h>
 
+#include "core/engine/version.h"
 #include "core/input/style_registry.h"
 #include "tests/unit/deck_runner.h"
 
@@ -33,6 +35,7 @@
 namespace test_plugin {
 
 using sable::test::Deck;
+using sable::test::error_of;
 
 namespace {
 
@@ -191,6 +194,33 @@ TEST(Plugin, LoadsIntoTheSableExecutable) {
   EXPECT_EQ(rc, 0) << output;
   EXPECT_NE(output.find("Loop time"), std::string::npos) << output;
   std::remove(deck.c_str());
+}
+
+// dlopen runs a library's registrars, so `plugin load` reads the tag its sources carry
+// (core/input/plugin_abi.h) from the file first: a plugin built for another version
+// is refused, naming the file, its version and ours, and none of its code runs.
+TEST(Plugin, RefusesAPluginBuiltForAnotherVersion) {
+  Deck d;
+  const std::string e = error_of(d, std::string("plugin load ") + SABLE_PLUGIN_OTHER_VERSION);
+  EXPECT_NE(e.find(std::string("'") + SABLE_PLUGIN_OTHER_VERSION + "' in 'plugin load"), std::string::npos) << e;
+  EXPECT_NE(e.find(std::string("it was built for sable ") + SABLE_OTHER_VERSION + " ("), std::string::npos) << e;
+  EXPECT_NE(e.find(std::string("this is sable ") + sable::version() + " ("), std::string::npos) << e;
+  EXPECT_EQ(sable::CommandRegistry::find("test/other_version_probe"), nullptr) << "its registrar ran";
+}
+
+TEST(Plugin, RefusesALibraryNotBuiltAgainstSablesHeaders) {
+  Deck d;
+  const std::string e = error_of(d, std::string("plugin load ") + SABLE_NOT_A_PLUGIN);
+  EXPECT_NE(e.find(std::string("'") + SABLE_NOT_A_PLUGIN + "' in 'plugin load"), std::string::npos) << e;
+  EXPECT_NE(e.find("it was not built against sable's headers"), std::string::npos) << e;
+  EXPECT_EQ(std::getenv("SABLE_TEST_FOREIGN_LIBRARY_RAN"), nullptr) << "its constructor ran";
+}
+
+// A file that is no shared library still gets dlopen's reason.
+TEST(Plugin, RefusesAFileThatIsNoLibrary) {
+  Deck d;
+  const std::string e = error_of(d, std::string("plugin load ") + SABLE_SOURCE_DIR + "/tests/plugin/restitution.in");
+  EXPECT_NE(e.find("expected a loadable shared library ("), std::string::npos) << e;
 }
 
 }  // namespace test_plugin
