@@ -235,14 +235,14 @@ void FixWallGran::refresh_near() {
 void FixWallGran::look_up(Staged& st) const {
   const std::size_t n = st.atom.size();
   const long* tag = sim.atoms.id.data();
-  st.by_id.resize(n);
-  for (std::size_t c = 0; c < n; ++c) st.by_id[c] = static_cast<int>(c);
-  std::sort(st.by_id.begin(), st.by_id.end(), [&](int a, int b) { return tag[st.atom[a]] < tag[st.atom[b]]; });
+  st.by_id.resize(n);  // (id, contact): sorted in place, no look-ups through the atoms while sorting
+  for (std::size_t c = 0; c < n; ++c) st.by_id[c] = {tag[st.atom[c]], static_cast<int>(c)};
+  std::sort(st.by_id.begin(), st.by_id.end());
   st.keys.resize(n);
   st.row.resize(n);
   for (std::size_t q = 0; q < n; ++q) {
-    st.keys[q] = {tag[st.atom[st.by_id[q]]], 0};
-    st.row[st.by_id[q]] = static_cast<int>(q);
+    st.keys[q] = {st.by_id[q].first, 0};
+    st.row[st.by_id[q].second] = static_cast<int>(q);
   }
   st.hist.resize(n * static_cast<std::size_t>(hist_size_));
   hist_.look_up(st.keys.data(), n, st.hist.data());

@@ -75,7 +75,8 @@ class FixWallGran : public Fix, public ContactSource {
   // history in that order and row each contact's place there. Own cache lines:
   // each thread grows its own.
   struct alignas(64) Staged {
-    std::vector<int> atom, place, row, by_id;
+    std::vector<int> atom, place, row;
+    std::vector<std::pair<long, int>> by_id;
     std::vector<double> deltan, en, vwall, point, force, hist;
     std::vector<WallHistory::Key> keys;
     void clear();

@@ -78,10 +78,13 @@ void WallHistory::look_up(const Key* keys, std::size_t n, double* out, Takes&& t
   const std::size_t hs = static_cast<std::size_t>(size_);
   std::fill(out, out + n * hs, 0.0);
   if (hs == 0) return;
+  const long rows = static_cast<long>(tag_.size());
+  long lo = 0;  // keys and rows both in key order: one walk through the rows
   for (std::size_t k = 0; k < n; ++k) {
     const Key& key = keys[k];
-    const auto lo = std::lower_bound(tag_.begin(), tag_.end(), key.tag) - tag_.begin();
-    const auto hi = std::upper_bound(tag_.begin() + lo, tag_.end(), key.tag) - tag_.begin();
+    while (lo < rows && tag_[lo] < key.tag) ++lo;
+    long hi = lo;
+    while (hi < rows && tag_[hi] == key.tag) ++hi;
     long from = -1;
     for (auto j = lo; j < hi && from < 0; ++j)
       if (element_[j] == key.element) from = j;
