@@ -8,23 +8,10 @@ import subprocess
 import pytest
 
 from sable_tools.paths import repo_path
+from scenes import falling_pair
 
 # Two grains falling for 50 + 30 steps: two runs, a thermo row every 10 steps.
-DECK = """units si
-atom_style granular
-region box block 0 1 0 1 0 1 units box
-create_box 1 box
-create_atoms 1 single 0.5 0.5 0.5 units box
-create_atoms 1 single 0.2 0.5 0.5 units box
-fix g all gravity 9.81 vector 0 0 -1
-fix i all nve/sphere
-variable marker_z equal z[1]
-thermo_style custom step atoms ke v_marker_z
-thermo 10
-run 50
-run 30
-print "RESULT z=${marker_z}"
-"""
+DECK = falling_pair("step atoms ke v_z1", after='print "RESULT z=${z1}"')
 VERSION_LINE = re.compile(r"^sable (\d+\.\d+\.\d+) \(commit (\S+)\)$")
 
 
@@ -105,7 +92,7 @@ def test_echo_modes(sable, tmp_path, deck, mode, on_screen, in_log):
     p = run(sable, ["-in", deck, "-echo", mode], tmp_path)
     assert p.returncode == 0, p.stderr
     log = (tmp_path / "log.sable").read_text()
-    command = "variable marker_z equal z[1]"
+    command = "variable z1 equal z[1]"
     assert (command in p.stdout.splitlines()) == on_screen
     assert (command in log.splitlines()) == in_log
 

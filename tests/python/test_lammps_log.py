@@ -11,6 +11,7 @@ import re
 import subprocess
 
 from sable_tools.readers import screen
+from scenes import falling_pair
 
 RUN_START = ("Memory usage per processor", "Per MPI rank memory allocation")
 LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms$")
@@ -18,21 +19,7 @@ HEADER = re.compile(r"^\s*Step\s")
 NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
 # Two grains falling: runs of 50 and 30 steps with a thermo row every 10 steps.
-DECK = """units si
-atom_style granular
-region box block 0 1 0 1 0 1 units box
-create_box 1 box
-create_atoms 1 single 0.5 0.5 0.5 units box
-create_atoms 1 single 0.2 0.5 0.5 units box
-fix g all gravity 9.81 vector 0 0 -1
-fix i all nve/sphere
-variable z1 equal z[1]
-thermo_style custom step atoms ke v_z1 vol
-thermo 10
-run 50
-print "between the runs"
-run 30
-"""
+DECK = falling_pair("step atoms ke v_z1 vol", between='print "between the runs"')
 
 
 def lammps_runs(text):
