@@ -44,6 +44,7 @@ class PairGran : public Pair, public ContactSource {
   std::string law_name() const override { return kernel_->name(); }
   const std::vector<HistorySlot>& history_slots() const override { return kernel_->history_slots(); }
   void records(std::uint32_t groupbit, ContactRecords& out) override;
+  void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override { store_.ids_renumbered(o, n); }
 
  private:
   std::unique_ptr<ContactKernel> kernel_;

@@ -241,7 +241,7 @@ void FixWallGran::look_up(Staged& st) const {
   st.keys.resize(n);
   st.row.resize(n);
   for (std::size_t q = 0; q < n; ++q) {
-    st.keys[q] = {st.by_id[q].first, 0};
+    st.keys[q] = {st.by_id[q].first, HistoryStore::kWall, 0};
     st.row[st.by_id[q].second] = static_cast<int>(q);
   }
   st.hist.resize(n * static_cast<std::size_t>(hist_size_));
@@ -303,7 +303,7 @@ void FixWallGran::range(FixHook, const AtomRange& r) {
 void FixWallGran::end(FixHook) {
   if (hist_size_ > 0) {
     const std::size_t hs = static_cast<std::size_t>(hist_size_);
-    WallHistory::merged_order(
+    HistoryStore::merged_order(
         parts_.size(), [&](int t) { return parts_[t].keys.data(); },
         [&](int t) { return parts_[t].keys.size(); }, order_);
     hist_.keep(

@@ -13,7 +13,7 @@
 //          moves along its normal as POS + A sin(2 pi t / P), t from the fix's creation.
 // Outputs (sable addition): f_ID[1..3] = total force exerted by the grains ON the
 // wall at the last force evaluation. The contacts' history (tangential spring,
-// rolling spring) is kept by grain id (core's WallHistory), and in restart files.
+// rolling spring) is kept by grain id (core's HistoryStore), and in restart files.
 #include <memory>
 #include <vector>
 
@@ -22,7 +22,7 @@
 #include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
 #include "core/engine/threads.h"
-#include "core/engine/wall_history.h"
+#include "core/engine/history_store.h"
 
 namespace sable {
 
@@ -37,7 +37,7 @@ class FixWallGran : public Fix, public ContactSource {
   double compute_vector(int i) override;  // 1..3: force on the wall
   bool write_state(std::string& out) const override;  // the contacts' history
   void read_state(const std::string& in) override;
-  const WallHistory& history() const { return hist_; }
+  const HistoryStore& history() const { return hist_; }
   double max_speed() const override;
 
   ContactKernel& kernel() { return *kernel_; }
@@ -65,7 +65,7 @@ class FixWallGran : public Fix, public ContactSource {
   long wiggle_step0_ = 0;
   int type_ = 1;
   int hist_size_ = 0;
-  WallHistory hist_;  // last force pass's contacts, by grain id
+  HistoryStore hist_;  // last force pass's contacts, by grain id
   bool setup_pass_ = true;
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
@@ -78,7 +78,7 @@ class FixWallGran : public Fix, public ContactSource {
     std::vector<int> atom, place, row;
     std::vector<std::pair<long, int>> by_id;
     std::vector<double> deltan, en, vwall, point, force, hist;
-    std::vector<WallHistory::Key> keys;
+    std::vector<HistoryStore::Key> keys;
     void clear();
   };
   // Wall position along its normal and normal velocity at this step (wiggle).
@@ -92,7 +92,7 @@ class FixWallGran : public Fix, public ContactSource {
   bool pass_update_ = true;
   std::size_t pass_atoms_ = 0;
   Staged records_;  // the contacts of the last records() call
-  WallHistory::Order order_;  // end(): the parts' contacts in key order
+  HistoryStore::Order order_;  // end(): the parts' contacts in key order
 
   // Grains that can reach the wall before the next neighbour rebuild (indices
   // hold until then): the per-step search looks at these only.

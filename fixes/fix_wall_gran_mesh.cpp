@@ -56,7 +56,7 @@ void FixWallGranMesh::find_meshes() {
     meshes_.push_back(f);
   }
   prev_.resize(meshes_.size());  // kept across runs
-  for (WallHistory& h : prev_)
+  for (HistoryStore& h : prev_)
     if (h.size() != hist_size_) h.configure(hist_size_);
   near_.resize(meshes_.size());
   glue_.resize(meshes_.size());  // filled at init (records() before a run: no glue yet)
@@ -437,9 +437,9 @@ bool FixWallGranMesh::joined(int m, int t, int u) const {
 // (the grain passed onto this triangle), else zeros: as LIGGGHTS 3.8, history
 // does not pass an active edge.
 std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits,
-                                                 std::vector<WallHistory::Key>& keys) const {
+                                                 std::vector<HistoryStore::Key>& keys) const {
   keys.resize(hits.size());
-  for (std::size_t k = 0; k < hits.size(); ++k) keys[k] = {hits[k].tag, hits[k].tri};
+  for (std::size_t k = 0; k < hits.size(); ++k) keys[k] = {hits[k].tag, HistoryStore::kWall, hits[k].tri};
   std::vector<double> out(static_cast<std::size_t>(hist_size_) * hits.size());
   prev_[m].look_up(keys.data(), keys.size(), out.data(), [&](int before, int now) { return joined(m, before, now); });
   return out;
@@ -519,10 +519,10 @@ void FixWallGranMesh::range(FixHook, const AtomRange& r) {
 void FixWallGranMesh::end(FixHook) {
   double total[3] = {0, 0, 0};
   const std::size_t hs = static_cast<std::size_t>(hist_size_);
-  WallHistory::Order order;  // (part, contact)
+  HistoryStore::Order order;  // (part, contact)
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     auto pm_of = [&](int t) -> const Part::PerMesh& { return parts_[t].mesh[m]; };
-    WallHistory::merged_order(
+    HistoryStore::merged_order(
         parts_.size(), [&](int t) { return pm_of(t).keys.data(); },
         [&](int t) { return pm_of(t).hits.size(); }, order);
     TriMesh& mesh = meshes_[m]->mesh();
@@ -570,7 +570,7 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
   out.hist_size = hist_size_;
   rec_ = Rec{};
   std::vector<Hit> hits;
-  std::vector<WallHistory::Key> keys;
+  std::vector<HistoryStore::Key> keys;
   std::vector<double> cols;
   std::vector<int> atoms, rows;
   ContactRecords part;
@@ -602,7 +602,7 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
 bool FixWallGranMesh::write_state(std::string& out) const {
   restart::Packer p;
   p.put<std::uint64_t>(prev_.size());
-  for (const WallHistory& h : prev_) h.write(p);
+  for (const HistoryStore& h : prev_) h.write(p);
   out = p.bytes;
   return true;
 }
@@ -611,7 +611,7 @@ void FixWallGranMesh::read_state(const std::string& in) {
   restart::Unpacker u(in, "the restart state of fix " + id);
   const auto n = u.get<std::uint64_t>();
   if (n != prev_.size()) args.fail_line("the restart file's fix " + id + " had " + std::to_string(n) + " meshes");
-  for (WallHistory& h : prev_)
+  for (HistoryStore& h : prev_)
     if (!h.read(u)) args.fail_line("the restart file's fix " + id + " has another model");
 }
 

@@ -30,7 +30,7 @@
 #include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
 #include "core/engine/threads.h"
-#include "core/engine/wall_history.h"
+#include "core/engine/history_store.h"
 #include "core/geometry/mesh.h"
 
 namespace sable {
@@ -67,7 +67,7 @@ class FixWallGranMesh : public Fix, public ContactSource {
   const double* wall_velocity(int k) const override { return &rec_.vwall[3 * k]; }
   int element(int k) const override { return rec_.tri[k]; }
   void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override {
-    for (WallHistory& h : prev_) h.renumber(o, n);
+    for (HistoryStore& h : prev_) h.renumber(o, n);
   }
   int mesh(int k) const { return rec_.mesh[k]; }
 
@@ -89,7 +89,7 @@ class FixWallGranMesh : public Fix, public ContactSource {
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
   // Last step's contacts per mesh and their history, by (grain id, triangle).
-  std::vector<WallHistory> prev_;
+  std::vector<HistoryStore> prev_;
   std::vector<double> k_finnie_;  // ntypes x ntypes (wear finnie), else empty
   void find_k_finnie();
   // Records of the last records() call (all meshes, in order).
@@ -124,7 +124,7 @@ class FixWallGranMesh : public Fix, public ContactSource {
     TriMesh::Scratch seen;
     struct PerMesh {
       std::vector<Hit> hits;
-      std::vector<WallHistory::Key> keys;  // the hits' (grain id, triangle)
+      std::vector<HistoryStore::Key> keys;  // the hits' (grain id, triangle)
       std::vector<double> hist, force, cols, wear;  // wear: per contact, this step's (wear finnie)
       std::vector<int> atoms, rows;
     };
@@ -162,7 +162,7 @@ class FixWallGranMesh : public Fix, public ContactSource {
   // Contacts with mesh m of the grains of near_[m].atoms[c0, c1) in groupbit & also, sorted by (tag, triangle).
   void collect(int m, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p, std::vector<Hit>& out);
   // History rows for the hits from prev_[m] (same triangle, else the same surface); keys: the hits'.
-  std::vector<double> history_for(int m, const std::vector<Hit>& hits, std::vector<WallHistory::Key>& keys) const;
+  std::vector<double> history_for(int m, const std::vector<Hit>& hits, std::vector<HistoryStore::Key>& keys) const;
   WallBatch batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols, std::vector<int>& atoms,
                   std::vector<int>& rows, double* hist);
 };

@@ -40,6 +40,7 @@ void ContactStore::set_used(int rows) {
 void ContactStore::configure(const std::vector<HistorySlot>& s) {
   slots = s;
   size = static_cast<int>(s.size());
+  saved_.configure(size), injected_.configure(size);
   buf_.reset();
   cap_ = 0;
 }
@@ -78,15 +79,16 @@ std::size_t ContactStore::contacts() const {
 
 // In blocks of atoms, in parallel for large lists: each block counts its
 // contacts, then writes them at its offset (atom order, as a serial pass).
-SavedContacts ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
-  SavedContacts out;
+HistoryStore ContactStore::touching(const NeighborList& list, const std::vector<long>& ids) const {
+  HistoryStore out;
   touching(list, ids, out);
   return out;
 }
 
 // Into `out`, whose buffers are reused and resized, not cleared: fresh ones
 // each rebuild cost page faults and zero-filling in the serial part.
-void ContactStore::touching(const NeighborList& list, const std::vector<long>& ids, SavedContacts& out) const {
+void ContactStore::touching(const NeighborList& list, const std::vector<long>& ids, HistoryStore& out) const {
+  if (out.size() != size) out.configure(size);
   if (row.empty() || row.size() != list.size()) {
     out.clear();
     return;
@@ -105,8 +107,7 @@ void ContactStore::touching(const NeighborList& list, const std::vector<long>& i
 #pragma omp single
     {
       std::partial_sum(base.begin(), base.end(), base.begin());
-      out.ids.resize(2 * base[nth]);
-      out.hist.resize(base[nth] * size);
+      out.resize(base[nth]);
     }
 #pragma omp for schedule(static, 1)
     for (int t = 0; t < nth; ++t) {
@@ -115,9 +116,8 @@ void ContactStore::touching(const NeighborList& list, const std::vector<long>& i
         for (int k = list.first[i]; k < list.first[i + 1]; ++k) {
           const double* h = history(k);
           if (!h) continue;
-          out.ids[2 * c] = ids[i];
-          out.ids[2 * c + 1] = ids[list.j[k]];
-          for (int m = 0; m < size; ++m) out.hist[c * size + m] = h[m];
+          out.set_key(c, {ids[i], ids[list.j[k]], 0});
+          std::copy_n(h, size, out.row(c));
           ++c;
         }
     }
@@ -127,12 +127,11 @@ void ContactStore::touching(const NeighborList& list, const std::vector<long>& i
 void ContactStore::save(const NeighborList& list, const std::vector<long>& ids) {
   touching(list, ids, saved_);
   // Restart contacts go after the list's own: restore() sees them the same way.
-  saved_.ids.insert(saved_.ids.end(), injected_.ids.begin(), injected_.ids.end());
-  saved_.hist.insert(saved_.hist.end(), injected_.hist.begin(), injected_.hist.end());
+  saved_.append(injected_);
   injected_.clear();
 }
 
-std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& from, const SavedContacts& c) {
+std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& from, const HistoryStore& c) {
   std::vector<int> src(size, -1);  // our slot m <- their slot src[m]
   std::vector<std::string> missing;
   for (int m = 0; m < size; ++m) {
@@ -140,11 +139,12 @@ std::vector<std::string> ContactStore::inject(const std::vector<HistorySlot>& fr
       if (from[q].name == slots[m].name) src[m] = static_cast<int>(q);
     if (src[m] < 0) missing.push_back(slots[m].name);
   }
-  const std::size_t w = from.size();
+  const std::size_t first = injected_.count();
+  injected_.resize(first + c.count());
   for (std::size_t s = 0; s < c.count(); ++s) {
-    injected_.ids.push_back(c.ids[2 * s]);
-    injected_.ids.push_back(c.ids[2 * s + 1]);
-    for (int m = 0; m < size; ++m) injected_.hist.push_back(src[m] < 0 ? 0.0 : c.hist[s * w + src[m]]);
+    injected_.set_key(first + s, c.key(s));
+    double* h = injected_.row(first + s);
+    for (int m = 0; m < size; ++m) h[m] = src[m] < 0 ? 0.0 : c.row(s)[src[m]];
   }
   return missing;
 }
@@ -160,7 +160,7 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
   row.resize(entries);  // every entry is set below
   reserve_rows(2 * entries + 16 + slack());
   from_.resize(entries);  // entry k <- saved contact s: 2 (s + 1) + (pair seen reversed), 0 for none
-  if (count) atoms.index_of(saved_.ids[0]);  // builds the id map here, before the threads read it
+  if (count) atoms.index_of(saved_.key(0).tag);  // builds the id map here, before the threads read it
   const int nth = loop_thread_count(entries, 2);
   std::vector<int> base(nth + 1, 0);
   auto block = [&](int t) { return std::pair(entries * t / nth, entries * (t + 1) / nth); };
@@ -173,7 +173,8 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
     }
 #pragma omp for schedule(static)
     for (long s = 0; s < static_cast<long>(count); ++s) {
-      const std::size_t a = atoms.index_of(saved_.ids[2 * s]), b = atoms.index_of(saved_.ids[2 * s + 1]);
+      const HistoryStore::Key key = saved_.key(static_cast<std::size_t>(s));
+      const std::size_t a = atoms.index_of(key.tag), b = atoms.index_of(key.partner);
       if (a == Atoms::npos || b == Atoms::npos || a == b) continue;
       const std::size_t lo = std::min(a, b), hi = std::max(a, b);
       if (lo >= listed) continue;
@@ -204,7 +205,7 @@ void ContactStore::restore(const NeighborList& list, const Atoms& atoms) {
           continue;
         }
         const bool swapped = from_[k] & 1;
-        const double* v = &saved_.hist[(from_[k] / 2 - 1) * static_cast<std::size_t>(size)];
+        const double* v = saved_.row(static_cast<std::size_t>(from_[k] / 2 - 1));
         double* h = buf_.get() + static_cast<std::size_t>(row[k] = r++) * size;
         for (int m = 0; m < size; ++m) h[m] = (swapped && slots[m].flip) ? -v[m] : v[m];
       }
@@ -396,6 +397,13 @@ int Neighbor::pick_slow_axis(const Atoms& atoms, const Domain& domain, const int
     if (cut[k] < cut[best] || (cut[k] == cut[best] && nb[k] > nb[best])) best = k;
   if (slow_axis_ >= 0 && cut[slow_axis_] < 1e300 && cut[slow_axis_] <= 1.2 * cut[best]) return slow_axis_;
   return best;
+}
+
+void Neighbor::ids_renumbered(const std::vector<long>& old_ids, const std::vector<long>& new_ids) {
+  for (long& id : ids_) {
+    const auto at = std::lower_bound(old_ids.begin(), old_ids.end(), id);
+    id = at == old_ids.end() || *at != id ? -1 : new_ids[static_cast<std::size_t>(at - old_ids.begin())];
+  }
 }
 
 void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {

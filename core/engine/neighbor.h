@@ -3,12 +3,14 @@
 // `neigh_modify delay/every/check`). Periodic images are not ghost atoms: each
 // list entry carries a shift code, so forces land directly on the owners.
 // ContactStore keeps per-contact history, found from the list entries, and
-// carries it across rebuilds by (id_i, id_j).
+// carries it across rebuilds in core's HistoryStore, keyed by (id_i, id_j).
 #include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "core/engine/history_store.h"
 
 namespace sable {
 
@@ -28,15 +30,6 @@ struct NeighborList {
 struct HistorySlot {
   std::string name;
   bool flip;  // negate when the pair is seen as (j, i)
-};
-
-// History of touching contacts keyed by atom ids, independent of atom order
-// and of the list (what survives a rebuild, and what a restart file holds).
-struct SavedContacts {
-  std::vector<long> ids;     // id_i, id_j per contact
-  std::vector<double> hist;  // history values per contact, in slot order
-  std::size_t count() const { return ids.size() / 2; }
-  void clear() { ids.clear(), hist.clear(); }
 };
 
 // History rows, one per contact rather than one per list entry (most entries
@@ -87,13 +80,18 @@ class ContactStore {
   // have been deleted, inserted or sorted since).
   void save(const NeighborList& list, const std::vector<long>& ids);
   void restore(const NeighborList& list, const Atoms& atoms);
-  // The touching contacts of `list` (built over atoms whose ids were `ids`), as save() keeps them.
-  SavedContacts touching(const NeighborList& list, const std::vector<long>& ids) const;
-  void touching(const NeighborList& list, const std::vector<long>& ids, SavedContacts& out) const;
+  // The touching contacts of `list` (built over atoms whose ids were `ids`), as
+  // save() keeps them: (id_i, id_j, 0) in list order.
+  HistoryStore touching(const NeighborList& list, const std::vector<long>& ids) const;
+  void touching(const NeighborList& list, const std::vector<long>& ids, HistoryStore& out) const;
   // Contacts from a restart file with slots `from`, matched to ours by name; the
   // next rebuild restores them like its own. Returns our slot names absent from
   // `from` (those values start at zero).
-  std::vector<std::string> inject(const std::vector<HistorySlot>& from, const SavedContacts& c);
+  std::vector<std::string> inject(const std::vector<HistorySlot>& from, const HistoryStore& c);
+  // delete_atoms' renumbering: contacts injected and not yet restored follow it.
+  void ids_renumbered(const std::vector<long>& old_ids, const std::vector<long>& new_ids) {
+    injected_.renumber(old_ids, new_ids);
+  }
 
  private:
   void reserve_rows(std::size_t rows);  // capacity for `rows` rows; contents dropped
@@ -108,7 +106,7 @@ class ContactStore {
   std::unique_ptr<double[]> buf_;       // not zeroed: new rows are zeroed when taken
   std::size_t cap_ = 0;                 // rows
   std::atomic<int> used_{0};            // rows taken
-  SavedContacts saved_, injected_;
+  HistoryStore saved_, injected_;
   std::vector<int> from_;  // restore(): each entry's saved contact
 };
 
@@ -157,6 +155,9 @@ class Neighbor {
   int slow_axis() const { return slow_axis_; }
   // Atom ids in index order at the last build: how to read `list` after atoms moved.
   const std::vector<long>& built_ids() const { return ids_; }
+  // delete_atoms' renumbering (old_ids ascending): the list's grains take their
+  // new ids, a deleted one none, so that the next rebuild carries history by them.
+  void ids_renumbered(const std::vector<long>& old_ids, const std::vector<long>& new_ids);
 
  private:
   std::vector<double> xhold_;

@@ -80,7 +80,7 @@ class Simulation {
     std::string file;                   // for messages
     std::string pair_model;             // PairGran::describe() of the writer
     std::vector<HistorySlot> slots;     // history slots of the stored contacts
-    SavedContacts contacts;
+    HistoryStore contacts;
     struct FixState {
       std::string style, bytes;
     };

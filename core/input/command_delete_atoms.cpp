@@ -66,6 +66,8 @@ void cmd_delete_atoms(Simulation& sim, const Args& a) {
       new_ids[k] = at.id[by_id[k]] = static_cast<long>(k) + 1;
     }
     for (ContactSource* c : contact_sources(sim)) c->ids_renumbered(old_ids, new_ids);
+    sim.neighbor.ids_renumbered(old_ids, new_ids);  // the list's grains, whose pair history the next rebuild carries
+    sim.restart.contacts.renumber(old_ids, new_ids);  // read_restart's contacts not yet handed to the pair
     at.permute(by_id);  // also refreshes the ID -> index map; atoms now in ID order
   }
   // LIGGGHTS gives new atoms max(existing ID) + 1, so a deleted top ID is reused.

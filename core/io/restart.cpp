@@ -93,7 +93,7 @@ std::string pair_section(Simulation& sim, std::size_t& ncontacts) {
   Packer p;
   const auto& pending = sim.restart;
   std::vector<HistorySlot> slots;
-  SavedContacts c;
+  HistoryStore c;
   std::string model;
   if (pending.contacts.count() > 0) {
     model = pending.pair_model;
@@ -112,8 +112,7 @@ std::string pair_section(Simulation& sim, std::size_t& ncontacts) {
     p.put_string(s.name);
     p.put<std::uint8_t>(s.flip);
   }
-  p.put_vector(c.ids);
-  p.put_vector(c.hist);
+  c.write(p);
   ncontacts = c.count();
   return p.bytes;
 }
@@ -430,11 +429,9 @@ void read(Simulation& sim, const std::string& path) {
       h.flip = p.get<std::uint8_t>();
       pending.slots.push_back(h);
     }
-    pending.contacts.ids = p.get_vector<long>();
-    pending.contacts.hist = p.get_vector<double>();
-    if (pending.contacts.ids.size() % 2 || pending.contacts.hist.size() != pending.contacts.count() * nslots)
-      fail(what + ", section 'pair': " + std::to_string(pending.contacts.hist.size()) + " history values for " +
-           std::to_string(pending.contacts.count()) + " contacts of " + std::to_string(nslots) + " slots");
+    pending.contacts.configure(static_cast<int>(nslots));
+    if (!pending.contacts.read(p))
+      fail(what + ", section 'pair': its contacts do not have " + std::to_string(nslots) + " history values each");
   }
   if (sections.count("fixes")) {
     Unpacker f = unpack("fixes");
@@ -475,7 +472,9 @@ std::string summary(const std::string& path) {
         s += p.get_string();
         p.get<std::uint8_t>();
       }
-      s += "; " + std::to_string(p.get_vector<long>().size() / 2) + " contacts";
+      HistoryStore contacts;
+      contacts.configure(static_cast<int>(nslots));
+      s += "; " + std::to_string(contacts.read(p) ? contacts.count() : 0) + " contacts";
     }
     if (name == "fixes") {
       Unpacker f(payload, name);

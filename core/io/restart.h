@@ -25,7 +25,7 @@ class Simulation;
 
 namespace restart {
 
-constexpr std::uint32_t kFormat = 2;  // 2: wall history in fix states, not atom columns
+constexpr std::uint32_t kFormat = 3;  // 2: wall history in fix states; 3: every history keyed (grain, partner, element)
 
 // Appends trivially copyable values, strings and vectors to a byte string.
 class Packer {

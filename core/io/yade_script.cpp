@@ -551,8 +551,9 @@ void YadeScript::contact_history() {
   py << "# the restart's " << r.contacts.count() << " contacts: id_i, id_j, sable's shear (x, y, z); YADE's shearForce = ks shear\n"
          "_hist = [\n";
   for (std::size_t c = 0; c < r.contacts.count(); ++c) {
-    py << " (" << r.contacts.ids[2 * c] << ", " << r.contacts.ids[2 * c + 1];
-    for (int k = 0; k < 3; ++k) py << ", " << yade_num(r.contacts.hist[c * ns + sx + k]);
+    const HistoryStore::Key key = r.contacts.key(c);
+    py << " (" << key.tag << ", " << key.partner;
+    for (int k = 0; k < 3; ++k) py << ", " << yade_num(r.contacts.row(c)[sx + k]);
     py << "),\n";
   }
   py << "]\n"

@@ -164,8 +164,8 @@ TEST(ContactHistory, SurvivesNeighbourRebuildsDuringASlidingContact) {
   expect_same_state(never, every, 1e-9);  // round-off growth over 2000 steps only
 }
 
-// Per-atom wall history lives in an Atoms column, so it follows the atoms when
-// the neighbour build sorts them.
+// Wall history is kept by grain id (core's HistoryStore), so it follows the
+// atoms when the neighbour build sorts them.
 TEST(ContactHistory, WallHistorySurvivesAtomSorting) {
   Deck sorted, unsorted;
   for (Deck* d : {&sorted, &unsorted}) {
@@ -191,6 +191,47 @@ TEST(ContactHistory, WallHistorySurvivesAtomSorting) {
   EXPECT_EQ(unsorted->atoms.index_of(1), 0u);
   EXPECT_EQ(sorted->atoms.index_of(1), 4u) << "sorting should have reversed the atoms";
   expect_same_state(sorted, unsorted, 1e-12);
+}
+
+// delete_atoms with compress yes renumbers the grains between runs: the pair's
+// and the walls' springs follow the new ids, so the run goes on as with
+// compress no (same grains, other ids). Before the history store was keyed by
+// (grain, partner, element) with renumbering, the pair spring was lost here.
+TEST(ContactHistory, FollowsGrainsRenumberedByDeleteAtoms) {
+  Deck kept, compressed;
+  for (Deck* d : {&kept, &compressed}) {
+    (*d)(kHead);
+    (*d)("create_atoms 1 single -0.008 0 0.008 units box");  // id 1, deleted below
+    (*d)("create_atoms 1 single 0.001 0 0.001 units box");
+    (*d)("create_atoms 1 single 0.003 0 0.001 units box");
+    (*d)("pair_style gran model hertz tangential history rolling_friction epsd2");
+    (*d)("pair_coeff * *");
+    (*d)("fix floor all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 zplane 0.0");
+    (*d)("fix side all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 xplane 0.0");
+    (*d)("fix g all gravity 9.81 vector -1 0 -1");
+    (*d)("fix i all nve/sphere");
+    auto& at = (*d)->atoms;
+    for (std::size_t i = 0; i < 3; ++i) at.set_radius_density(i, 0.001, 2500);
+    at.v[3 * 2 + 1] = 0.05;  // the outer grain slides along y
+    (*d)("run 1000");
+    (*d)("group far id 1");
+  }
+  const sable::ContactStore& store = *kept->pair->history();
+  ASSERT_EQ(store.contacts(), 1u) << "the two grains should touch";
+  kept("delete_atoms group far compress no");
+  compressed("delete_atoms group far compress yes");
+  ASSERT_EQ(compressed->atoms.index_of(3), sable::Atoms::npos) << "compress yes should renumber 2, 3 to 1, 2";
+  kept("run 1000");
+  compressed("run 1000");
+  EXPECT_GT(std::fabs(entry_history(*compressed->pair->history())[1]), 1e-9) << "a loaded tangential spring";
+  for (long id = 2; id <= 3; ++id) {
+    const std::size_t i = kept->atoms.index_of(id), j = compressed->atoms.index_of(id - 1);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(rel(kept->atoms.x[3 * i + k], compressed->atoms.x[3 * j + k]), 1e-12) << "x of grain " << id;
+      EXPECT_LE(rel(kept->atoms.f[3 * i + k], compressed->atoms.f[3 * j + k]), 1e-12) << "f of grain " << id;
+      EXPECT_LE(rel(kept->atoms.torque[3 * i + k], compressed->atoms.torque[3 * j + k]), 1e-12) << "torque of " << id;
+    }
+  }
 }
 
 // A grain hops off a fixed grain and lands again within the skin (no rebuild in

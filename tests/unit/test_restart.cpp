@@ -73,7 +73,7 @@ void expect_bits(const std::vector<T>& a, const std::vector<T>& b, std::size_t n
   EXPECT_EQ(0, std::memcmp(a.data(), b.data(), n * sizeof(T))) << what << " differs";
 }
 
-const sable::WallHistory& wall_history(sable::Simulation& s, const char* wall) {
+const sable::HistoryStore& wall_history(sable::Simulation& s, const char* wall) {
   auto* f = dynamic_cast<sable::FixWallGran*>(s.find_fix(wall));
   if (!f) throw std::runtime_error(std::string("no wall/gran fix ") + wall);
   return f->history();
@@ -93,7 +93,7 @@ void expect_same_state(sable::Simulation& a, sable::Simulation& b) {
   expect_bits(a.atoms.f, b.atoms.f, 3 * n, "f");
   expect_bits(a.atoms.torque, b.atoms.torque, 3 * n, "torque");
   for (const char* w : kWalls) {
-    const sable::WallHistory &wa = wall_history(a, w), &wb = wall_history(b, w);
+    const sable::HistoryStore &wa = wall_history(a, w), &wb = wall_history(b, w);
     ASSERT_EQ(wa.count(), wb.count()) << w;
     for (std::size_t r = 0; r < wa.count(); ++r) {
       ASSERT_TRUE(wa.key(r) == wb.key(r)) << w;
@@ -127,7 +127,7 @@ std::size_t active_pair_history(sable::Simulation& s) {
 std::size_t active_wall_history(sable::Simulation& s) {
   std::size_t c = 0;
   for (const char* w : kWalls) {
-    const sable::WallHistory& h = wall_history(s, w);
+    const sable::HistoryStore& h = wall_history(s, w);
     for (std::size_t r = 0; r < h.count(); ++r) {
       bool nz = false;
       for (int m = 0; m < h.size(); ++m) nz = nz || h.row(r)[m] != 0.0;
@@ -219,7 +219,7 @@ TEST(Restart, FileNamesModelSlotsColumnsAndFixStates) {
   EXPECT_NE(s.find(b->pair->describe()), std::string::npos) << s;
   for (auto& slot : b->pair->history()->slots) EXPECT_NE(s.find(" " + slot.name), std::string::npos) << s;
   EXPECT_NE(s.find("ins (insert/pack"), std::string::npos) << s;
-  EXPECT_EQ(read_bytes(path).rfind("SABLE RESTART\nformat 2\n", 0), 0u);
+  EXPECT_EQ(read_bytes(path).rfind("SABLE RESTART\nformat 3\n", 0), 0u);
 
   Deck c;
   c("units si\natom_style granular\nread_restart " + path);
@@ -273,8 +273,8 @@ TEST(Restart, BadFilesNameTheFileAndTheProblem) {
   flipped[good.size() / 2] ^= 0x20;
   EXPECT_NE(read_error("flip", flipped).find("is corrupt"), std::string::npos);
   std::string v9 = good;
-  v9.replace(v9.find("format 2"), 8, "format 9");
-  EXPECT_NE(read_error("v9", v9).find("has restart format 9, but this sable reads format 2"), std::string::npos);
+  v9.replace(v9.find("format 3"), 8, "format 9");
+  EXPECT_NE(read_error("v9", v9).find("has restart format 9, but this sable reads format 3"), std::string::npos);
   EXPECT_NE(read_error("text", "ITEM: TIMESTEP\n0\n").find("is not a sable restart file"), std::string::npos);
   using namespace std::string_literals;  // the header of a LIGGGHTS 3.8 restart file, embedded zeros included
   const std::string lig = "\0\0\0\0Z\0\0\0Version LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26"s;

@@ -249,7 +249,7 @@ neigh_modify every 1 check no)");  // a rebuild (and sort) every step
   auto* floor = dynamic_cast<sable::FixWallGran*>(d->find_fix("floor"));
   ASSERT_TRUE(floor);
   auto spring = [&](long id) {  // 0 when the wall keeps no contact of grain id
-    const sable::WallHistory& kept = floor->history();
+    const sable::HistoryStore& kept = floor->history();
     for (std::size_t r = 0; r < kept.count(); ++r)
       if (kept.key(r).tag == id) {
         const double* h = kept.row(r);
