@@ -112,7 +112,6 @@ void FixWallGran::Staged::clear() {
   place.clear();
   row.clear();
   hist.clear();
-  keys.clear();
   force.clear();
   deltan.clear();
   en.clear();
@@ -212,6 +211,7 @@ void FixWallGran::collect(std::size_t c0, std::size_t c1, std::uint32_t also, co
 void FixWallGran::refresh_near() {
   const Atoms& at = sim.atoms;
   if (near_builds_ == sim.neighbor.builds && near_n_ == at.n) return;
+  keep_places();  // by grain id: the indices are about to change meaning
   near_builds_ = sim.neighbor.builds;
   near_n_ = at.n;
   const double reach = sim.neighbor.skin + std::fabs(wiggle_amp_);
@@ -229,23 +229,81 @@ void FixWallGran::refresh_near() {
         return dist - at.radius[i] < reach;
       },
       near_);
+  load_places();
 }
 
-// Keys in grain-id order (a grain meets a primitive wall once: no repeats).
-void FixWallGran::look_up(Staged& st) const {
-  const std::size_t n = st.atom.size();
-  const long* tag = sim.atoms.id.data();
-  st.by_id.resize(n);  // (id, contact): sorted in place, no look-ups through the atoms while sorting
-  for (std::size_t c = 0; c < n; ++c) st.by_id[c] = {tag[st.atom[c]], static_cast<int>(c)};
-  std::sort(st.by_id.begin(), st.by_id.end());
-  st.keys.resize(n);
-  st.row.resize(n);
+// hist_ becomes the last pass's contacts, by grain id, in key order.
+void FixWallGran::keep_places() const {
+  if (!store_behind_) return;
+  store_behind_ = false;
+  const std::size_t hs = static_cast<std::size_t>(hist_size_);
+  std::vector<std::pair<long, int>> by_id;  // (id, place) of the last pass's contacts
+  for (std::size_t p = 0; p < near_.size(); ++p)
+    if (place_pass_[p] == last_pass_) by_id.emplace_back(near_id_[p], static_cast<int>(p));
+  std::sort(by_id.begin(), by_id.end());
+  HistoryStore::Order order(by_id.size());
+  for (std::size_t q = 0; q < by_id.size(); ++q) order[q] = {0, static_cast<int>(q)};
+  hist_.keep(
+      order, [&](int, int q) { return HistoryStore::Key{by_id[q].first, HistoryStore::kWall, 0}; },
+      [&](int, int q) { return place_hist_.data() + static_cast<std::size_t>(by_id[q].second) * hs; });
+}
+
+// Each near place takes its grain's row of hist_ (one sort, one walk), marked
+// as the last pass's contact where there was one.
+void FixWallGran::load_places() {
+  const Atoms& at = sim.atoms;
+  const std::size_t n = near_.size(), hs = static_cast<std::size_t>(hist_size_);
+  near_id_.resize(n);
+  for (std::size_t p = 0; p < n; ++p) near_id_[p] = at.id[near_[p]];
+  place_pass_.assign(n, -1);
+  place_hist_.assign(n * hs, 0.0);
+  store_behind_ = false;
+  if (hs == 0 || hist_.count() == 0) return;
+  std::vector<std::pair<long, int>> by_id(n);
+  for (std::size_t p = 0; p < n; ++p) by_id[p] = {near_id_[p], static_cast<int>(p)};
+  std::sort(by_id.begin(), by_id.end());
+  std::vector<HistoryStore::Key> keys(n);
+  for (std::size_t q = 0; q < n; ++q) keys[q] = {by_id[q].first, HistoryStore::kWall, 0};
+  std::vector<double> rows(n * hs);
+  std::vector<char> found(n);
+  hist_.look_up(keys.data(), n, rows.data(), found.data());
   for (std::size_t q = 0; q < n; ++q) {
-    st.keys[q] = {st.by_id[q].first, HistoryStore::kWall, 0};
-    st.row[st.by_id[q].second] = static_cast<int>(q);
+    if (!found[q]) continue;
+    const std::size_t p = static_cast<std::size_t>(by_id[q].second);
+    place_pass_[p] = last_pass_;
+    std::copy_n(rows.data() + q * hs, hs, place_hist_.data() + p * hs);
   }
-  st.hist.resize(n * static_cast<std::size_t>(hist_size_));
-  hist_.look_up(st.keys.data(), n, st.hist.data());
+}
+
+void FixWallGran::ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) {
+  keep_places();
+  hist_.renumber(o, n);
+  near_builds_ = -1;  // reload the places at the next pass
+}
+
+void FixWallGran::pass_history(const Staged& st, WallBatch& b) {
+  const std::size_t hs = static_cast<std::size_t>(hist_size_);
+  for (const int p : st.place) {
+    if (place_pass_[p] != last_pass_) std::fill_n(place_hist_.data() + static_cast<std::size_t>(p) * hs, hs, 0.0);
+    place_pass_[p] = pass_no_;
+  }
+  b.hist = place_hist_.data();
+  b.hist_index = st.place.data();
+  b.hist_stride = hist_size_;
+}
+
+void FixWallGran::copy_history(Staged& st, WallBatch& b) const {
+  const std::size_t n = st.atom.size(), hs = static_cast<std::size_t>(hist_size_);
+  st.hist.assign(n * hs, 0.0);
+  st.row.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    st.row[c] = static_cast<int>(c);
+    const std::size_t p = static_cast<std::size_t>(st.place[c]);
+    if (place_pass_[p] == last_pass_) std::copy_n(place_hist_.data() + p * hs, hs, st.hist.data() + c * hs);
+  }
+  b.hist = st.hist.data();
+  b.hist_index = st.row.data();
+  b.hist_stride = hist_size_;
 }
 
 WallBatch FixWallGran::batch(Staged& st) {
@@ -257,12 +315,6 @@ WallBatch FixWallGran::batch(Staged& st) {
   b.deltan = st.deltan.data();
   b.en = st.en.data();
   b.vwall = st.vwall.data();
-  if (hist_size_ > 0) {  // contact k's history is row st.row[k] of st.hist
-    look_up(st);
-    b.hist = st.hist.data();
-    b.hist_index = st.row.data();
-    b.hist_stride = hist_size_;
-  }
   b.wall_type = type_;
   b.ctx.dt = sim.dt;
   return b;
@@ -279,6 +331,7 @@ void FixWallGran::begin(FixHook) {
   pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
   pass_atoms_ = sim.atoms.n;
+  pass_no_ = last_pass_ + 1;
   parts_.start([](Staged& p) { p.clear(); });
   sum_.begin(near_.size(), thread_settings().wall_block, parts_.size());
 }
@@ -291,6 +344,7 @@ void FixWallGran::range(FixHook, const AtomRange& r) {
   collect(static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), ~0u, pass_now_, st);
   st.force.resize(3 * st.atom.size());
   WallBatch b = batch(st);
+  if (hist_size_ > 0) pass_history(st, b);
   b.force = st.force.data();
   b.ctx.update = pass_update_;
   kernel_->wall_forces(b);
@@ -301,14 +355,8 @@ void FixWallGran::range(FixHook, const AtomRange& r) {
 
 // The history kept is this pass's contacts': a grain that left the wall starts afresh.
 void FixWallGran::end(FixHook) {
-  if (hist_size_ > 0) {
-    const std::size_t hs = static_cast<std::size_t>(hist_size_);
-    HistoryStore::merged_order(
-        parts_.size(), [&](int t) { return parts_[t].keys.data(); },
-        [&](int t) { return parts_[t].keys.size(); }, order_);
-    hist_.keep(
-        order_, [&](int t, int q) { return parts_[t].keys[q]; }, [&](int t, int q) { return parts_[t].hist.data() + q * hs; });
-  }
+  last_pass_ = pass_no_;
+  store_behind_ = hist_size_ > 0;
   double total[3];
   sum_.finish(total);
   for (int d = 0; d < 3; ++d) force_[d] = 0.0 - total[d];  // (0.0 - x, not -x: no "-0" in thermo output)
@@ -326,12 +374,14 @@ void FixWallGran::records(std::uint32_t bits, ContactRecords& out) {
   records_.clear();
   collect(0, near_.size(), bits, now(), records_);
   WallBatch b = batch(records_);
+  if (hist_size_ > 0) copy_history(records_, b);
   b.ctx.update = false;
   kernel_->wall_records(b, out);
 }
 
 bool FixWallGran::write_state(std::string& out) const {
   restart::Packer p;
+  keep_places();
   hist_.write(p);
   out = p.bytes;
   return true;
@@ -340,6 +390,8 @@ bool FixWallGran::write_state(std::string& out) const {
 void FixWallGran::read_state(const std::string& in) {
   restart::Unpacker u(in, "the restart state of fix " + id);
   if (!hist_.read(u)) args.fail_line("the restart file's fix " + id + " has another model");
+  store_behind_ = false;
+  near_builds_ = -1;  // the places load it at the next pass
 }
 
 double FixWallGran::compute_vector(int i) {

@@ -37,7 +37,10 @@ class FixWallGran : public Fix, public ContactSource {
   double compute_vector(int i) override;  // 1..3: force on the wall
   bool write_state(std::string& out) const override;  // the contacts' history
   void read_state(const std::string& in) override;
-  const HistoryStore& history() const { return hist_; }
+  const HistoryStore& history() const {  // the last pass's contacts, by grain id
+    keep_places();
+    return hist_;
+  }
   double max_speed() const override;
 
   ContactKernel& kernel() { return *kernel_; }
@@ -51,7 +54,7 @@ class FixWallGran : public Fix, public ContactSource {
   const double* wall_point(int k) const override { return &records_.point[3 * k]; }
   const double* wall_velocity(int k) const override { return &records_.vwall[3 * k]; }
   bool last_pass(const PassFn& fn) const override;
-  void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override { hist_.renumber(o, n); }
+  void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override;
   int plane_axis() const override { return shape_ == Shape::Plane ? axis_ : -1; }
 
  private:
@@ -65,20 +68,28 @@ class FixWallGran : public Fix, public ContactSource {
   long wiggle_step0_ = 0;
   int type_ = 1;
   int hist_size_ = 0;
-  HistoryStore hist_;  // last force pass's contacts, by grain id
+  // The history lives by near-list place between neighbour rebuilds (atom
+  // indices hold: O(1) per contact), and by grain id in hist_ across them, in
+  // restart files and renumberings: keep_places() brings hist_ up to date,
+  // load_places() fills the places from it after the near list is refreshed.
+  mutable HistoryStore hist_;
+  std::vector<double> place_hist_;  // per near place: its row
+  std::vector<long> place_pass_;    // per near place: the last pass that touched it
+  std::vector<long> near_id_;       // per near place: the grain's id at the refresh
+  long last_pass_ = 0, pass_no_ = 0;
+  mutable bool store_behind_ = false;  // a pass changed the places since hist_ was kept
+  void keep_places() const;
+  void load_places();
   bool setup_pass_ = true;
   std::uint32_t freeze_bit_ = 0;
   double force_[3] = {0, 0, 0};
   // Overlapping grains found by one search: atom index, its place in the near
   // list, overlap, unit normal, wall velocity, wall point and (force pass)
-  // force per contact; keys: the contacts' (grain id, 0) in id order, hist their
-  // history in that order and row each contact's place there. Own cache lines:
-  // each thread grows its own.
+  // force per contact; records() copies the history into hist (row per
+  // contact, index in row). Own cache lines: each thread grows its own.
   struct alignas(64) Staged {
     std::vector<int> atom, place, row;
-    std::vector<std::pair<long, int>> by_id;
     std::vector<double> deltan, en, vwall, point, force, hist;
-    std::vector<HistoryStore::Key> keys;
     void clear();
   };
   // Wall position along its normal and normal velocity at this step (wiggle).
@@ -92,7 +103,6 @@ class FixWallGran : public Fix, public ContactSource {
   bool pass_update_ = true;
   std::size_t pass_atoms_ = 0;
   Staged records_;  // the contacts of the last records() call
-  HistoryStore::Order order_;  // end(): the parts' contacts in key order
 
   // Grains that can reach the wall before the next neighbour rebuild (indices
   // hold until then): the per-step search looks at these only.
@@ -105,9 +115,12 @@ class FixWallGran : public Fix, public ContactSource {
   bool geometry(std::size_t i, const Now& w, double n[3], double vw[3], double& dist) const;
   // Appends the overlapping grains of near_[c0, c1) in the fix group that also match `also`.
   void collect(std::size_t c0, std::size_t c1, std::uint32_t also, const Now& w, Staged& out) const;
-  // The staged contacts' history from the last pass (s.keys, s.hist, s.row).
-  void look_up(Staged& s) const;
   WallBatch batch(Staged& s);
+  // The force pass's contacts take their rows in place_hist_; a contact the
+  // last pass did not have starts at zero.
+  void pass_history(const Staged& s, WallBatch& b);
+  // A copy of the last pass's history of the staged contacts (records()).
+  void copy_history(Staged& s, WallBatch& b) const;
   BlockSum<3> sum_;  // the total force on the grains, in fixed blocks of the near list
 };
 

@@ -58,14 +58,14 @@ class HistoryStore {
 
   // (Walls.) The history of each of `keys` (sorted, no repeats; the store in
   // key order) into out, size() values per key: the row of the same key; else
-  // a row of the same grain and partner whose
-  // element is not in `keys` (that contact has ended) and that
-  // takes(its element, the key's element) accepts (a mesh: the grain passed
-  // onto a triangle of the same surface); else zeros.
+  // a row of the same grain and partner whose element is not in `keys` (that
+  // contact has ended) and that takes(its element, the key's element) accepts
+  // (a mesh: the grain passed onto a triangle of the same surface); else zeros.
+  // found (if given): 1 where a row was taken, else 0.
   template <class Takes>
-  void look_up(const Key* keys, std::size_t n, double* out, Takes&& takes) const;
-  void look_up(const Key* keys, std::size_t n, double* out) const {
-    look_up(keys, n, out, [](int, int) { return false; });
+  void look_up(const Key* keys, std::size_t n, double* out, Takes&& takes, char* found = nullptr) const;
+  void look_up(const Key* keys, std::size_t n, double* out, char* found = nullptr) const {
+    look_up(keys, n, out, [](int, int) { return false; }, found);
   }
 
   // (Walls.) The contacts of parts 0..nparts-1 in one key order; keys_of(p) and count_of(p)
@@ -94,9 +94,10 @@ class HistoryStore {
 };
 
 template <class Takes>
-void HistoryStore::look_up(const Key* keys, std::size_t n, double* out, Takes&& takes) const {
+void HistoryStore::look_up(const Key* keys, std::size_t n, double* out, Takes&& takes, char* found) const {
   const std::size_t hs = static_cast<std::size_t>(size_);
   std::fill(out, out + n * hs, 0.0);
+  if (found) std::fill(found, found + n, 0);
   if (hs == 0) return;
   const long rows = static_cast<long>(tag_.size());
   long lo = 0;  // keys and rows both in key order: one walk through the rows
@@ -113,6 +114,7 @@ void HistoryStore::look_up(const Key* keys, std::size_t n, double* out, Takes&& 
       if (takes(element_[j], key.element)) from = j;
     }
     if (from >= 0) std::copy_n(hist_.begin() + from * hs, hs, out + k * hs);
+    if (found) found[k] = from >= 0;
   }
 }
 
