@@ -397,6 +397,7 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
     touches(mi, c, i, r, wlo, whi, p);
     if (touched.empty()) continue;
     reduce_touches(*this, mi, mesh, touched, r, contacts);
+    const std::size_t first = out.size();
     for (const int rep : contacts) {
       const Touch& tc = touched[rep];
       const Vec3d& sh = shifts_[tc.img];
@@ -418,8 +419,8 @@ void FixWallGranMesh::collect(int mi, std::uint32_t also, std::size_t c0, std::s
       }
       out.push_back(h);
     }
+    std::sort(out.begin() + static_cast<long>(first), out.end(), [](const Hit& p, const Hit& q) { return p.tri < q.tri; });
   }
-  std::sort(out.begin(), out.end(), [](const Hit& p, const Hit& q) { return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri; });
 }
 
 // Triangles t and u are one surface: a shared inactive edge or corner, or an
@@ -436,24 +437,33 @@ bool FixWallGranMesh::joined(int m, int t, int u) const {
 // of that grain on a triangle of the same surface (curvature) that has ended
 // (the grain passed onto this triangle), else zeros: as LIGGGHTS 3.8, history
 // does not pass an active edge.
-std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits,
-                                                 std::vector<HistoryStore::Key>& keys) const {
-  keys.resize(hits.size());
-  for (std::size_t k = 0; k < hits.size(); ++k) keys[k] = {hits[k].tag, HistoryStore::kWall, hits[k].tri};
-  std::vector<double> out(static_cast<std::size_t>(hist_size_) * hits.size());
+std::vector<double> FixWallGranMesh::history_for(int m, const std::vector<Hit>& hits, std::vector<HistoryStore::Key>& keys,
+                                                 std::vector<int>& order, std::vector<int>& rows) const {
+  const std::size_t n = hits.size();
+  order.resize(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int p, int q) {
+    return hits[p].tag != hits[q].tag ? hits[p].tag < hits[q].tag : hits[p].tri < hits[q].tri;
+  });
+  keys.resize(n);
+  rows.resize(n);
+  for (std::size_t q = 0; q < n; ++q) {
+    const Hit& h = hits[order[q]];
+    keys[q] = {h.tag, HistoryStore::kWall, h.tri};
+    rows[order[q]] = static_cast<int>(q);
+  }
+  std::vector<double> out(static_cast<std::size_t>(hist_size_) * n);
   prev_[m].look_up(keys.data(), keys.size(), out.data(), [&](int before, int now) { return joined(m, before, now); });
   return out;
 }
 
 WallBatch FixWallGranMesh::batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols,
-                                 std::vector<int>& atoms, std::vector<int>& rows, double* hist) {
+                                 std::vector<int>& atoms, const std::vector<int>& rows, double* hist) {
   const std::size_t n = hits.size();
   cols.assign(7 * n, 0.0);  // deltan, en, vwall
   atoms.resize(n);
-  rows.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     atoms[k] = hits[k].atom;
-    rows[k] = static_cast<int>(k);
     cols[k] = hits[k].deltan;
     for (int d = 0; d < 3; ++d) {
       cols[n + 3 * k + d] = hits[k].en[d];
@@ -479,10 +489,15 @@ WallBatch FixWallGranMesh::batch(int m, const std::vector<Hit>& hits, std::vecto
 }
 
 void FixWallGranMesh::begin(FixHook) {
+  sums_.resize(meshes_.size());
+  ref_world_.resize(meshes_.size());
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     meshes_[m]->update_pose();
-    if (owner_[m]) meshes_[m]->mesh().clear_load();
+    TriMesh& mesh = meshes_[m]->mesh();
+    if (owner_[m]) mesh.clear_load();
     refresh_near(static_cast<int>(m));
+    ref_world_[m] = mesh.to_world(mesh.ref_body);
+    sums_[m].begin(sim.atoms.n);
   }
   pass_update_ = !setup_pass_;  // LIGGGHTS: no history update in the setup force pass
   setup_pass_ = false;
@@ -504,41 +519,66 @@ void FixWallGranMesh::range(FixHook, const AtomRange& r) {
     Part::PerMesh& pm = p.mesh[m];
     const int mi = static_cast<int>(m);
     collect(mi, ~0u, static_cast<std::size_t>(c0), static_cast<std::size_t>(c1), p, pm.hits);
-    pm.hist = history_for(mi, pm.hits, pm.keys);
+    pm.hist = history_for(mi, pm.hits, pm.keys, pm.order, pm.rows);
     WallBatch b = batch(mi, pm.hits, pm.cols, pm.atoms, pm.rows, pm.hist.data());
     pm.force.assign(3 * pm.hits.size(), 0.0);
     b.force = pm.force.data();
     b.ctx.update = pass_update_;
     if (!pm.hits.empty()) kernel_->wall_forces(b);
     contact_wear(mi, pm);
+    sum_loads(mi, r, pm);
   }
 }
 
-// The threads' contacts of each mesh in (grain id, triangle) order: the
-// reaction on the mesh summed, and the history kept for the next pass.
+// The reaction of this range's contacts on mesh m into core's AtomSum, in atom
+// order: every contact's (f_ID), and of the grains in the mesh fix's group
+// (LIGGGHTS' stress module) the force and the torque about the reference point.
+void FixWallGranMesh::sum_loads(int m, const AtomRange& r, const Part::PerMesh& pm) {
+  AtomSum<9>& sum = sums_[m];
+  sum.range(r);
+  const std::uint32_t mesh_bits = meshes_[m]->groupbit;
+  for (std::size_t k = 0; k < pm.hits.size(); ++k) {
+    const Hit& h = pm.hits[k];
+    const Vec3d on_mesh{0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]};
+    double v[9] = {on_mesh[0], on_mesh[1], on_mesh[2], 0, 0, 0, 0, 0, 0};
+    if (sim.atoms.mask[h.atom] & mesh_bits) {
+      const Vec3d a = sub3(h.pmesh, ref_world_[m]);  // lever arm
+      const double t[3] = {a[1] * on_mesh[2] - a[2] * on_mesh[1], a[2] * on_mesh[0] - a[0] * on_mesh[2],
+                           a[0] * on_mesh[1] - a[1] * on_mesh[0]};
+      for (int d = 0; d < 3; ++d) v[3 + d] = on_mesh[d], v[6 + d] = t[d];
+    }
+    sum.add(r, static_cast<std::size_t>(h.atom), v);
+  }
+}
+
+// Each mesh's force and torque from core's AtomSum; the per-triangle loads and
+// wear (a scatter onto triangles) and the history kept for the next pass from
+// the threads' contacts in (grain id, triangle) order.
 void FixWallGranMesh::end(FixHook) {
   double total[3] = {0, 0, 0};
   const std::size_t hs = static_cast<std::size_t>(hist_size_);
-  HistoryStore::Order order;  // (part, contact)
+  HistoryStore::Order order;  // (part, contact in key order)
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     auto pm_of = [&](int t) -> const Part::PerMesh& { return parts_[t].mesh[m]; };
+    double v[9];
+    sums_[m].total(v);
+    TriMesh& mesh = meshes_[m]->mesh();
+    mesh.add_force_torque({v[3], v[4], v[5]}, {v[6], v[7], v[8]});
+    for (int d = 0; d < 3; ++d) total[d] += v[d];
     HistoryStore::merged_order(
         parts_.size(), [&](int t) { return pm_of(t).keys.data(); },
         [&](int t) { return pm_of(t).hits.size(); }, order);
-    TriMesh& mesh = meshes_[m]->mesh();
     const std::uint32_t mesh_bits = meshes_[m]->groupbit;  // LIGGGHTS' stress module: grains of the mesh fix's group
-    for (const auto& [t, k] : order) {
+    for (const auto& [t, q] : order) {
       const Part::PerMesh& pm = pm_of(t);
+      const int k = pm.order[q];
       const Hit& h = pm.hits[k];
-      const Vec3d on_mesh{0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]};
-      for (int d = 0; d < 3; ++d) total[d] += on_mesh[d];
-      if (sim.atoms.mask[h.atom] & mesh_bits) {
-        mesh.add_load(h.pmesh, on_mesh, h.tri);
-        if (!pm.wear.empty() && pass_update_) mesh.wear[h.tri] += pm.wear[k];
-      }
+      if (!(sim.atoms.mask[h.atom] & mesh_bits)) continue;
+      mesh.add_triangle_load(h.tri, {0.0 - pm.force[3 * k], 0.0 - pm.force[3 * k + 1], 0.0 - pm.force[3 * k + 2]});
+      if (!pm.wear.empty() && pass_update_) mesh.wear[h.tri] += pm.wear[k];
     }
     prev_[m].keep(
-        order, [&](int t, int k) { return pm_of(t).keys[k]; }, [&](int t, int k) { return pm_of(t).hist.data() + k * hs; });
+        order, [&](int t, int q) { return pm_of(t).keys[q]; }, [&](int t, int q) { return pm_of(t).hist.data() + q * hs; });
   }
   std::copy(total, total + 3, force_);
 }
@@ -572,14 +612,15 @@ void FixWallGranMesh::records(std::uint32_t bits, ContactRecords& out) {
   std::vector<Hit> hits;
   std::vector<HistoryStore::Key> keys;
   std::vector<double> cols;
-  std::vector<int> atoms, rows;
+  std::vector<int> atoms, rows, order;
   ContactRecords part;
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     const int mi = static_cast<int>(m);
     meshes_[m]->update_pose();
     refresh_near(mi);
     collect(mi, bits, 0, near_[m].atoms.size(), serial_, hits);
-    std::vector<double> hist = history_for(mi, hits, keys);
+    std::sort(hits.begin(), hits.end(), [](const Hit& p, const Hit& q) { return p.tag != q.tag ? p.tag < q.tag : p.tri < q.tri; });
+    std::vector<double> hist = history_for(mi, hits, keys, order, rows);  // records in key order: rows[k] = k
     WallBatch b = batch(mi, hits, cols, atoms, rows, hist.data());
     b.ctx.update = false;
     const int offset = static_cast<int>(rec_.tri.size());

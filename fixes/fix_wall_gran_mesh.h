@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "contact_models/kernel.h"
+#include "core/engine/block_sum.h"
 #include "core/engine/contact_source.h"
 #include "core/engine/fix.h"
 #include "core/engine/threads.h"
@@ -124,9 +125,12 @@ class FixWallGranMesh : public Fix, public ContactSource {
     TriMesh::Scratch seen;
     struct PerMesh {
       std::vector<Hit> hits;
-      std::vector<HistoryStore::Key> keys;  // the hits' (grain id, triangle)
+      // hits in atom order (a grain's by triangle); keys their (grain id,
+      // triangle) in key order, order[q] the hit of keys[q], rows[k] the key
+      // place (history row) of hit k, hist the rows in key order.
+      std::vector<HistoryStore::Key> keys;
       std::vector<double> hist, force, cols, wear;  // wear: per contact, this step's (wear finnie)
-      std::vector<int> atoms, rows;
+      std::vector<int> atoms, rows, order;
     };
     std::vector<PerMesh> mesh;
   };
@@ -159,12 +163,20 @@ class FixWallGranMesh : public Fix, public ContactSource {
   void refresh_near(int m);
   // The candidates of near_[m].atoms[c] within distance r of grain i now, into p.touched.
   void touches(int m, std::size_t c, std::size_t i, double r, const Vec3d& wlo, const Vec3d& whi, Part& p);
-  // Contacts with mesh m of the grains of near_[m].atoms[c0, c1) in groupbit & also, sorted by (tag, triangle).
+  // Contacts with mesh m of the grains of near_[m].atoms[c0, c1) in groupbit & also,
+  // in atom order, each grain's by triangle.
   void collect(int m, std::uint32_t also, std::size_t c0, std::size_t c1, Part& p, std::vector<Hit>& out);
-  // History rows for the hits from prev_[m] (same triangle, else the same surface); keys: the hits'.
-  std::vector<double> history_for(int m, const std::vector<Hit>& hits, std::vector<HistoryStore::Key>& keys) const;
+  // History rows for the hits from prev_[m] (same triangle, else the same surface),
+  // in key order: keys, order (the hit of each key) and rows (each hit's key place).
+  std::vector<double> history_for(int m, const std::vector<Hit>& hits, std::vector<HistoryStore::Key>& keys,
+                                  std::vector<int>& order, std::vector<int>& rows) const;
   WallBatch batch(int m, const std::vector<Hit>& hits, std::vector<double>& cols, std::vector<int>& atoms,
-                  std::vector<int>& rows, double* hist);
+                  const std::vector<int>& rows, double* hist);
+  // Core's sums of the reaction on each mesh (this pass): f_ID, and force and
+  // torque about the reference point of the grains in the mesh fix's group.
+  std::vector<AtomSum<9>> sums_;
+  std::vector<Vec3d> ref_world_;  // each mesh's reference point this pass
+  void sum_loads(int m, const AtomRange& r, const Part::PerMesh& pm);
 };
 
 }  // namespace sable

@@ -403,11 +403,14 @@ double TriMesh::area(int t) const {
   return 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
 }
 
-void TriMesh::add_load(const Vec3d& pw, const Vec3d& f, int t) {
+void TriMesh::add_force_torque(const Vec3d& f, const Vec3d& t) {
+  force = add(force, f);
+  torque = add(torque, t);
+}
+
+void TriMesh::add_triangle_load(int t, const Vec3d& f) {
   if (tri_force.size() != 3 * ntri()) tri_force.assign(3 * ntri(), 0.0);
   for (int k = 0; k < 3; ++k) tri_force[3 * static_cast<std::size_t>(t) + k] += f[k];
-  force = add(force, f);
-  torque = add(torque, cross(sub(pw, to_world(ref_body)), f));
 }
 
 }  // namespace sable

@@ -122,7 +122,8 @@ class TriMesh {
   // over the run (fix wall/gran mesh adds it); empty when the mesh has no wear model.
   std::vector<double> wear;
   void clear_load();
-  void add_load(const Vec3d& pw, const Vec3d& f, int t);  // force f on triangle t at world point pw
+  void add_force_torque(const Vec3d& f, const Vec3d& t);
+  void add_triangle_load(int t, const Vec3d& f);  // force f on triangle t (stress outputs)
   double area(int t) const;
 
  private:

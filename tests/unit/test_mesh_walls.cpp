@@ -552,7 +552,7 @@ TEST(MeshWall, UnfixMoveMeshStopsTheMotion) {
   EXPECT_NEAR(fv(d, "plate", 8), 0.004 * std::sin(a), 1e-15);
 }
 
-// The mesh forces are summed in a fixed order (grain id, triangle): 80
+// The mesh forces are summed by core's AtomSum (atom order, fixed blocks): 80
 // grains thrown onto the bottom of the turning drum of tests/decks/mesh_drum.in
 // give the same bits on 1 and 2 threads (positions, velocities, the drum's
 // force and torque).
