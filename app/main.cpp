@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/engine/comm.h"
 #include "core/engine/error.h"
 #include "core/engine/simulation.h"
 #include "core/engine/threads.h"
@@ -108,17 +109,28 @@ Options parse_options(int argc, char** argv) {
   return o;
 }
 
-// mpirun of this build (no MPI) would start N copies that each run the whole deck and
-// write the same files: refuse, saying how sable uses a machine's cores instead.
+// A launcher's rank count that this process's MPI does not see: mpirun of a build without
+// MPI (or another MPI's launcher) starts N copies that each run the whole deck and write the
+// same files. Refuse, saying how sable uses a machine's cores instead.
 std::string mpi_launch_problem() {
   for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"}) {
     const char* v = std::getenv(var);
     if (v && std::atol(v) > 1)
-      return std::string("sable was built without MPI, but was started as one of ") + v + " processes (" + var +
-             "=" + v + "): mpirun would run " + v + " independent copies of the deck, all writing the same files. "
+      return std::string(Comm::built_with_mpi() ? "sable's MPI sees one process, but it" : "sable was built without MPI, but") +
+             " was started as one of " + v + " processes (" + var + "=" + v + "): mpirun would run " + v +
+             " independent copies of the deck, all writing the same files. "
              "Run one process and give it threads instead: OMP_NUM_THREADS=N sable -in DECK";
   }
   return "";
+}
+
+// Several ranks: each would need its subdomain's grains and ghosts, which sable does not
+// have yet (docs/parallel.md). Every rank returns the error; rank 0 alone prints it.
+std::string ranks_problem(const Comm& comm) {
+  if (comm.size() == 1) return "";
+  return "sable was started on " + std::to_string(comm.size()) +
+         " MPI ranks, but it cannot split the box across ranks yet (the domain decomposition is not built). "
+         "Run one rank and give it threads instead: OMP_NUM_THREADS=N sable -in DECK (or mpirun -np 1)";
 }
 
 // The first lines of the screen and the log: what ran, from which commit, on how many threads.
@@ -175,16 +187,21 @@ int run(const Options& o, Simulation& sim, Input& input, std::unique_ptr<FILE, C
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// Everything between MPI's start and end (main): returns the exit status.
+int sable_main(int argc, char** argv) {
   std::unique_ptr<FILE, CloseFile> screen_file;  // -screen FILE; outlives sim, which writes to it
   Simulation sim;
+  if (const std::string why = ranks_problem(sim.comm); !why.empty()) {
+    if (sim.comm.rank() == 0) std::fprintf(stderr, "ERROR: %s\n", why.c_str());
+    return 1;
+  }
   Input input(sim);
   try {
     const Options o = parse_options(argc, argv);
     if (o.help) {
-      std::printf("%s%s", kUsage, kHelp);
+      std::printf("%s%s%s", kUsage, kHelp,
+                  Comm::built_with_mpi() ? "Built with MPI: one rank only for now (mpirun -np 1); several are refused.\n"
+                                         : "Built without MPI.\n");
       return 0;
     }
     if (o.version) {
@@ -207,4 +224,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ERROR: internal error (an exception of unknown type); please report it with this deck\n");
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Comm::init(&argc, &argv);  // MPI_Init where built with MPI (before Simulation reads its rank)
+  const int status = sable_main(argc, argv);
+  Comm::finalize();  // every rank, error or not: a collective end, no hang
+  return status;
 }

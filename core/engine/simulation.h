@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/engine/atoms.h"
+#include "core/engine/comm.h"
 #include "core/engine/compute.h"
 #include "core/engine/domain.h"
 #include "core/io/dump.h"
@@ -41,6 +42,7 @@ class Simulation {
   Simulation();
   ~Simulation();
 
+  Comm comm;  // this process among the run's ranks, the processor grid (core/engine/comm.h)
   Atoms atoms;
   Domain domain;
   Neighbor neighbor;

@@ -160,6 +160,7 @@ void cmd_read_data(Simulation& sim, const Args& a) {
   for (int k = 0; k < 3; ++k) sim.domain.lo[k] = h.lo[k], sim.domain.hi[k] = h.hi[k];
   sim.domain.box_exists = true;
   sim.atoms.ntypes = static_cast<int>(h.types);
+  box_created(sim);
   bool atoms_read = false;
   std::string s;
   do {

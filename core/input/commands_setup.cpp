@@ -90,7 +90,34 @@ void cmd_newton(Simulation& sim, const Args& a) {
   sim.newton = a.yes_no(1, "on or off");
 }
 
-void cmd_ignore(Simulation&, const Args&) {}  // communicate, processors: one process
+void cmd_ignore(Simulation&, const Args&) {}  // communicate: no ghosts to send yet
+
+// processors Px Py Pz (LAMMPS): the processor grid, each count a number or '*' (sable
+// chooses, core/engine/comm.h). Checked here against the ranks, used when the box is created.
+void cmd_processors(Simulation& sim, const Args& a) {
+  if (sim.domain.box_exists) a.fail_line("processors must come before the box is created (create_box, read_data, read_restart)");
+  Grid g{0, 0, 0};
+  long product = 1;
+  for (int k = 0; k < 3; ++k) {
+    if (a.word(1 + k, "a processor count or *") == "*") continue;
+    const long n = a.integer(1 + k, "a processor count or *");
+    if (n < 1) a.fail(1 + k, "a processor count >= 1 or *");
+    g[k] = static_cast<int>(n);
+    product *= n;
+  }
+  if (a.size() > 4) a.fail(4, "nothing after Px Py Pz (sable has no grid, map, part or file keywords)");
+  if (sim.domain.dimension == 2 && g[2] > 1) a.fail(3, "1 or * (Pz of a 2D box)");
+  const int ranks = sim.comm.size();
+  const bool all_given = g[0] && g[1] && g[2];
+  if (all_given ? product != ranks : ranks % product != 0) {
+    const std::size_t word = g[0] ? 1 : g[1] ? 2 : 3;  // the first explicit count
+    a.fail(word, std::string(all_given ? "counts whose product is " : "counts whose product divides ") +
+                     "the number of MPI ranks, " + std::to_string(ranks) + " (" + a[1] + " x " + a[2] + " x " + a[3] +
+                     "; '*' lets sable choose)");
+  }
+  sim.comm.requested = g;
+  sim.comm.requested_at = a.where().file + ":" + std::to_string(a.where().line);
+}
 
 // soft_particles yes|no (LIGGGHTS): yes allows youngsModulus below 5e6 in SI units.
 void cmd_soft_particles(Simulation& sim, const Args& a) {
@@ -112,6 +139,7 @@ void cmd_create_box(Simulation& sim, const Args& a) {
   }
   sim.domain.box_exists = true;
   sim.atoms.ntypes = static_cast<int>(nt);
+  box_created(sim);
 }
 
 void cmd_region(Simulation& sim, const Args& a) {
@@ -353,7 +381,7 @@ SABLE_COMMAND("boundary", cmd_boundary);
 SABLE_COMMAND("newton", cmd_newton);
 SABLE_COMMAND("communicate", cmd_ignore);
 SABLE_COMMAND("comm_modify", cmd_ignore);
-SABLE_COMMAND("processors", cmd_ignore);
+SABLE_COMMAND("processors", cmd_processors);
 SABLE_COMMAND("soft_particles", cmd_soft_particles);
 SABLE_COMMAND("create_box", cmd_create_box);
 SABLE_COMMAND("region", cmd_region);

@@ -454,6 +454,7 @@ void read(Simulation& sim, const std::string& path) {
                 pending.contacts.count(), pending.pair_model.empty() ? "no pair style" : pending.pair_model.c_str(),
                 pending.fix_states.size());
   sim.print(buf);
+  box_created(sim);
 }
 
 std::string summary(const std::string& path) {

@@ -1,0 +1,125 @@
+// The processor grid and this rank's subdomain (core/engine/comm.h).
+#include "core/engine/comm.h"
+
+#ifdef SABLE_HAVE_MPI
+#include <mpi.h>
+#endif
+
+#include <cstdlib>
+
+#include "core/engine/domain.h"
+#include "core/engine/error.h"
+#include "core/engine/simulation.h"
+
+namespace sable {
+namespace {
+
+// Surface of one subdomain (a constant factor of the total, which is what matters):
+// in 2D its perimeter in the xy plane.
+double subdomain_surface(const std::array<double, 3>& length, const Grid& g, int dimension) {
+  const double a = length[0] / g[0], b = length[1] / g[1], c = length[2] / g[2];
+  return dimension == 2 ? a + b : a * b + b * c + c * a;
+}
+
+bool fits(int count, int fixed) { return fixed == 0 || count == fixed; }
+
+// Boundary c of n slices of [lo, hi]: the ends exactly, so that the subdomains tile the box.
+double cut(double lo, double hi, int c, int n) {
+  if (c == 0) return lo;
+  if (c == n) return hi;
+  return lo + (hi - lo) * (static_cast<double>(c) / n);
+}
+
+}  // namespace
+
+Grid choose_grid(int ranks, const std::array<double, 3>& length, const Grid& fixed, int dimension) {
+  Grid best{0, 0, 0};
+  double best_surface = 0;
+  for (int px = 1; px <= ranks; ++px) {
+    if (ranks % px || !fits(px, fixed[0])) continue;
+    for (int py = 1; py <= ranks / px; ++py) {
+      if ((ranks / px) % py || !fits(py, fixed[1])) continue;
+      const Grid g{px, py, ranks / px / py};
+      if (!fits(g[2], fixed[2]) || (dimension == 2 && g[2] != 1)) continue;
+      const double s = subdomain_surface(length, g, dimension);
+      // equal surfaces in other orders of the same sum differ in the last bit: keep the first
+      if (best[0] == 0 || s < best_surface * (1 - 1e-12)) best = g, best_surface = s;
+    }
+  }
+  return best;
+}
+
+#ifdef SABLE_HAVE_MPI
+namespace {
+bool mpi_up() {
+  int up = 0, down = 0;
+  MPI_Initialized(&up);
+  MPI_Finalized(&down);
+  return up && !down;
+}
+
+// A launcher's mark (OpenMPI's mpirun, PMIx/PMI launchers such as srun or hydra, MVAPICH).
+bool launched() {
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"})
+    if (std::getenv(var)) return true;
+  return false;
+}
+}  // namespace
+
+Comm::Comm() {
+  if (!mpi_up()) return;  // unit tests and tools that never start MPI: one process
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+// Started directly, sable is one process and never calls MPI: OpenMPI's singleton start
+// (a helper daemon, transport probing) costs ~0.4 s of wall time per run (docs/running.md).
+void Comm::init(int* argc, char*** argv) {
+  if (!launched()) return;
+  int provided = 0;  // threads run inside a rank; only the main thread will call MPI
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+}
+
+void Comm::finalize() {
+  if (mpi_up()) MPI_Finalize();
+}
+
+bool Comm::built_with_mpi() { return true; }
+#else
+Comm::Comm() = default;
+void Comm::init(int*, char***) {}
+void Comm::finalize() {}
+bool Comm::built_with_mpi() { return false; }
+#endif
+
+Comm::Comm(int rank, int size) : rank_(rank), size_(size) {}
+
+void Comm::decompose(const Domain& box) {
+  const std::array<double, 3> length{box.length(0), box.length(1), box.length(2)};
+  if (box.dimension == 2 && requested[2] > 1)
+    fail(requested_at + ": Pz = " + std::to_string(requested[2]) + " in a 2D box: expected 1 or *");
+  grid = choose_grid(size_, length, requested, box.dimension);
+  if (grid[0] == 0)  // `processors` checked the counts against the ranks: only 2D can leave none
+    fail(requested_at + ": no grid of " + std::to_string(size_) + " ranks with Pz = 1 fits these counts");
+  coord = {rank_ % grid[0], rank_ / grid[0] % grid[1], rank_ / (grid[0] * grid[1])};
+  split(box);
+}
+
+void Comm::split(const Domain& box) {
+  for (int k = 0; k < 3; ++k) {
+    sublo[k] = cut(box.lo[k], box.hi[k], coord[k], grid[k]);
+    subhi[k] = cut(box.lo[k], box.hi[k], coord[k] + 1, grid[k]);
+  }
+}
+
+std::string Comm::grid_line() const {
+  return "  " + std::to_string(grid[0]) + " by " + std::to_string(grid[1]) + " by " + std::to_string(grid[2]) +
+         " MPI processor grid";
+}
+
+void box_created(Simulation& sim) {
+  sim.comm.decompose(sim.domain);
+  sim.print(sim.comm.grid_line());
+}
+
+}  // namespace sable
