@@ -63,6 +63,25 @@ void sliding_pair(Deck& d, double x1, double x2) {
   }
 }
 
+// Two grains just touching each other, the floor and the side wall, pressed
+// together by gravity, the outer one sliding along y; with `far`, a grain far
+// from them created first (id 1).
+void pressed_pair(Deck& d, bool far) {
+  d(kHead);
+  if (far) d("create_atoms 1 single -0.008 0 0.008 units box");
+  d("create_atoms 1 single 0.001 0 0.001 units box");
+  d("create_atoms 1 single 0.003 0 0.001 units box");
+  d("pair_style gran model hertz tangential history rolling_friction epsd2");
+  d("pair_coeff * *");
+  d("fix floor all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 zplane 0.0");
+  d("fix side all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 xplane 0.0");
+  d("fix g all gravity 9.81 vector -1 0 -1");
+  d("fix i all nve/sphere");
+  auto& at = d->atoms;
+  for (std::size_t i = 0; i < at.n; ++i) at.set_radius_density(i, 0.001, 2500);
+  at.v[3 * (at.n - 1) + 1] = 0.05;  // the outer grain slides along y
+}
+
 double rel(double a, double b) { return std::fabs(a - b) / std::max({std::fabs(a), std::fabs(b), 1e-300}); }
 
 void expect_same_state(Deck& a, Deck& b, double tol) {
@@ -133,20 +152,8 @@ TEST(ContactHistory, SignFlipsWhenThePairIsSeenReversed) {
 TEST(ContactHistory, SurvivesNeighbourRebuildsDuringASlidingContact) {
   Deck never, every;
   for (Deck* d : {&never, &every}) {
-    (*d)(kHead);
-    // Just touching each other, the floor and the side wall: gravity presses them together.
-    (*d)("create_atoms 1 single 0.001 0 0.001 units box");
-    (*d)("create_atoms 1 single 0.003 0 0.001 units box");
-    (*d)("pair_style gran model hertz tangential history rolling_friction epsd2");
-    (*d)("pair_coeff * *");
-    (*d)("fix floor all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 zplane 0.0");
-    (*d)("fix side all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 xplane 0.0");
-    (*d)("fix g all gravity 9.81 vector -1 0 -1");
-    (*d)("fix i all nve/sphere");
+    pressed_pair(*d, false);
     (*d)("fix p all test/probe_history");
-    auto& at = (*d)->atoms;
-    for (std::size_t i = 0; i < 2; ++i) at.set_radius_density(i, 0.001, 2500);
-    at.v[4] = 0.05;  // the outer grain slides along y
   }
   never("neighbor 0.005 bin");
   every("neigh_modify every 1 check no");
@@ -200,19 +207,7 @@ TEST(ContactHistory, WallHistorySurvivesAtomSorting) {
 TEST(ContactHistory, FollowsGrainsRenumberedByDeleteAtoms) {
   Deck kept, compressed;
   for (Deck* d : {&kept, &compressed}) {
-    (*d)(kHead);
-    (*d)("create_atoms 1 single -0.008 0 0.008 units box");  // id 1, deleted below
-    (*d)("create_atoms 1 single 0.001 0 0.001 units box");
-    (*d)("create_atoms 1 single 0.003 0 0.001 units box");
-    (*d)("pair_style gran model hertz tangential history rolling_friction epsd2");
-    (*d)("pair_coeff * *");
-    (*d)("fix floor all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 zplane 0.0");
-    (*d)("fix side all wall/gran model hertz tangential history rolling_friction epsd2 primitive type 1 xplane 0.0");
-    (*d)("fix g all gravity 9.81 vector -1 0 -1");
-    (*d)("fix i all nve/sphere");
-    auto& at = (*d)->atoms;
-    for (std::size_t i = 0; i < 3; ++i) at.set_radius_density(i, 0.001, 2500);
-    at.v[3 * 2 + 1] = 0.05;  // the outer grain slides along y
+    pressed_pair(*d, true);
     (*d)("run 1000");
     (*d)("group far id 1");
   }
