@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <chrono>
 #include <cstdio>
+#include <thread>
 #include <cstdlib>
 #include <initializer_list>
 #include <iostream>
@@ -112,25 +114,16 @@ Options parse_options(int argc, char** argv) {
 // A launcher's rank count that this process's MPI does not see: mpirun of a build without
 // MPI (or another MPI's launcher) starts N copies that each run the whole deck and write the
 // same files. Refuse, saying how sable uses a machine's cores instead.
-std::string mpi_launch_problem() {
+std::string mpi_launch_problem(const Comm& comm) {
   for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"}) {
     const char* v = std::getenv(var);
-    if (v && std::atol(v) > 1)
+    if (v && std::atol(v) > 1 && comm.size() == 1)
       return std::string(Comm::built_with_mpi() ? "sable's MPI sees one process, but it" : "sable was built without MPI, but") +
              " was started as one of " + v + " processes (" + var + "=" + v + "): mpirun would run " + v +
              " independent copies of the deck, all writing the same files. "
              "Run one process and give it threads instead: OMP_NUM_THREADS=N sable -in DECK";
   }
   return "";
-}
-
-// Several ranks: each would need its subdomain's grains and ghosts, which sable does not
-// have yet (docs/parallel.md). Every rank returns the error; rank 0 alone prints it.
-std::string ranks_problem(const Comm& comm) {
-  if (comm.size() == 1) return "";
-  return "sable was started on " + std::to_string(comm.size()) +
-         " MPI ranks, but it cannot split the box across ranks yet (the domain decomposition is not built). "
-         "Run one rank and give it threads instead: OMP_NUM_THREADS=N sable -in DECK (or mpirun -np 1)";
 }
 
 // The first lines of the screen and the log: what ran, from which commit, on how many threads.
@@ -158,7 +151,7 @@ struct CloseFile {
 
 // -screen none|FILE: the screen output to nowhere or to FILE (held open by screen_file).
 void open_screen(const Options& o, Simulation& sim, std::unique_ptr<FILE, CloseFile>& screen_file) {
-  if (o.screen == "none") sim.screen = nullptr;
+  if (o.screen == "none" || sim.comm.rank() != 0) sim.screen = nullptr;
   else if (!o.screen.empty()) {
     screen_file.reset(std::fopen(o.screen.c_str(), "w"));
     if (!screen_file) fail("command line: -screen '" + o.screen + "': cannot open this file for writing");
@@ -174,11 +167,14 @@ int run(const Options& o, Simulation& sim, Input& input, std::unique_ptr<FILE, C
   for (const auto& [name, vals] : o.vars) sim.variables->define_index(name, vals);
   if (o.export_yade) {
     if (o.yade_script.empty()) fail("command line: --export-yade needs -o script.py");
+    if (sim.comm.size() > 1) fail("command line: --export-yade runs on one rank (without mpirun)");
     sim.open_log("none");
     export_yade(sim, input, o.deck, o.yade_script);
     return 0;
   }
   const bool piped = o.deck.empty() || o.deck == "-";
+  if (piped && sim.comm.size() > 1)  // mpirun hands standard input to rank 0 alone
+    fail("command line: on several MPI ranks the deck is read from a file: -in DECK");
   const std::string piped_deck = piped ? read_stdin_deck() : "";  // an empty one stops before the log opens
   sim.open_log(o.log);
   print_banner(sim);
@@ -187,20 +183,31 @@ int run(const Options& o, Simulation& sim, Input& input, std::unique_ptr<FILE, C
   return 0;
 }
 
+// An error once the atoms are split may be this rank's alone (a grain that blew up):
+// rank 0 says it and ends every rank; another rank waits a moment for rank 0 to do
+// so (the same error, met by all), and says it itself otherwise.
+[[noreturn]] void stop_ranks(Simulation& sim, const char* what) {
+  const int r = sim.comm.rank();
+  if (r != 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const std::string msg = r == 0 ? std::string("ERROR: ") + what : "ERROR on proc " + std::to_string(r) + ": " + what;
+  std::fprintf(stderr, "%s\n", msg.c_str());
+  if (sim.logfile) std::fprintf(sim.logfile, "%s\n", msg.c_str());
+  if (sim.screen && sim.screen != stdout) std::fprintf(sim.screen, "%s\n", msg.c_str());
+  std::fflush(nullptr);
+  Comm::abort(1);
+}
+
 // Everything between MPI's start and end (main): returns the exit status.
 int sable_main(int argc, char** argv) {
   std::unique_ptr<FILE, CloseFile> screen_file;  // -screen FILE; outlives sim, which writes to it
   Simulation sim;
-  if (const std::string why = ranks_problem(sim.comm); !why.empty()) {
-    if (sim.comm.rank() == 0) std::fprintf(stderr, "ERROR: %s\n", why.c_str());
-    return 1;
-  }
   Input input(sim);
   try {
     const Options o = parse_options(argc, argv);
     if (o.help) {
       std::printf("%s%s%s", kUsage, kHelp,
-                  Comm::built_with_mpi() ? "Built with MPI: one rank only for now (mpirun -np 1); several are refused.\n"
+                  Comm::built_with_mpi() ? "Built with MPI: mpirun -np N sable -in DECK splits the box over N ranks "
+                                           "(docs/parallel.md says which commands run there).\n"
                                          : "Built without MPI.\n");
       return 0;
     }
@@ -208,7 +215,7 @@ int sable_main(int argc, char** argv) {
       std::printf("%s\n", version_line().c_str());
       return 0;
     }
-    if (const std::string why = mpi_launch_problem(); !why.empty()) fail(why);
+    if (const std::string why = mpi_launch_problem(sim.comm); !why.empty()) fail(why);
     if (o.deck.empty() && isatty(STDIN_FILENO)) {  // nothing to run: say how
       std::fprintf(stderr, "%s", kUsage);
       return 2;
@@ -216,6 +223,8 @@ int sable_main(int argc, char** argv) {
     return run(o, sim, input, screen_file);
   } catch (const std::exception& e) {
     sim.flush_outputs();
+    if (sim.comm.distributed) stop_ranks(sim, e.what());
+    if (sim.comm.rank() != 0) return 1;  // before the atoms are split every rank meets the same error
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     if (sim.logfile) std::fprintf(sim.logfile, "ERROR: %s\n", e.what());
     if (sim.screen && sim.screen != stdout) std::fprintf(sim.screen, "ERROR: %s\n", e.what());

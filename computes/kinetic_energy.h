@@ -32,7 +32,7 @@ class GrainEnergyCompute : public Compute {
     double e = 0.0;
     for (std::size_t i = 0; i < a.n; ++i)
       if (a.mask[i] & groupbit) e += term(a, i);
-    return 0.5 * e;
+    return 0.5 * sim.comm.total(e);
   }
 };
 

@@ -396,7 +396,7 @@ void FixWallGran::read_state(const std::string& in) {
 
 double FixWallGran::compute_vector(int i) {
   if (i < 1 || i > 3) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..3");
-  return force_[i - 1];
+  return sim.comm.total(force_[i - 1]);
 }
 
 // `... mesh n_meshes K meshes ...` is the mesh wall (fixes/fix_wall_gran_mesh.cpp).

@@ -11,24 +11,71 @@ namespace sable {
 Atoms::Atoms() = default;
 
 // Applies f(vector, stride) to every per-atom array, so one place knows them all.
+#define SABLE_ATOM_ARRAYS(fn)  \
+  fn(id, 1);                   \
+  fn(type, 1);                 \
+  fn(mask, 1);                 \
+  fn(x, 3);                    \
+  fn(v, 3);                    \
+  fn(f, 3);                    \
+  fn(omega, 3);                \
+  fn(torque, 3);               \
+  fn(radius, 1);               \
+  fn(rmass, 1);                \
+  fn(density, 1);              \
+  fn(image, 3);                \
+  for (auto& c : extra_) fn(c.data, c.stride)
+
+template <class F>
+void Atoms::for_each_array(F&& fn) const {
+  SABLE_ATOM_ARRAYS(fn);
+}
+
 template <class F>
 void Atoms::for_each_array(F&& fn) {
-  fn(id, 1);
-  fn(type, 1);
-  fn(mask, 1);
-  fn(x, 3);
-  fn(v, 3);
-  fn(f, 3);
-  fn(omega, 3);
-  fn(torque, 3);
-  fn(radius, 1);
-  fn(rmass, 1);
-  fn(density, 1);
-  fn(image, 3);
-  for (auto& c : extra_) fn(c.data, c.stride);
+  SABLE_ATOM_ARRAYS(fn);
+}
+#undef SABLE_ATOM_ARRAYS
+
+void Atoms::drop_ghosts() {
+  if (nghost == 0) return;
+  nghost = 0;
+  for_each_array([this](auto& vec, int stride) { vec.resize(n * stride); });
+  invalidate();
+}
+
+std::size_t Atoms::add_ghosts(std::size_t count) {
+  const std::size_t first = nall();
+  nghost += count;
+  for_each_array([this](auto& vec, int stride) { vec.resize(nall() * stride); });
+  for (auto& c : extra_) std::fill(c.data.begin() + first * c.stride, c.data.end(), c.init);
+  invalidate();
+  return first;
+}
+
+std::size_t Atoms::record_size() const {
+  std::size_t s = 0;
+  for_each_array([&](const auto&, int stride) { s += static_cast<std::size_t>(stride); });
+  return s;
+}
+
+void Atoms::pack(std::size_t i, std::vector<double>& out) const {
+  for_each_array([&](const auto& vec, int stride) {
+    for (int k = 0; k < stride; ++k) out.push_back(static_cast<double>(vec[i * stride + k]));
+  });
+}
+
+void Atoms::unpack(std::size_t i, const double* in) {
+  for_each_array([&](auto& vec, int stride) {
+    using T = typename std::remove_reference_t<decltype(vec)>::value_type;
+    for (int k = 0; k < stride; ++k) vec[i * stride + k] = static_cast<T>(*in++);
+  });
+  if (i < n) max_id = std::max(max_id, id[i]);
+  invalidate();
 }
 
 std::size_t Atoms::add(long aid, int atype, const double xyz[3], double r, double rho) {
+  drop_ghosts();
   const std::size_t i = n++;
   for_each_array([this](auto& vec, int stride) { vec.resize(n * stride); });
   for (auto& c : extra_) std::fill(c.data.begin() + i * c.stride, c.data.end(), c.init);
@@ -57,6 +104,7 @@ double Atoms::mass_of(double r, double rho) const {
 }
 
 void Atoms::remove_if(const std::vector<char>& doomed) {
+  drop_ghosts();
   std::vector<std::size_t> keep;
   keep.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -70,6 +118,7 @@ void Atoms::remove_if(const std::vector<char>& doomed) {
 // neighbour rebuild). On the per-atom passes' ranges (atom_pass_threaded): each
 // thread writes the grains it owns (a sort moves them little).
 void Atoms::permute(const std::vector<std::size_t>& order) {
+  drop_ghosts();
   const std::size_t m = order.size();
   const bool threads = loop_thread_count(m, 4) > 1;
   for_each_array([&](auto& vec, int stride) {
@@ -96,8 +145,10 @@ void Atoms::permute(const std::vector<std::size_t>& order) {
 std::size_t Atoms::index_of(long aid) const {
   if (!map_valid_) {
     long mx = 0;
-    for (std::size_t i = 0; i < n; ++i) mx = std::max(mx, id[i]);
+    const std::size_t all = nall();
+    for (std::size_t i = 0; i < all; ++i) mx = std::max(mx, id[i]);
     map_.assign(mx + 1, npos);
+    for (std::size_t i = all; i-- > n;) map_[id[i]] = i;  // ghosts first: an owned atom's index wins
     for (std::size_t i = 0; i < n; ++i) map_[id[i]] = i;
     map_valid_ = true;
   }
@@ -112,6 +163,7 @@ int Atoms::find_column(const std::string& name) const {
 }
 
 int Atoms::add_column(const std::string& name, int stride, double init) {
+  drop_ghosts();  // the next neighbour build brings them back with the new column
   const int h = find_column(name);
   if (h >= 0) {
     Column& c = extra_[h];
@@ -127,6 +179,7 @@ int Atoms::add_column(const std::string& name, int stride, double init) {
 }
 
 void Atoms::resize(std::size_t count) {
+  drop_ghosts();
   const std::size_t old = n;
   n = count;
   for_each_array([this](auto& vec, int stride) { vec.resize(n * stride); });

@@ -15,7 +15,12 @@ namespace sable {
 class Atoms {
  public:
   Atoms();
-  std::size_t n = 0;  // local atoms (one process: all atoms)
+  std::size_t n = 0;  // owned atoms (one rank: all atoms), at [0, n)
+  // Several ranks: copies of other ranks' atoms near this subdomain at [n, n + nghost)
+  // in every column (core/engine/comm_atoms.cpp). Every pass runs over [0, n); only
+  // the neighbour list and the pair pass read ghosts.
+  std::size_t nghost = 0;
+  std::size_t nall() const { return n + nghost; }
   std::vector<long> id;
   std::vector<int> type;
   std::vector<std::uint32_t> mask;  // group bits
@@ -84,12 +89,25 @@ class Atoms {
     for (const std::vector<int>& p : parts) out.insert(out.end(), p.begin(), p.end());
   }
 
+  // Ghosts: drop them all (every column back to n atoms), or append `count` zeroed
+  // ones (returns the first's index).
+  void drop_ghosts();
+  std::size_t add_ghosts(std::size_t count);
+  // Every column of atom i as doubles (ids, types, masks and image counters are
+  // exact in a double), appended to out; unpack() writes such a record into atom i.
+  // Which columns, in which order: for_each_array.
+  std::size_t record_size() const;
+  void pack(std::size_t i, std::vector<double>& out) const;
+  void unpack(std::size_t i, const double* in);
+
   // Append one atom, returns its index. Mass from density and radius (mass_of).
   std::size_t add(long id, int type, const double xyz[3], double radius, double density);
   void remove_if(const std::vector<char>& doomed);
   void permute(const std::vector<std::size_t>& order);  // new[i] = old[order[i]]
   void set_radius_density(std::size_t i, double r, double rho);
-  std::size_t index_of(long atom_id) const;  // npos when absent (linear map rebuilt lazily)
+  // The atom with this id, owned if this rank owns it, else a ghost copy; npos when
+  // absent (linear map rebuilt lazily).
+  std::size_t index_of(long atom_id) const;
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
   // Extra per-atom columns (history of walls, fix state): stride doubles per atom.
@@ -124,6 +142,8 @@ class Atoms {
   void invalidate() { map_valid_ = false; }
   template <class F>
   void for_each_array(F&& f);
+  template <class F>
+  void for_each_array(F&& f) const;
 };
 
 }  // namespace sable

@@ -23,13 +23,6 @@ double subdomain_surface(const std::array<double, 3>& length, const Grid& g, int
 
 bool fits(int count, int fixed) { return fixed == 0 || count == fixed; }
 
-// Boundary c of n slices of [lo, hi]: the ends exactly, so that the subdomains tile the box.
-double cut(double lo, double hi, int c, int n) {
-  if (c == 0) return lo;
-  if (c == n) return hi;
-  return lo + (hi - lo) * (static_cast<double>(c) / n);
-}
-
 }  // namespace
 
 Grid choose_grid(int ranks, const std::array<double, 3>& length, const Grid& fixed, int dimension) {
@@ -94,6 +87,81 @@ bool Comm::built_with_mpi() { return false; }
 
 Comm::Comm(int rank, int size) : rank_(rank), size_(size) {}
 
+double Comm::face(double lo, double hi, int c, int n) {
+  if (c == 0) return lo;
+  if (c == n) return hi;
+  return lo + (hi - lo) * (static_cast<double>(c) / n);
+}
+
+#ifdef SABLE_HAVE_MPI
+// A Comm made for a test (or before MPI starts) reduces nothing.
+#define SABLE_MPI_ACTIVE (size_ > 1 && mpi_up())
+void Comm::sum(double* v, int count) const {
+  if (SABLE_MPI_ACTIVE) MPI_Allreduce(MPI_IN_PLACE, v, count, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+}
+long Comm::sum(long v) const {
+  if (SABLE_MPI_ACTIVE) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  return v;
+}
+double Comm::max(double v) const {
+  if (SABLE_MPI_ACTIVE) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return v;
+}
+double Comm::min(double v) const {
+  if (SABLE_MPI_ACTIVE) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  return v;
+}
+bool Comm::any(bool b) const {
+  int v = b;
+  if (SABLE_MPI_ACTIVE) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+  return v != 0;
+}
+void Comm::all_to_all(const std::vector<std::vector<double>>& out, std::vector<double>& in, std::vector<int>& from,
+                      bool known) const {
+  if (!SABLE_MPI_ACTIVE) {
+    in = out.empty() ? std::vector<double>{} : out[0];
+    from.assign(1, static_cast<int>(in.size()));
+    return;
+  }
+  std::vector<int> to(size_), sdispl(size_ + 1, 0), rdispl(size_ + 1, 0);
+  for (int r = 0; r < size_; ++r) to[r] = static_cast<int>(out[r].size());
+  if (!known) {
+    from.assign(size_, 0);
+    MPI_Alltoall(to.data(), 1, MPI_INT, from.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  }
+  std::vector<double> flat;
+  for (int r = 0; r < size_; ++r) {
+    sdispl[r + 1] = sdispl[r] + to[r];
+    rdispl[r + 1] = rdispl[r] + from[r];
+    flat.insert(flat.end(), out[r].begin(), out[r].end());
+  }
+  in.resize(static_cast<std::size_t>(rdispl[size_]));
+  MPI_Alltoallv(flat.data(), to.data(), sdispl.data(), MPI_DOUBLE, in.data(), from.data(), rdispl.data(), MPI_DOUBLE,
+                MPI_COMM_WORLD);
+}
+void Comm::abort(int status) {
+  if (mpi_up()) MPI_Abort(MPI_COMM_WORLD, status);
+  std::exit(status);
+}
+#undef SABLE_MPI_ACTIVE
+#else
+void Comm::sum(double*, int) const {}
+long Comm::sum(long v) const { return v; }
+double Comm::max(double v) const { return v; }
+double Comm::min(double v) const { return v; }
+bool Comm::any(bool b) const { return b; }
+void Comm::all_to_all(const std::vector<std::vector<double>>& out, std::vector<double>& in, std::vector<int>& from,
+                      bool) const {
+  in = out.empty() ? std::vector<double>{} : out[0];
+  from.assign(1, static_cast<int>(in.size()));
+}
+void Comm::abort(int status) { std::exit(status); }
+#endif
+double Comm::sum(double v) const {
+  sum(&v, 1);
+  return v;
+}
+
 void Comm::decompose(const Domain& box) {
   const std::array<double, 3> length{box.length(0), box.length(1), box.length(2)};
   if (box.dimension == 2 && requested[2] > 1)
@@ -107,8 +175,8 @@ void Comm::decompose(const Domain& box) {
 
 void Comm::split(const Domain& box) {
   for (int k = 0; k < 3; ++k) {
-    sublo[k] = cut(box.lo[k], box.hi[k], coord[k], grid[k]);
-    subhi[k] = cut(box.lo[k], box.hi[k], coord[k] + 1, grid[k]);
+    sublo[k] = face(box.lo[k], box.hi[k], coord[k], grid[k]);
+    subhi[k] = face(box.lo[k], box.hi[k], coord[k] + 1, grid[k]);
   }
 }
 

@@ -5,9 +5,11 @@
 // mpi.h stays in comm.cpp: no other source sees MPI.
 #include <array>
 #include <string>
+#include <vector>
 
 namespace sable {
 
+class Atoms;
 class Domain;
 class Simulation;
 
@@ -45,6 +47,51 @@ class Comm {
   // LAMMPS' line after the box is created: "  1 by 1 by 1 MPI processor grid".
   std::string grid_line() const;
 
+  // Collective over the ranks (every rank calls them in the same order); on one
+  // rank they return their argument.
+  void sum(double* v, int count) const;
+  double sum(double v) const;
+  long sum(long v) const;
+  double max(double v) const;
+  double min(double v) const;
+  bool any(bool b) const;
+  // Over the atoms of all ranks: reduced once the atoms are split (distributed),
+  // the value itself before (every rank then holds every atom).
+  double total(double v) const { return distributed ? sum(v) : v; }
+  long total(long v) const { return distributed ? sum(v) : v; }
+  void total(double* v, int count) const {
+    if (distributed) sum(v, count);
+  }
+  double highest(double v) const { return distributed ? max(v) : v; }
+  double lowest(double v) const { return distributed ? min(v) : v; }
+  // All to all: out[r] goes to rank r; in gets what every rank sent here, in rank
+  // order, from[r] doubles from rank r. With `known`, from already holds the counts.
+  void all_to_all(const std::vector<std::vector<double>>& out, std::vector<double>& in, std::vector<int>& from,
+                  bool known = false) const;
+  // Ends every rank now (an error met by this rank alone, after the atoms were split).
+  [[noreturn]] static void abort(int status);
+
+  // ---- The atoms split over the ranks (core/engine/comm_atoms.cpp) ----
+  // False until the first run's set-up: every rank then holds every atom (the deck's
+  // set-up commands run on each rank alike); from it on, each rank owns the atoms in
+  // its subdomain and holds ghost copies of those within the cutoff of it.
+  bool distributed = false;
+  bool decomposed() const { return size_ > 1; }
+  // The rank whose subdomain holds position x (inside the box).
+  int owner_of(const double* x, const Domain& box) const;
+  // At a neighbour rebuild with several ranks (Simulation::rebuild_decomposed): the
+  // owned atoms remapped into the box and sent to the rank that owns their position,
+  // with their contact history (the pair's saved rows, each wall's store); the first
+  // time, each rank keeps its own and drops the rest.
+  void exchange(Simulation& sim);
+  // Ghost copies of owned atoms within `cutoff` of a neighbouring subdomain, shifted
+  // across periodic faces; appended at [n, n + nghost) on the receiving rank.
+  void borders(Simulation& sim, double cutoff);
+  // Before each force pass: the ghosts' positions, velocities and spins from their owners.
+  void forward(Atoms& atoms) const;
+  // Boundary c of n slices of [lo, hi]: the ends exactly, so that subdomains tile the box.
+  static double face(double lo, double hi, int c, int n);
+
   // The program's MPI lifetime (app/main.cpp); no-ops without MPI.
   static void init(int* argc, char*** argv);
   static void finalize();
@@ -52,6 +99,15 @@ class Comm {
 
  private:
   int rank_ = 0, size_ = 1;
+  int rank_at(const Grid& c) const { return c[0] + grid[0] * (c[1] + grid[1] * c[2]); }
+  // borders(): per rank, the owned atoms it holds as ghosts and their periodic shifts;
+  // the ghosts received from each rank, counted (they lie in rank order).
+  struct Sent {
+    std::vector<int> atom;
+    std::vector<double> shift;  // 3 per atom
+  };
+  std::vector<Sent> sent_;
+  std::vector<int> ghosts_from_;
 };
 
 // A box was created (create_box, read_data, read_restart): choose the grid, print its line.

@@ -67,6 +67,7 @@ struct StepContext {
 // Raw views of the atom arrays a loop reads and writes.
 struct AtomView {
   std::size_t n = 0;
+  std::size_t nghost = 0;  // ghosts after the n owned atoms (several ranks)
   const double *x = nullptr, *v = nullptr, *omega = nullptr, *radius = nullptr, *rmass = nullptr;
   const int* type = nullptr;
   const std::uint32_t* mask = nullptr;
@@ -83,6 +84,7 @@ struct AtomView {
 inline AtomView atom_view(Atoms& at, std::size_t n, std::uint32_t freeze_bit) {
   AtomView a;
   a.n = n;
+  a.nghost = at.nghost;
   a.x = at.x.data();
   a.v = at.v.data();
   a.omega = at.omega.data();

@@ -137,6 +137,7 @@ class ContactLoopT final : public ContactLoop {
         const double t0 = omp_get_wtime();
         apply_incoming(b, pp, t);
         pair_range(b, pp.lo[t], pp.lo[t + 1], &pp, t, ch);
+        if (b.a.nghost) ghost_entries(b, pp.lo[t], pp.lo[t + 1], ch);
         if (b.tail) (*b.tail)(t, static_cast<std::size_t>(pp.lo[t]), static_cast<std::size_t>(pp.lo[t + 1]));
         const double dt = omp_get_wtime() - t0;
         pp.busy[t] += dt;
@@ -361,29 +362,31 @@ class ContactLoopT final : public ContactLoop {
 
   // Stages 1b-3 for the chunk. Not inlined into the filter loop, which then
   // keeps its values in registers.
+  // kOwned: the partners are ghosts (several ranks), whose forces nobody reads.
+  template <bool kOwned = false>
   [[gnu::noinline]] void flush(const PairBatch& b, Chunk& ch) const {
     gather(b, ch);
     law_.evaluate(ch, b.ctx.dt, b.ctx.update, b.simd, b.a.kinematics());
     if (b.ctx.update)
-      scatter_as<true>(b, ch);
+      scatter_as<true, kOwned>(b, ch);
     else
-      scatter_as<false>(b, ch);
+      scatter_as<false, kOwned>(b, ch);
     ch.n = 0;
   }
-  template <bool kUpdate>
+  template <bool kUpdate, bool kOwned>
   void scatter_as(const PairBatch& b, const Chunk& ch) const {
     switch (b.a.kinematics()) {
-      case Kinematics::Full: return scatter<kUpdate, true, false>(b, ch);
-      case Kinematics::Plane: return scatter<kUpdate, true, true>(b, ch);
-      case Kinematics::Frozen: return scatter<kUpdate, false, false>(b, ch);
-      case Kinematics::PlaneFrozen: return scatter<kUpdate, false, true>(b, ch);
+      case Kinematics::Full: return scatter<kUpdate, true, false, kOwned>(b, ch);
+      case Kinematics::Plane: return scatter<kUpdate, true, true, kOwned>(b, ch);
+      case Kinematics::Frozen: return scatter<kUpdate, false, false, kOwned>(b, ch);
+      case Kinematics::PlaneFrozen: return scatter<kUpdate, false, true, kOwned>(b, ch);
     }
   }
 
   // Stage 3: forces and torques onto the grains in list order; history back.
   // kSpin false: the law made no torque (no rotation), none is added; kPlane:
   // no z force and no in-plane torque (zeros in 2D) are added.
-  template <bool kUpdate, bool kSpin, bool kPlane>
+  template <bool kUpdate, bool kSpin, bool kPlane, bool kOwned>
   void scatter(const PairBatch& b, const Chunk& ch) const {
     double* f = b.a.f;
     double* t = b.a.torque;
@@ -392,12 +395,12 @@ class ContactLoopT final : public ContactLoop {
       const int i = ch.i[e], j = ch.j[e];
       for (int d = 0; d < (kPlane ? 2 : 3); ++d) {
         f[3 * i + d] += ch.f[d][e];
-        f[3 * j + d] -= ch.f[d][e];
+        if constexpr (!kOwned) f[3 * j + d] -= ch.f[d][e];
       }
       if constexpr (kSpin) {
         for (int d = kPlane ? 2 : 0; d < 3; ++d) {
           t[3 * i + d] += ch.ti[d][e];
-          t[3 * j + d] += ch.tj[d][e];
+          if constexpr (!kOwned) t[3 * j + d] += ch.tj[d][e];
         }
       }
       if constexpr (kH > 0 && kUpdate) {
@@ -431,6 +434,29 @@ class ContactLoopT final : public ContactLoop {
       pair_entries(b, lo, hi, pp != nullptr, ch);
     flush(b, ch);
     if (pp) apply_outgoing(b, *pp, t);
+  }
+
+  // Several ranks, threaded: the entries of atoms [lo, hi) whose partner is a ghost
+  // (each atom's last ones, j >= n), after the atom's other entries and cross
+  // slots, as the one-thread pass takes them; only the owned side is added.
+  void ghost_entries(const PairBatch& b, int lo, int hi, Chunk& ch) const {
+    const ListView L = list_view(b);
+    const int owned = static_cast<int>(b.a.n);
+    int n = 0;
+    for (int i = lo; i < hi; ++i) {
+      int k = b.first[i + 1];
+      while (k > b.first[i] && L.jlist[k - 1] >= owned) --k;
+      for (; k < b.first[i + 1]; ++k) {
+        filter_entry(L, ch, n, i, L.x[3 * i], L.x[3 * i + 1], L.x[3 * i + 2], L.radius[i], k);
+        if (n == Chunk::kCap) {
+          ch.n = n;
+          flush<true>(b, ch);
+          n = 0;
+        }
+      }
+    }
+    ch.n = n;
+    flush<true>(b, ch);
   }
 
   // Atom i's entries in phase B: all, or (`trim`) those with j < hi.
@@ -793,8 +819,11 @@ class ContactLoopT final : public ContactLoop {
     pp.cross_first.assign(nparts + 1, 0);
     for (int t = 0; t + 1 < nparts; ++t) {
       const int hi = pp.lo[t + 1];
+      const int owned = static_cast<int>(b.a.n);
       for (int i = pp.lo[t]; i < hi; ++i) {
-        const int k0 = b.first[i], k1 = b.first[i + 1];
+        int k1 = b.first[i + 1];
+        const int k0 = b.first[i];
+        while (k1 > k0 && b.jlist[k1 - 1] >= owned) --k1;  // ghost partners: ghost_entries
         if (k1 == k0 || b.jlist[k1 - 1] < hi) continue;
         int k = k1;
         while (k > k0 && b.jlist[k - 1] >= hi) --k;

@@ -11,6 +11,7 @@
 // order and found by id.
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -81,6 +82,18 @@ class HistoryStore {
   // order: a key order holds), in both the grain and a grain partner; rows
   // naming a grain not listed are dropped.
   void renumber(const std::vector<long>& old_ids, const std::vector<long>& new_ids);
+
+  // Several ranks (Comm::exchange). dest(id): the rank a grain this rank owns moves
+  // to, -1 when it stays, -2 when this rank does not own it. A row goes with its
+  // grain: into out[rank] as a record (tag, partner, element, row); a pair's row
+  // (partner a grain) also goes to its partner's new rank, turned to (partner, grain)
+  // with the `flip` slots negated; a row stays while either of its grains stays.
+  void migrate(const std::function<int(long)>& dest, const std::vector<char>& flip,
+               std::vector<std::vector<double>>& out);
+  std::size_t record_size() const { return 3 + static_cast<std::size_t>(size_); }
+  // Appends `rows` records made by migrate() from `in`; returns the doubles read.
+  std::size_t receive(const double* in, std::size_t rows);
+  void sort();  // into key order
 
   void write(restart::Packer& p) const;
   // False (and the store left empty) when the file's rows have another size.

@@ -406,10 +406,39 @@ void Neighbor::ids_renumbered(const std::vector<long>& old_ids, const std::vecto
   }
 }
 
-void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, long step) {
+void Neighbor::save_history(ContactStore* store) {
   if (store) store->save(list, ids_);
+  history_saved_ = true;
+}
+
+void Neighbor::sort_owned(Atoms& atoms, const Domain& box, double cutoff) {
   const std::size_t n = atoms.n;
-  const long nl = static_cast<long>(n);
+  if (!sort || n == 0 || !(cutoff > 0)) return;
+  int nb[3] = {1, 1, 1};
+  for (int k = 0; k < box.dimension; ++k)
+    nb[k] = std::clamp(static_cast<int>(box.length(k) / cutoff), 1, 1 << 10);
+  std::vector<std::size_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t b = 0;
+    for (int k = 2; k >= 0; --k) {
+      const int c = static_cast<int>((atoms.x[3 * i + k] - box.lo[k]) / box.length(k) * nb[k]);
+      b = b * static_cast<std::size_t>(nb[k]) + static_cast<std::size_t>(std::clamp(c, 0, nb[k] - 1));
+    }
+    key[i] = b;
+  }
+  order_.resize(n);
+  std::iota(order_.begin(), order_.end(), std::size_t{0});
+  std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  atoms.permute(order_);
+}
+
+void Neighbor::build(Atoms& atoms, const Domain& box, ContactStore* store, long step) {
+  if (store && !history_saved_) store->save(list, ids_);
+  history_saved_ = false;
+  const bool ghosts = ghosted.on;
+  const Domain& domain = ghosts ? ghosted.bins : box;
+  const std::size_t n = atoms.n, nall = atoms.nall();
+  const long nl = static_cast<long>(n), nal = static_cast<long>(nall);
   // Per-atom passes are threaded for large systems; the list is built in
   // blocks of atoms and joined in atom order, so it is the same list (same
   // entries, same order) for every thread count.
@@ -417,13 +446,15 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   double* xa = atoms.x.data();
   int* image = atoms.image.data();
   const double* radius = atoms.radius.data();
+  if (!ghosts) {
 #pragma omp parallel for schedule(static) if (nth > 1)
-  for (long i = 0; i < nl; ++i) domain.remap(&xa[3 * i], &image[3 * i]);
+    for (long i = 0; i < nl; ++i) domain.remap(&xa[3 * i], &image[3 * i]);
+  }
 
   double rmax = 0.0;
 #pragma omp parallel for reduction(max : rmax) schedule(static) if (nth > 1)
   for (long i = 0; i < nl; ++i) rmax = std::max(rmax, radius[i]);
-  cutoff_ = 2.0 * rmax + skin;
+  cutoff_ = ghosts ? ghosted.cutoff : 2.0 * rmax + skin;
 
   // Bins at least one cutoff wide: the 27 (9 in 2D) surrounding bins hold every partner.
   // In a sparse scene bins grow so that there are at most ~8 per atom. An axis
@@ -459,31 +490,31 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   stride[ax[0]] = 1;
   stride[ax[1]] = nb[ax[0]];
   stride[ax[2]] = nb[ax[0]] * nb[ax[1]];
-  bin_of_.resize(n);
+  bin_of_.resize(nall);
   auto coord = [&](double x, int k) {
     int c = static_cast<int>(std::floor((x - domain.lo[k]) * inv[k]));
     return std::clamp(c, 0, nb[k] - 1);
   };
   int* bin_of = bin_of_.data();
 #pragma omp parallel for schedule(static) if (nth > 1)
-  for (long i = 0; i < nl; ++i) {
+  for (long i = 0; i < nal; ++i) {
     const double* xi = &xa[3 * i];
     bin_of[i] = coord(xi[0], 0) * stride[0] + coord(xi[1], 1) * stride[1] + coord(xi[2], 2) * stride[2];
   }
   // Counting sort by bin: the atoms in bin order, as the new order of the
   // atoms (sorted: then a bin's atoms are consecutive indices) or as a list.
   bin_start_.assign(nbins + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++bin_start_[bin_of_[i] + 1];
+  for (std::size_t i = 0; i < nall; ++i) ++bin_start_[bin_of_[i] + 1];
   std::partial_sum(bin_start_.begin(), bin_start_.end(), bin_start_.begin());
-  const bool sorted = sort && n > 0;
+  const bool sorted = sort && n > 0 && !ghosts;
   {
     std::vector<int> fill(bin_start_.begin(), bin_start_.end() - 1);
     if (sorted) {
       order_.resize(n);
       for (std::size_t i = 0; i < n; ++i) order_[fill[bin_of_[i]]++] = i;
     } else {
-      bin_atoms_.resize(n);
-      for (std::size_t i = 0; i < n; ++i) bin_atoms_[fill[bin_of_[i]]++] = static_cast<int>(i);
+      bin_atoms_.resize(nall);
+      for (std::size_t i = 0; i < nall; ++i) bin_atoms_[fill[bin_of_[i]]++] = static_cast<int>(i);
     }
   }
   if (sorted) {
@@ -616,7 +647,7 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
       scan(i, st, js, shifts);
       sort_entries(js.data() + k0, shifts.data() + k0, js.size() - k0);
       for (std::size_t k = k0; k < js.size(); ++k)
-        if (shifts[k] == NeighborList::kNoShift) span = std::max(span, js[k] - static_cast<int>(i));
+        if (shifts[k] == NeighborList::kNoShift && js[k] < nl) span = std::max(span, js[k] - static_cast<int>(i));
       list.first[i + 1] = static_cast<int>(js.size());
     }
     return span;
@@ -660,7 +691,8 @@ void Neighbor::build(Atoms& atoms, const Domain& domain, ContactStore* store, lo
   }
   if (store) store->restore(list, atoms);
   // On the per-atom passes' ranges (atom_pass_threaded), not serially.
-  ids_.resize(n);
+  ids_.resize(nall);
+  std::copy(atoms.id.begin() + nl, atoms.id.begin() + nal, ids_.begin() + nl);  // ghosts
   xhold_.resize(3 * n);
   rhold_.resize(radii_vary ? n : 0);
   atoms.for_ranges([&](int, std::size_t lo, std::size_t hi) {

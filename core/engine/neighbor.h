@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/engine/domain.h"
 #include "core/engine/history_store.h"
 
 namespace sable {
@@ -92,6 +93,8 @@ class ContactStore {
   void ids_renumbered(const std::vector<long>& old_ids, const std::vector<long>& new_ids) {
     injected_.renumber(old_ids, new_ids);
   }
+  // The rows save() kept (Comm::exchange moves them with their grains).
+  HistoryStore& saved() { return saved_; }
 
  private:
   void reserve_rows(std::size_t rows);  // capacity for `rows` rows; contents dropped
@@ -136,6 +139,22 @@ class Neighbor {
 
   // Rebuild now: wrap periodic atoms, bin, (sort), list, carry history.
   void build(Atoms& atoms, const Domain& domain, ContactStore* store, long step);
+  // Several ranks (core/engine/comm_atoms.cpp): the bins cover `bins` (the subdomain
+  // and its ghost layer; periodic only along axes one rank spans, whose images keep
+  // their shift codes), the caller has wrapped and exchanged the atoms, the atoms
+  // are not sorted, and the list pairs each owned atom with owned atoms above it
+  // and with every ghost near it (newton off).
+  struct Ghosted {
+    bool on = false;
+    Domain bins;
+    double cutoff = 0.0;  // the ghost layer's width: 2 r_max (over all ranks) + skin
+  } ghosted;
+  // The pair's history saved now, before the exchange moves grains; build() then skips it.
+  void save_history(ContactStore* store);
+  // (Several ranks, after the exchange, before the ghosts:) the owned atoms in the
+  // order of bins a cutoff wide over `box` (cache locality of the pair pass; a
+  // decomposed build does not sort), if `sort` is on.
+  void sort_owned(Atoms& atoms, const Domain& box, double cutoff);
   // True when a rebuild is due at this step (LIGGGHTS rules).
   bool decide(const Atoms& atoms, long step);
   // The last step at which decide() scanned every position (a NaN or infinite
@@ -162,7 +181,8 @@ class Neighbor {
  private:
   std::vector<double> xhold_;
   std::vector<double> rhold_;  // radii at the last build (radii_vary only)
-  std::vector<long> ids_;  // atom ids at the last build, to read the old list
+  std::vector<long> ids_;  // atom ids (owned, then ghosts) at the last build, to read the old list
+  bool history_saved_ = false;  // save_history() since the last build
   double cutoff_ = 0.0;
   std::vector<int> bin_of_, bin_start_, bin_atoms_;  // bin_atoms_: unsorted builds only
   std::vector<std::size_t> order_;                  // sorted builds: the atoms in bin order

@@ -33,6 +33,7 @@ double Simulation::wall_seconds() const {
 void Simulation::print(const std::string& line) { print_to(line, true, true); }
 
 void Simulation::print_to(const std::string& line, bool to_screen, bool to_log) {
+  if (comm.rank() != 0) return;  // several ranks: rank 0 speaks for all
   if (screen && to_screen) {
     std::fprintf(screen, "%s\n", line.c_str());
     std::fflush(screen);
@@ -52,7 +53,7 @@ void Simulation::print_once(const std::string& line) {
 void Simulation::open_log(const std::string& path) {
   if (logfile) std::fclose(logfile);
   logfile = nullptr;
-  if (path == "none") return;
+  if (path == "none" || comm.rank() != 0) return;
   logfile = std::fopen(path.c_str(), "w");
   if (!logfile) fail("cannot open log file '" + path + "' for writing");
 }
@@ -316,20 +317,55 @@ static void handle_lost(Simulation& sim) {
 }
 
 void Simulation::rebuild_if_due() {
+  if (comm.decomposed()) {
+    if (comm.any(neighbor.decide(atoms, step))) rebuild_decomposed();
+    return;
+  }
   if (!neighbor.decide(atoms, step)) return;
   check_atoms(true);
   handle_lost(*this);
   neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
 }
 
+// The pair's history is saved before the grains move (it is kept by grain id); the
+// ghost layer is as wide as the widest pair anywhere: twice the largest radius of
+// all ranks plus the skin.
+void Simulation::rebuild_decomposed() {
+  check_atoms(true);
+  handle_lost(*this);
+  ContactStore* store = pair ? pair->history() : nullptr;
+  neighbor.save_history(store);
+  comm.exchange(*this);
+  double rmax = 0.0;
+  for (std::size_t i = 0; i < atoms.n; ++i) rmax = std::max(rmax, atoms.radius[i]);
+  const double cutoff = 2.0 * comm.max(rmax) + neighbor.skin;
+  Neighbor::Ghosted& g = neighbor.ghosted;
+  g.on = true;
+  g.cutoff = cutoff;
+  g.bins = domain;
+  Domain sub = domain;  // this rank's subdomain
+  for (int k = 0; k < 3; ++k)
+    if (comm.grid[k] > 1) {
+      sub.lo[k] = comm.sublo[k], sub.hi[k] = comm.subhi[k];
+      g.bins.lo[k] = comm.sublo[k] - cutoff;
+      g.bins.hi[k] = comm.subhi[k] + cutoff;
+      g.bins.periodic[k] = false;  // its images are ghosts
+    }
+  neighbor.sort_owned(atoms, sub, cutoff);
+  comm.borders(*this, cutoff);
+  neighbor.build(atoms, domain, store, step);
+}
+
 void Simulation::force_and_history() {
   atoms.clear_forces();
+  if (comm.distributed) comm.forward(atoms);
   if (pair) pair->compute();
 }
 
 Simulation::StepBounds Simulation::step_bounds(double vmin) const {
   StepBounds b;
-  if (!pair || atoms.n == 0) return b;
+  const long total = comm.total(static_cast<long>(atoms.n));
+  if (!pair || total == 0) return b;
   const Atoms& a = atoms;
   // Speed scale: fastest grain, fastest moving wall, free fall across the box
   // (along non-periodic axes only: a grain falling along a periodic axis hits nothing).
@@ -345,7 +381,7 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
   double hmax = 0.0;
   for (int k = 0; k < domain.dimension; ++k)
     if (!domain.periodic[k]) hmax = std::max(hmax, domain.length(k));
-  b.speed = std::max({vmax, std::sqrt(2.0 * g * hmax), 1e-3});
+  b.speed = std::max({comm.highest(vmax), std::sqrt(2.0 * g * hmax), 1e-3});
   // Rayleigh time per grain; Hertz time of the lightest grain hitting itself (LIGGGHTS' recipe).
   std::size_t ismall = 0;
   b.rayleigh = std::numeric_limits<double>::max();
@@ -353,8 +389,9 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
     if (a.rmass[i] < a.rmass[ismall]) ismall = i;
     b.rayleigh = std::min(b.rayleigh, pair->rayleigh_time(i));
   }
+  b.rayleigh = comm.lowest(b.rayleigh);
   // Grains approach each other at up to twice the fastest speed (LIGGGHTS uses the relative speed too).
-  b.hertz = pair->contact_time(ismall, ismall, 2.0 * b.speed);
+  b.hertz = comm.lowest(a.n ? pair->contact_time(ismall, ismall, 2.0 * b.speed) : std::numeric_limits<double>::max());
   b.skin_ratio = neighbor.skin / (2.0 * b.speed * dt);
   b.valid = true;
   return b;
@@ -366,8 +403,8 @@ Simulation::StepBounds Simulation::step_bounds(double vmin) const {
 // the contact time) and that bound the run goes on with one warning.
 void Simulation::stability_check(bool mid_run) {
   constexpr double kRuleRayleigh = 0.2, kRuleContact = 0.1, kStopContact = 0.3;
-  stability_pending_ = pair && atoms.n == 0;
   const StepBounds b = step_bounds();
+  stability_pending_ = pair && !b.valid;
   if (!b.valid) return;
   char ray[128] = "no Rayleigh time (no youngsModulus: stiffness model)";
   if (b.rayleigh < 1e300)
@@ -461,7 +498,10 @@ void Simulation::setup() {
   handle_lost(*this);
   check_grain_sizes(*this);
   const bool first_build = neighbor.builds == 0;
-  neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
+  if (comm.decomposed())
+    rebuild_decomposed();
+  else
+    neighbor.build(atoms, domain, pair ? pair->history() : nullptr, step);
   check_atoms(true);
   if (const Extremes e = first_build ? extremes(*this) : Extremes{}; e.deep > 0)
     warn(std::to_string(e.deep) + " pair(s) of grains overlap by more than " + std::to_string(int(100 * kDeepOverlap)) +
@@ -551,6 +591,7 @@ bool Simulation::quiet(long s) const {
 }
 
 void Simulation::force_pass(const Stage& s) {
+  if (comm.distributed) comm.forward(atoms);
   if (s.ops.empty()) {
     if (pair) pair->compute();
     return;
@@ -682,7 +723,7 @@ void Simulation::run(long nsteps) {
     fused_steps += q;
     folded_steps += q && plan.folded;
     after_quiet = q;
-    if (stability_pending_ && atoms.n > 0) stability_check(true);  // the first grains were inserted
+    if (stability_pending_ && comm.total(static_cast<long>(atoms.n)) > 0) stability_check(true);  // the first grains were inserted
 
     const auto now = clock::now();
     if (progress && std::chrono::duration<double>(now - t_last_progress).count() >= progress_every_s &&
@@ -700,19 +741,20 @@ void Simulation::run(long nsteps) {
   if (stop_) nsteps = (run_last = step) - run_first;  // ended early: the run's bounds as they came out
   for (auto& f : fixes) f->post_run();
   const double tot = std::max(timers.total, 1e-12);
+  const std::size_t natoms = static_cast<std::size_t>(comm.total(static_cast<long>(atoms.n)));  // all ranks'
   char buf[512];
   // LAMMPS' run marker, word for word (log readers end a run's thermo table at it); sable's rates below.
   std::snprintf(buf, sizeof buf,
-                "Loop time of %g on 1 procs for %ld steps with %zu atoms\nPerformance: %.3g particle-steps/s, %ld "
+                "Loop time of %g on %d procs for %ld steps with %zu atoms\nPerformance: %.3g particle-steps/s, %ld "
                 "neighbor builds\nTime split: pair %.1f%%, neigh %.1f%%, integrate %.1f%%, fixes %.1f%%, output %.1f%%",
-                timers.total, nsteps, atoms.n, atoms.n * nsteps / tot, neighbor.builds - builds0,
+                timers.total, comm.size(), nsteps, natoms, natoms * nsteps / tot, neighbor.builds - builds0,
                 100 * timers.pair / tot, 100 * timers.neigh / tot, 100 * timers.integrate / tot,
                 100 * timers.fixes / tot, 100 * timers.output / tot);
   print(buf);
   // LIGGGHTS' wording (half list: each pair once; builds during this run).
-  const std::size_t entries = neighbor.list.size();
+  const std::size_t entries = static_cast<std::size_t>(comm.total(static_cast<long>(neighbor.list.size())));
   std::snprintf(buf, sizeof buf, "Total # of neighbors = %zu, Ave neighs/atom = %.4g, Neighbor list builds = %ld",
-                entries, atoms.n ? static_cast<double>(entries) / atoms.n : 0.0, neighbor.builds - builds0);
+                entries, natoms ? static_cast<double>(entries) / natoms : 0.0, neighbor.builds - builds0);
   print(buf);
   // Threaded runs: how evenly the threads shared the work (LIGGGHTS prints min/avg/max over MPI ranks).
   const ThreadBalance &tp = thread_balance(PassKind::Pair), &ta = thread_balance(PassKind::Atoms);

@@ -162,6 +162,8 @@ class Simulation {
   void check_atoms(bool positions);  // NaN velocities (and positions): stop with step, atom, cause
   void force_and_history();
   void rebuild_if_due();
+  // Several ranks: exchange, ghosts and the list at a rebuild every rank takes at once.
+  void rebuild_decomposed();
   void choose_kinematics();  // Atoms::plane_2d and Atoms::rotation for this run
   // Says once per fix which fix keeps the step off the fused, pipelined plan and what that costs.
   void explain_slow_path(const StepPlan& plan);

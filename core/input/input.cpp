@@ -235,6 +235,7 @@ void Input::execute(const Args& a) {
     if (!set_echo(a.word(1, "none, screen, log or both"))) a.fail(1, "none, screen, log or both");
     return;
   }
+  check_several_ranks(sim_, a);
   const auto* cmd = CommandRegistry::find(c);
   if (!cmd) a.fail(0, "a known command (see the README's command list; e.g. " + CommandRegistry::names().substr(0, 200) + " ...)");
   (*cmd)(sim_, a);

@@ -15,6 +15,10 @@ namespace sable {
 
 class Simulation;
 
+// Several MPI ranks: a command or style that does not run there yet stops at its
+// line (core/input/several_ranks.cpp); nothing on one rank.
+void check_several_ranks(const Simulation& sim, const Args& a);
+
 class Input {
  public:
   explicit Input(Simulation& sim);

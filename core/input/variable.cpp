@@ -126,7 +126,7 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
         count += 1;
         mass += a.rmass[i];
       }
-    out = func == "count" ? count : mass;
+    out = sim.comm.total(func == "count" ? count : mass);
     return true;
   }
   if (func == "xcm" || func == "vcm" || func == "fcm") {
@@ -146,6 +146,8 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
       s[k] += a.rmass[i] * val;
       mass += a.rmass[i];
     }
+    s[k] = sim.comm.total(s[k]);
+    mass = sim.comm.total(mass);
     out = func == "fcm" ? s[k] : (mass > 0 ? s[k] / mass : 0.0);
     return true;
   }
@@ -161,7 +163,7 @@ bool SimContext::group_function(const std::string& func, const std::vector<std::
     double b = mx ? -kBig : kBig;
     for (std::size_t i = 0; i < a.n; ++i)
       if (in(i)) b = mx ? std::max(b, a.x[3 * i + k]) : std::min(b, a.x[3 * i + k]);
-    out = b;
+    out = mx ? sim.comm.highest(b) : sim.comm.lowest(b);
     return true;
   }
   return false;

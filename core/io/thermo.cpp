@@ -74,8 +74,11 @@ bool Thermo::keyword(const std::string& k, double& out) {
   else if (k == "endstep") out = static_cast<double>(sim_.run_last);
   else if (k == "time") out = sim_.time;
   else if (k == "cpu") out = sim_.wall_seconds();
-  else if (k == "atoms") out = static_cast<double>(sim_.atoms.n);
-  else if (k == "ke") out = kinetic_energy() / ((norm_ && sim_.atoms.n) ? sim_.atoms.n : 1);
+  else if (k == "atoms") out = static_cast<double>(sim_.comm.total(static_cast<long>(sim_.atoms.n)));
+  else if (k == "ke") {
+    const long n = sim_.comm.total(static_cast<long>(sim_.atoms.n));
+    out = sim_.comm.total(kinetic_energy()) / ((norm_ && n) ? n : 1);
+  }
   else if (k == "xlo") out = d.lo[0];
   else if (k == "xhi") out = d.hi[0];
   else if (k == "ylo") out = d.lo[1];

@@ -7,6 +7,7 @@
 #include <array>
 #include <vector>
 
+#include "core/engine/atoms.h"
 #include "core/engine/comm.h"
 #include "tests/unit/deck_runner.h"
 
@@ -174,6 +175,70 @@ TEST(Comm, TwoDimensionalBoxKeepsOneLayer) {
   e->comm = Comm(0, 2);
   e("processors 1 1 2\ndimension 2\nregion box block 0 1 0 1 -0.5 0.5 units box");
   EXPECT_EQ(error_of(e, "create_box 1 box"), "test:1: Pz = 2 in a 2D box: expected 1 or *");
+}
+
+// Every position belongs to the rank whose subdomain holds it, faces to the bit
+// (the lower face is the subdomain's, the upper the next one's), the box's top face
+// to the last rank.
+TEST(Comm, OwnerOfAPositionIsTheRankWhoseSubdomainHoldsIt) {
+  const sable::Domain d = box({-0.3, 0.1, 1e-3}, {1.7, 0.4, 2.9});
+  const int n = 12;
+  std::vector<Comm> ranks;
+  for (int r = 0; r < n; ++r) {
+    ranks.emplace_back(r, n);
+    ranks.back().decompose(d);
+  }
+  for (const Comm& c : ranks) {
+    const double mid[3] = {0.5 * (c.sublo[0] + c.subhi[0]), 0.5 * (c.sublo[1] + c.subhi[1]),
+                           0.5 * (c.sublo[2] + c.subhi[2])};
+    EXPECT_EQ(ranks[0].owner_of(mid, d), c.rank());
+    EXPECT_EQ(ranks[5].owner_of(c.sublo, d), c.rank());
+    for (int k = 0; k < 3; ++k) {
+      double x[3] = {mid[0], mid[1], mid[2]};
+      x[k] = c.subhi[k];
+      const int next = ranks[0].owner_of(x, d);
+      if (c.subhi[k] == d.hi[k]) {
+        EXPECT_EQ(next, c.rank());
+      } else {
+        EXPECT_EQ(ranks[next].sublo[k], c.subhi[k]);
+        EXPECT_NE(next, c.rank());
+      }
+    }
+  }
+}
+
+// Ghosts sit after the owned atoms; a record carries every column; an owned atom's
+// index wins over a ghost copy of the same id; adding an atom drops the ghosts.
+TEST(Comm, GhostsFollowTheOwnedAtomsAndCarryEveryColumn) {
+  sable::Atoms a;
+  const int col = a.add_column("extra", 2, 7.0);
+  const double x0[3] = {1, 2, 3}, x1[3] = {4, 5, 6};
+  a.add(11, 1, x0, 0.5, 2000);
+  a.add(12, 2, x1, 0.25, 3000);
+  a.v[3] = -1.5;
+  a.column(col)[3] = 9.0;
+  std::vector<double> rec;
+  a.pack(1, rec);
+  ASSERT_EQ(rec.size(), a.record_size());
+  const std::size_t g = a.add_ghosts(2);
+  EXPECT_EQ(g, 2u);
+  EXPECT_EQ(a.n, 2u);
+  EXPECT_EQ(a.nall(), 4u);
+  a.unpack(2, rec.data());
+  rec[0] = 11;  // a ghost copy of the owned atom 11
+  a.unpack(3, rec.data());
+  EXPECT_EQ(a.id[2], 12);
+  EXPECT_EQ(a.type[2], 2);
+  EXPECT_EQ(a.x[3 * 2 + 1], 5.0);
+  EXPECT_EQ(a.v[3 * 2], -1.5);
+  EXPECT_EQ(a.radius[2], 0.25);
+  EXPECT_EQ(a.column(col)[2 * 2 + 1], 9.0);
+  EXPECT_EQ(a.index_of(11), 0u);
+  EXPECT_EQ(a.index_of(12), 1u);
+  a.add(13, 1, x0, 0.5, 2000);
+  EXPECT_EQ(a.nghost, 0u);
+  EXPECT_EQ(a.x.size(), 9u);
+  EXPECT_EQ(a.column(col).size(), 6u);
 }
 
 }  // namespace test_comm

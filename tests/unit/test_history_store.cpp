@@ -122,4 +122,35 @@ TEST(HistoryStore, RestartRoundTripAndAnotherModelRefused) {
   EXPECT_EQ(three.count(), 0u);
 }
 
+// Several ranks (Comm::exchange): grain 1 leaves for rank 1, grain 2 stays, grain 3
+// leaves for rank 0, grain 9 is not this rank's. Slot 0 flips with the pair's
+// direction (a tangential spring), slot 1 does not.
+TEST(HistoryStore, MigrateSendsRowsWithTheirGrainsAndTurnsPairRowsForThePartner) {
+  sable::HistoryStore h = store_of({{1, 2, 0}, {2, 3, 0}, {1, 3, 0}, {1, W, 0}, {2, W, 0}, {9, 2, 0}, {9, 8, 0}});
+  auto dest = [](long id) { return id == 1 ? 1 : id == 3 ? 0 : id == 2 ? -1 : -2; };
+  std::vector<std::vector<double>> out(2);
+  h.migrate(dest, {1, 0}, out);
+  // rank 1: (1,2) as it is; (1,3) as it is; the wall row of 1
+  EXPECT_EQ(out[1], (std::vector<double>{1, 2, 0, 1, 2, 1, 3, 0, 21, 22, 1, W, 0, 31, 32}));
+  // rank 0: (2,3) turned to (3,2) with slot 0 negated; (1,3) turned to (3,1)
+  EXPECT_EQ(out[0], (std::vector<double>{3, 2, 0, -11, 12, 3, 1, 0, -21, 22}));
+  // kept: rows with a grain that stays here (2): (1,2), (2,3), (2,W), (9,2)
+  ASSERT_EQ(h.count(), 4u);
+  const std::vector<Key> kept = {h.key(0), h.key(1), h.key(2), h.key(3)};
+  EXPECT_EQ(kept, (std::vector<Key>{{1, 2, 0}, {2, 3, 0}, {2, W, 0}, {9, 2, 0}}));
+  EXPECT_EQ(h.row(2)[0], 41);
+}
+
+TEST(HistoryStore, ReceiveAppendsRecordsAndSortPutsThemInKeyOrder) {
+  sable::HistoryStore h = store_of({{5, W, 0}});
+  const std::vector<double> in = {7, W, 2, 1.5, 2.5, 3, W, 0, 4.5, 5.5};
+  EXPECT_EQ(h.receive(in.data(), 2), in.size());
+  h.sort();
+  ASSERT_EQ(h.count(), 3u);
+  EXPECT_EQ(h.key(0), (Key{3, W, 0}));
+  EXPECT_EQ(h.key(1), (Key{5, W, 0}));
+  EXPECT_EQ(h.key(2), (Key{7, W, 2}));
+  EXPECT_EQ(std::vector<double>(h.row(2), h.row(2) + 2), (std::vector<double>{1.5, 2.5}));
+}
+
 }  // namespace test_history_store

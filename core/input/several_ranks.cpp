@@ -1,0 +1,57 @@
+// What runs on several MPI ranks so far (docs/parallel.md, "What runs on several
+// ranks"): everything else stops at its deck line, on every rank alike, before it
+// could give a wrong answer.
+#include <algorithm>
+#include <set>
+#include <string>
+
+#include "core/input/args.h"
+#include "core/input/input.h"
+#include "core/engine/simulation.h"
+
+namespace sable {
+namespace {
+
+const std::set<std::string> kFixes = {"property/global", "wall/gran", "gravity", "nve/sphere"};
+const std::set<std::string> kComputes = {"ke"};
+// Commands that write or read every grain, or change grains, after the atoms are split.
+const std::set<std::string> kWholeSystem = {"dump", "write_dump", "write_restart", "restart", "write_data", "undump"};
+const std::set<std::string> kReplicatedOnly = {"set", "velocity", "create_atoms", "delete_atoms", "displace_atoms",
+                                               "read_data", "read_restart", "create_box"};
+
+std::string list(const std::set<std::string>& s) {
+  std::string out;
+  for (const std::string& w : s) out += (out.empty() ? "" : ", ") + w;
+  return out;
+}
+
+const char* kOneRank = "; run it on one rank (OMP_NUM_THREADS=N sable -in DECK) until the domain decomposition supports it";
+
+}  // namespace
+
+void check_several_ranks(const Simulation& sim, const Args& a) {
+  if (sim.comm.size() == 1) return;
+  const std::string& c = a.command();
+  const std::string ranks = " on " + std::to_string(sim.comm.size()) + " MPI ranks";
+  if (c == "fix" && a.size() > 3) {  // fix ID group style ...
+    if (!kFixes.count(a[3])) a.fail(3, "a fix style that runs" + ranks + " (" + list(kFixes) + ")" + kOneRank);
+    const auto mesh = std::find(a.words().begin(), a.words().end(), "mesh");
+    if (a[3] == "wall/gran" && mesh != a.words().end())
+      a.fail(static_cast<std::size_t>(mesh - a.words().begin()), "a primitive wall" + ranks + " (mesh walls do not run there yet)" + kOneRank);
+  }
+  if (c == "compute" && a.size() > 3 && !kComputes.count(a[3]))
+    a.fail(3, "a compute style that runs" + ranks + " (" + list(kComputes) + ")" + kOneRank);
+  if (c == "pair_style" && a.size() > 1 && a[1] != "gran" && a[1] != "none")
+    a.fail(1, "pair_style gran" + ranks + std::string(kOneRank));
+  if (c == "boundary")
+    for (std::size_t w = 1; w < a.size(); ++w)
+      if (a[w].find_first_of("sm") != std::string::npos)
+        a.fail(w, "p or f" + ranks + " (shrink-wrapped faces need the extent of every rank's grains, not done yet)" +
+                      kOneRank);
+  if (kWholeSystem.count(c)) a.fail(0, "a command that runs" + ranks + " (dumps and restart files do not yet)" + kOneRank);
+  if (sim.comm.distributed && kReplicatedOnly.count(c))
+    a.fail(0, "a command that runs" + ranks + " after the first run (before it, every rank holds every grain; " + c +
+                  " after it does not run there yet)" + kOneRank);
+}
+
+}  // namespace sable
