@@ -335,6 +335,7 @@ void Simulation::rebuild_decomposed() {
   handle_lost(*this);
   ContactStore* store = pair ? pair->history() : nullptr;
   neighbor.save_history(store);
+  const auto t0 = std::chrono::steady_clock::now();
   comm.exchange(*this);
   double rmax = 0.0;
   for (std::size_t i = 0; i < atoms.n; ++i) rmax = std::max(rmax, atoms.radius[i]);
@@ -353,12 +354,14 @@ void Simulation::rebuild_decomposed() {
     }
   neighbor.sort_owned(atoms, sub, cutoff);
   comm.borders(*this, cutoff);
+  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  timers.comm += spent, timers.neigh -= spent;  // the stage's time counts in neigh
   neighbor.build(atoms, domain, store, step);
 }
 
 void Simulation::force_and_history() {
   atoms.clear_forces();
-  if (comm.distributed) comm.forward(atoms);
+  if (comm.distributed) comm.forward(atoms);  // set-up (not timed)
   if (pair) pair->compute();
 }
 
@@ -538,6 +541,23 @@ static std::string balance_text(const char* what, const ThreadBalance& b) {
   return buf;
 }
 
+// Several ranks: how the run's seconds and grains spread over them (LAMMPS prints
+// min / avg / max per section): each line is collective.
+std::string Simulation::rank_balance() const {
+  const double tot = std::max(timers.total, 1e-12);
+  auto spread = [&](const char* what, double v, const char* unit) {
+    char b[160];
+    std::snprintf(b, sizeof b, "%s %.3g / %.3g / %.3g%s", what, comm.min(v), comm.sum(v) / comm.size(), comm.max(v), unit);
+    return std::string(b);
+  };
+  char share[64];
+  std::snprintf(share, sizeof share, " (comm %.1f%% of the loop on average)", 100 * comm.sum(timers.comm) / comm.size() / tot);
+  return "Rank balance (" + std::to_string(comm.size()) + " ranks, min / mean / max): " +
+         spread("pair", timers.pair, " s") + "; " + spread("neigh", timers.neigh, " s") + "; " +
+         spread("comm", timers.comm, " s") + "; " + spread("grains", static_cast<double>(atoms.n), "") +
+         "; " + spread("ghosts", static_cast<double>(atoms.nghost), "") + share;
+}
+
 void Simulation::explain_slow_path(const StepPlan& plan) {
   auto note = [&](const Fix* f, const std::string& what) {
     if (!slow_path_noted_.insert(f->id).second) return;
@@ -590,8 +610,17 @@ bool Simulation::quiet(long s) const {
   return true;
 }
 
+// Several ranks: the ghosts' state, counted in comm (out of the pass's time).
+void Simulation::forward_ghosts() {
+  if (!comm.distributed) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  comm.forward(atoms);
+  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  timers.comm += spent, timers.pair -= spent;
+}
+
 void Simulation::force_pass(const Stage& s) {
-  if (comm.distributed) comm.forward(atoms);
+  forward_ghosts();
   if (s.ops.empty()) {
     if (pair) pair->compute();
     return;
@@ -708,6 +737,7 @@ void Simulation::run(long nsteps) {
   thread_balance(PassKind::Pair).clear();
   thread_balance(PassKind::Atoms).clear();
   bool after_quiet = false;  // the last step deferred its second half kick
+  const long grains_at_start = comm.total(static_cast<long>(atoms.n));  // the progress line's rate
   while (step < run_last && !stop_) {
     ++step;
     time += dt;
@@ -733,7 +763,7 @@ void Simulation::run(long nsteps) {
       const double done = static_cast<double>(step - run_first) / nsteps;
       char buf[256];
       std::snprintf(buf, sizeof buf, "Progress: step %ld, %.1f%% done, %.3g particle-steps/s, %.0f s left", step,
-                    100 * done, atoms.n * (step - run_first) / el, el / done * (1 - done));
+                    100 * done, static_cast<double>(comm.distributed ? grains_at_start : static_cast<long>(atoms.n)) * (step - run_first) / el, el / done * (1 - done));
       print_to(buf, true, false);  // the screen's: the log keeps the thermo table unbroken
     }
   }
@@ -751,6 +781,7 @@ void Simulation::run(long nsteps) {
                 100 * timers.pair / tot, 100 * timers.neigh / tot, 100 * timers.integrate / tot,
                 100 * timers.fixes / tot, 100 * timers.output / tot);
   print(buf);
+  if (comm.size() > 1) print(rank_balance());
   // LIGGGHTS' wording (half list: each pair once; builds during this run).
   const std::size_t entries = static_cast<std::size_t>(comm.total(static_cast<long>(neighbor.list.size())));
   std::snprintf(buf, sizeof buf, "Total # of neighbors = %zu, Ave neighs/atom = %.4g, Neighbor list builds = %ld",

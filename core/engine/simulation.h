@@ -151,6 +151,7 @@ class Simulation {
   // Time split of the last run (seconds).
   struct Timers {
     double pair = 0, neigh = 0, integrate = 0, fixes = 0, output = 0, total = 0;
+    double comm = 0;  // several ranks: messages (exchange, borders, forward), out of neigh and pair
   } timers;
 
  private:
@@ -164,6 +165,8 @@ class Simulation {
   void rebuild_if_due();
   // Several ranks: exchange, ghosts and the list at a rebuild every rank takes at once.
   void rebuild_decomposed();
+  void forward_ghosts();
+  std::string rank_balance() const;
   void choose_kinematics();  // Atoms::plane_2d and Atoms::rotation for this run
   // Says once per fix which fix keeps the step off the fused, pipelined plan and what that costs.
   void explain_slow_path(const StepPlan& plan);

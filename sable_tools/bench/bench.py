@@ -106,6 +106,7 @@ def run_engine(engine, exe, case, size_vars, threads, workdir, timeout, dumpname
                         watch=lambda pid: hwm.__setitem__(0, max(hwm[0], peak_rss_kb(pid, comm))))
     hwm_kb, ru, text = hwm[0], m.rusage, m.text
     r = dict(engine=engine, threads=threads, rc=m.rc, timed_out=m.timed_out, wall_s=round(m.wall, 3),
+             cpu_s=round(m.cpu, 3),  # the process tree's user + system (mpirun: its ranks too)
              # run too short to be caught by the /proc polling: ru_maxrss, an upper bound
              maxrss_mb=round((hwm_kb or ru.ru_maxrss) / 1024.0, 1), maxrss_from="VmHWM" if hwm_kb else "ru_maxrss",
              ru_maxrss_mb=round(ru.ru_maxrss / 1024.0, 1),
@@ -599,6 +600,91 @@ def scaling_repeat(args, case, v, sable, liggghts, wd):
     return r
 
 
+def ranks_repeat(args, case, v, sable, liggghts, wd):
+    """One repeat on two cores: sable 1 rank x 2 threads, sable 2 MPI ranks x 1 thread, LIGGGHTS 2 MPI
+    processes (no final dump: several sable ranks do not write dumps yet)."""
+    v = dict(v, writedump=0)
+    steps = [("sable 1r x 2t", lambda: run_engine("sable", sable, case, v, 2, wd + "/t2", args.timeout, "none")),
+             ("sable 2r x 1t", lambda: run_engine("sable", sable, case, v, 1, wd + "/r2", args.timeout, "none",
+                                                  launcher=MPI2))]
+    if liggghts:
+        steps.append(("LIGGGHTS 2p", lambda: run_engine("liggghts", liggghts, case, v, 1, wd + "/l2", args.timeout,
+                                                        "none", launcher=MPI2)))
+    r = {}
+    for name, go in steps:
+        log(f"[{case['name']}] {name} ...")
+        x = go()
+        log(f"    {x['psps']:.3g} PS/s, {x['cpu_s']:.1f} CPU-s" if x["ok"] else
+            f"    FAILED (exit {x['rc']}):\n" + x.get("tail", ""))
+        r[name] = x
+    return r
+
+
+def ranks(args, cases, sable, liggghts, tmp):
+    rows = []
+    for case in cases:
+        v = dict(case["quick"] if args.quick else case["vars"])
+        reps = [ranks_repeat(args, case, v, sable, liggghts, os.path.join(tmp, case["name"], "r%d" % k))
+                for k in range(args.repeats)]
+        rows.append(dict(case=case["name"], vars=v, runs=reps))
+    return rows, ranks_table(rows)
+
+
+def ranks_table(rows):
+    """Medians over the repeats: PS/s of each configuration, the ratios within a repeat, the timed
+    run's CPU seconds (all processes) of LIGGGHTS over sable's 2 ranks, sable's share of the loop
+    in messages and its pair-time imbalance (max over mean rank)."""
+    def ok(x):
+        return x if x and x["ok"] else None
+
+    def med(xs):
+        xs = [x for x in xs if x is not None]
+        return median_or_none(xs)
+    h = ["case", "grains", "sable 1 rank x 2 threads, PS/s", "sable 2 ranks x 1 thread, PS/s", "LIGGGHTS 2 ranks, PS/s",
+         "sable 2 ranks / 2 threads", "sable / LIGGGHTS (2 ranks each), PS/s", "LIGGGHTS / sable CPU-s, whole run",
+         "sable comm, % of loop", "sable pair time max / mean rank", "sable grains per rank (min-max)"]
+    md = ["| " + " | ".join(h) + " |", "|" + "---|" * len(h)]
+    for row in rows:
+        reps = row["runs"]
+        t2 = [ok(r.get("sable 1r x 2t")) for r in reps]
+        r2 = [ok(r.get("sable 2r x 1t")) for r in reps]
+        l2 = [ok(r.get("LIGGGHTS 2p")) for r in reps]
+        ratio = lambda a, b, key: med([x[key] / y[key] if x and y and y[key] else None for x, y in zip(a, b)])
+        row["median"] = dict(
+            sable_2t=med([x and x["psps"] for x in t2]), sable_2r=med([x and x["psps"] for x in r2]),
+            liggghts_2p=med([x and x["psps"] for x in l2]), ranks_over_threads=ratio(r2, t2, "psps"),
+            sable_over_liggghts=ratio(r2, l2, "psps"), cpu_liggghts_over_sable=ratio(l2, r2, "cpu_s"),
+            comm_pct=med([x and x.get("comm_pct") for x in r2]),
+            pair_imbalance=med([x["ranks"]["pair"]["max"] / x["ranks"]["pair"]["mean"]
+                                if x and x.get("ranks", {}).get("pair", {}).get("mean") else None for x in r2]))
+        g = next((x["ranks"].get("grains") for x in r2 if x and x.get("ranks")), None)
+        cell = lambda v, f="%.3g": "-" if v is None else f % v
+        m = row["median"]
+        atoms = next((x["atoms"] for x in t2 + r2 if x), None)
+        md.append("| " + " | ".join([row["case"], cell(atoms, "%d"), cell(m["sable_2t"]), cell(m["sable_2r"]),
+                                    cell(m["liggghts_2p"]), cell(m["ranks_over_threads"], "%.2f"),
+                                    cell(m["sable_over_liggghts"], "%.2f"), cell(m["cpu_liggghts_over_sable"], "%.2f"),
+                                    cell(m["comm_pct"], "%.1f"), cell(m["pair_imbalance"], "%.2f"),
+                                    "-" if not g else "%d-%d" % (g["min"], g["max"])]) + " |")
+    return "\n".join(md)
+
+
+def write_ranks(prefix, rows, table, info, argv):
+    text = "\n".join([
+        "# Two cores: sable's threads against its MPI ranks, and LIGGGHTS on 2 ranks", "",
+        f"Generated by `python3 -m sable_tools.bench.bench {' '.join(argv)}` on {info['date']} "
+        f"(sable {info.get('sable')}, commit {info.get('sable_commit')}, tree {info.get('sable_tree')}; "
+        f"{info.get('cpu')}, {info.get('nproc')} cores).", "",
+        "Each repeat runs the same deck, one after the other: sable as one process with 2 OpenMP "
+        "threads; sable on 2 MPI ranks of one thread (`mpirun -np 2 --bind-to none`); LIGGGHTS on 2 MPI "
+        "ranks. PS/s = grains x steps / loop time of the timed run; ratios within a repeat, medians over "
+        "the repeats. CPU-s: user + system of the whole process tree (preparation included). sable's "
+        "comm: the time in messages (exchange, borders, forward: `Rank balance` in its output), as a "
+        "share of the timed loop; its imbalance: the slowest rank's pair time over the mean. The grid "
+        "is the default (`processors * * *`: least subdomain surface).", "", table, ""])
+    write_md_json(prefix, text, dict(info=info, rows=rows))
+
+
 def scaling_ratios(rep):
     """Per repeat: sable 2t / 1t, two 1t jobs at once (summed PS/s) / one alone, LIGGGHTS 2p / 1p,
     sable 1t / LIGGGHTS 1p and sable 2t / LIGGGHTS 2p."""
@@ -705,6 +791,8 @@ def main():
     ap.add_argument("--scaling", action="store_true",
                     help="per repeat: sable 1t, two sable 1t jobs at once, sable 2t, "
                          "LIGGGHTS with 1 and 2 MPI processes; writes scaling[_quick].md/json")
+    ap.add_argument("--ranks", action="store_true",
+                    help="two cores: sable 1 rank x 2 threads, sable 2 MPI ranks, LIGGGHTS 2 MPI ranks (ranks.md)")
     ap.add_argument("--no-contacts", action="store_true", help="skip counting contacts in the final dumps")
     ap.add_argument("--timeout", type=float, default=0, help="seconds per run (default: none)")
     ap.add_argument("--out", default=None,
@@ -734,9 +822,8 @@ def main():
         sys.exit("sable binary not found (%s); build it: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && "
                  "cmake --build build -j" % (args.sable or "build/, build-release/, build-bench/"))
     liggghts = None
-    if args.scaling and not args.no_liggghts and not shutil.which("mpirun"):
-        sys.exit("--scaling runs LIGGGHTS under mpirun, which is missing (apt-get install openmpi-bin), "
-                 "or pass --no-liggghts")
+    if (args.scaling or args.ranks) and not shutil.which("mpirun"):
+        sys.exit("--scaling and --ranks run under mpirun, which is missing (apt-get install openmpi-bin)")
     if not args.no_liggghts and not args.determinism:
         liggghts = shutil.which(args.liggghts)
         if not liggghts:
@@ -760,6 +847,13 @@ def main():
             write_md_json(prefix, text, dict(info=info, rows=rows))
             print("\n" + table)
             print(f"\nwritten: {prefix}.md, {prefix}.json")
+            return
+        if args.ranks:
+            prefix = args.out or os.path.join(HERE, "ranks_quick" if args.quick else "ranks")
+            rows, table = ranks(args, cases, sable, liggghts, tmp)
+            info["loadavg_end"] = os.getloadavg()
+            write_ranks(prefix, rows, table, info, sys.argv[1:])
+            print("\n" + table + f"\n\nwritten: {prefix}.md, {prefix}.json")
             return
         if args.scaling:
             prefix = args.out or os.path.join(HERE, "scaling_quick" if args.quick else "scaling")

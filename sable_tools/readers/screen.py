@@ -122,6 +122,12 @@ def sable_loop(text):
     splits = SABLE_SPLIT.findall(text)
     if splits:
         d["split"] = {k: float(v) for k, v in re.findall(r"(\w+) ([0-9.]+)%", splits[-1])}
+    ranks = [l for l in text.splitlines() if l.startswith("Rank balance")]
+    if ranks:  # several MPI ranks: seconds and grains per rank, min / mean / max
+        d["ranks"] = {k: dict(min=float(a), mean=float(b), max=float(c))
+                      for k, a, b, c in re.findall(r"(\w+) ([0-9.eE+-]+) / ([0-9.eE+-]+) / ([0-9.eE+-]+)", ranks[-1])}
+        share = re.search(r"comm ([0-9.]+)% of the loop", ranks[-1])
+        d["comm_pct"] = float(share.group(1)) if share else None
     bal = [l for l in text.splitlines() if l.startswith("Thread balance")]
     if bal:  # the timed run's: the last one
         d["balance"] = {("pair" if k == "pair" else "atoms"): dict(min=float(a), mean=float(b), max=float(c),
