@@ -183,9 +183,10 @@ int run(const Options& o, Simulation& sim, Input& input, std::unique_ptr<FILE, C
   return 0;
 }
 
-// An error once the atoms are split may be this rank's alone (a grain that blew up):
-// rank 0 says it and ends every rank; another rank waits a moment for rank 0 to do
-// so (the same error, met by all), and says it itself otherwise.
+// Several ranks: an error may be this rank's alone (a grain that blew up, a file only
+// rank 0 writes), the others waiting in a collective: rank 0 says it and ends every
+// rank; another rank waits a moment for rank 0 to do so (the same error, met by all),
+// and says it itself otherwise.
 [[noreturn]] void stop_ranks(Simulation& sim, const char* what) {
   const int r = sim.comm.rank();
   if (r != 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -223,8 +224,7 @@ int sable_main(int argc, char** argv) {
     return run(o, sim, input, screen_file);
   } catch (const std::exception& e) {
     sim.flush_outputs();
-    if (sim.comm.distributed) stop_ranks(sim, e.what());
-    if (sim.comm.rank() != 0) return 1;  // before the atoms are split every rank meets the same error
+    if (sim.comm.size() > 1) stop_ranks(sim, e.what());
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     if (sim.logfile) std::fprintf(sim.logfile, "ERROR: %s\n", e.what());
     if (sim.screen && sim.screen != stdout) std::fprintf(sim.screen, "ERROR: %s\n", e.what());

@@ -37,6 +37,7 @@ class ComputeReduce : public Compute {
     for (; i < a.size(); i += 3) {
       if (a[i] != "replace") a.fail(i, "'replace vec1 vec2' or nothing after the inputs");
       if (mode_ != MIN && mode_ != MAX) a.fail(i, "no 'replace' (it needs mode min or max)");
+      if (s.comm.size() > 1) a.fail(i, "no 'replace' on several MPI ranks (not done yet): run it on one rank");
       const long n = static_cast<long>(inputs_.size());
       const long v1 = a.integer(i + 1, "an input index"), v2 = a.integer(i + 2, "an input index");
       if (v1 < 1 || v1 > n) a.fail(i + 1, "an input index in 1.." + std::to_string(n));
@@ -101,7 +102,10 @@ class ComputeReduce : public Compute {
   void evaluate() {
     // Thermo asks c_ID[1], c_ID[2], ... in one step; delete_atoms or an insertion
     // between runs changes the atoms without changing the step.
-    if (cache_step_ == sim.step && cache_atoms_ == sim.atoms.n && cache_max_id_ == sim.atoms.max_id) return;
+    // Several ranks: whether to evaluate must be every rank's same answer (each sums its part).
+    if (sim.comm.distributed ? cache_step_ == sim.step && cache_builds_ == sim.neighbor.builds
+                             : cache_step_ == sim.step && cache_atoms_ == sim.atoms.n && cache_max_id_ == sim.atoms.max_id)
+      return;
     const Atoms& at = sim.atoms;
     const Region* reg = region_.empty() ? nullptr : sim.find_region(region_);
     if (!region_.empty() && !reg) fail("compute " + id + ": region '" + region_ + "' no longer exists");
@@ -137,7 +141,13 @@ class ComputeReduce : public Compute {
           best[q] = j;
         }
       }
-      if (mode_ == AVE && !v.empty()) r /= static_cast<double>(v.size());
+      if (sim.comm.distributed) {  // every rank's part
+        const double count = sim.comm.total(static_cast<double>(v.size()));
+        r = mode_ == MIN ? sim.comm.lowest(r) : mode_ == MAX ? sim.comm.highest(r) : sim.comm.total(r);
+        if (mode_ == AVE && count > 0) r /= count;
+      } else if (mode_ == AVE && !v.empty()) {
+        r /= static_cast<double>(v.size());
+      }
       values_[q] = r;
     }
     for (std::size_t q = 0; q < n; ++q) {
@@ -149,6 +159,7 @@ class ComputeReduce : public Compute {
       values_[q] = vec[q][best[src]];
     }
     cache_step_ = sim.step;
+    cache_builds_ = sim.neighbor.builds;
     cache_atoms_ = sim.atoms.n;
     cache_max_id_ = sim.atoms.max_id;
   }
@@ -161,6 +172,7 @@ class ComputeReduce : public Compute {
   long cache_step_ = -1;
   std::size_t cache_atoms_ = 0;
   decltype(sim.atoms.max_id) cache_max_id_ = 0;
+  long cache_builds_ = -1;
 };
 
 SABLE_COMPUTE("reduce", ComputeReduce);

@@ -64,14 +64,20 @@ class ComputeUnbalancedForce : public Compute {
     if (out_step_ == sim.step && invoked_step == sim.step) return;
     invoked_step = out_step_ = sim.step;
     init();  // fixes may have been added since; a new damping fix keeps from its next pass
-    double fsum = 0, fmax = 0, csum = 0;
-    long ng = 0, nc = 0;
+    double fsum = 0, fmax = 0, csum = 0, nc = 0;
+    long ng = 0;
     net_forces(fsum, fmax, ng);
     contact_forces(csum, nc);
-    const double fmean = ng ? fsum / ng : 0.0, cmean = nc ? csum / nc : 0.0;
+    if (sim.comm.distributed) {  // every rank's grains and contacts
+      double t[4] = {fsum, static_cast<double>(ng), csum, nc};
+      sim.comm.total(t, 4);
+      fsum = t[0], ng = static_cast<long>(t[1]), csum = t[2], nc = t[3];
+      fmax = sim.comm.highest(fmax);
+    }
+    const double fmean = ng ? fsum / ng : 0.0, cmean = nc > 0 ? csum / nc : 0.0;
     const double none = fmax > 0 ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
-    out_[0] = nc ? fmean / cmean : none;
-    out_[1] = nc ? fmax / cmean : none;
+    out_[0] = nc > 0 ? fmean / cmean : none;
+    out_[1] = nc > 0 ? fmax / cmean : none;
     out_[2] = fmean;
     out_[3] = cmean;
   }
@@ -101,14 +107,16 @@ class ComputeUnbalancedForce : public Compute {
     }
   }
 
-  void contact_forces(double& sum, long& n) {
+  // Several ranks: a pair with a ghost grain is counted by both ranks, half each.
+  void contact_forces(double& sum, double& n) {
     const Atoms& at = sim.atoms;
     auto add = [&](bool pair) {
       for (const ContactRecord& c : rec_.rows) {
         if (pair && !((at.mask[c.i] | at.mask[c.j]) & groupbit)) continue;
         if (pair && sim.body_of(c.i).first && sim.body_of(c.i) == sim.body_of(c.j)) continue;  // inside one body
-        sum += std::sqrt(c.f[0] * c.f[0] + c.f[1] * c.f[1] + c.f[2] * c.f[2]);
-        ++n;
+        const double w = pair && static_cast<std::size_t>(c.j) >= at.n ? 0.5 : 1.0;
+        sum += w * std::sqrt(c.f[0] * c.f[0] + c.f[1] * c.f[1] + c.f[2] * c.f[2]);
+        n += w;
       }
     };
     for (ContactSource* s : contact_sources(sim)) {

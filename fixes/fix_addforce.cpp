@@ -59,8 +59,8 @@ class FixAddforce : public GroupForceFix {
   void end(FixHook) override {
     if (active_) sum_.total(total_);
   }
-  double compute_scalar() override { return total_[0]; }
-  double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i] : 0.0; }
+  double compute_scalar() override { return sim.comm.total(total_[0]); }
+  double compute_vector(int i) override { return i >= 1 && i <= 3 ? sim.comm.total(total_[i]) : 0.0; }
 
  private:
   long every_ = 1;

@@ -228,13 +228,14 @@ class FixAveTime : public Fix {
     total_.assign(width, 0.0);
     if (opt_.ave == Window) window_.assign(opt_.nwindow * width, 0.0);
 
-    if (!opt_.file.empty()) {
+    const bool writer = sim.comm.rank() == 0;  // several ranks: rank 0 writes, every rank averages
+    if (!opt_.file.empty() && writer) {
       text_.open(opt_, a);
       std::vector<std::string> words;
       for (auto& v : values_) words.push_back(v.word);
       text_.header(time_header(opt_, id, words));
     }
-    if (!opt_.h5file.empty()) {
+    if (!opt_.h5file.empty() && writer) {
       h5_ = ave::open_h5(opt_, values_, "columns", *this);
       std::vector<std::size_t> shape{values_.size()};
       if (opt_.vector_mode) shape.insert(shape.begin(), nrows_);

@@ -64,7 +64,7 @@ class FixFreeze : public Fix {
     }
   }
   void end(FixHook) override { sum_.total(f0_); }
-  double compute_vector(int i) override { return i >= 1 && i <= 3 ? f0_[i - 1] : 0.0; }
+  double compute_vector(int i) override { return i >= 1 && i <= 3 ? sim.comm.total(f0_[i - 1]) : 0.0; }
 
  private:
   AtomSum<3> sum_;

@@ -83,7 +83,7 @@ class FixHalt : public Fix {
       args.fail(5, "an equal-style variable after v_ ('" + var_ + "' is another style)");
   }
   double attribute() const {
-    if (var_.empty()) return sim.wall_seconds() - t_run_;
+    if (var_.empty()) return sim.comm.highest(sim.wall_seconds() - t_run_);  // ranks: the slowest's clock
     check_variable();
     double v = 0;
     try {

@@ -34,7 +34,7 @@ class FixSetforce : public GroupForceFix {
     }
   }
   void end(FixHook) override { sum_.total(total_); }
-  double compute_vector(int i) override { return i >= 1 && i <= 3 ? total_[i - 1] : 0.0; }
+  double compute_vector(int i) override { return i >= 1 && i <= 3 ? sim.comm.total(total_[i - 1]) : 0.0; }
 
  private:
   AtomSum<3> sum_;

@@ -29,6 +29,11 @@ exit fails. A deck must say how it is judged, in its leading comment lines:
   # runs-after: DECKNAME
       (for tests/CMakeLists.txt) run in DECKNAME's run directory after it.
 
+With --ranks N the deck runs under `mpirun -np N` (oversubscribed, OpenMPI's root
+variables set): it passes if it runs and its claims hold, or if it stops at a located
+line saying what does not run on N ranks yet (core/input/several_ranks.cpp); exit 77
+(skipped) where mpirun or this build's MPI is missing.
+
 A deck with none of the first four fails. --expect-fail TEXT inverts the
 verdict for the checker's own controls (tests/decks/checker/): the run passes
 only if the judgement fails with a message containing TEXT.
@@ -191,9 +196,19 @@ def judge(args):
             os.remove(m.group("file"))
     cmd = [args.sable, "-in", deck, "-log", "none", "-echo", "none"]
     env = dict(os.environ, OMP_WAIT_POLICY="passive")
+    if args.ranks:
+        cmd = ["mpirun", "-np", str(args.ranks), "--oversubscribe", "--bind-to", "none"] + cmd
+        # more ranks than cores: a waiting rank must give its core to the one it waits for
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1",
+                   OMPI_MCA_mpi_yield_when_idle="1")
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env)
     out = p.stdout.decode(errors="replace")
     sys.stdout.write(out)
+    if p.returncode != 0 and args.ranks:
+        refused = re.search(r"^ERROR: (\S+\.in:\d+): .*on %d MPI ranks" % args.ranks, out, re.M)
+        if refused:
+            print("check_deck: %s stops on %d ranks at %s (not run there yet)" % (name, args.ranks, refused.group(1)))
+            return
     if p.returncode != 0:
         raise Fail("%s exited with %d" % (" ".join(cmd), p.returncode))
     res = results_of(out)
@@ -255,8 +270,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sable", required=True)
     ap.add_argument("--expect-fail", metavar="TEXT")
+    ap.add_argument("--ranks", type=int, default=0, help="run under mpirun -np RANKS")
     ap.add_argument("deck")
     args = ap.parse_args()
+    if args.ranks:
+        import shutil
+        if not shutil.which("mpirun") or "Built with MPI" not in subprocess.run(
+                [args.sable, "--help"], capture_output=True, text=True).stdout:
+            print("check_deck: mpirun or this build's MPI is missing: skipped")
+            return 77
     try:
         judge(args)
     except Fail as e:

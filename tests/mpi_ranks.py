@@ -13,10 +13,14 @@ on one process without mpirun (the reference), under `mpirun -np 1`, and on grid
   subdomain face from both sides, so the values differ by round-off, which the bed's
   collisions amplify: 1e-13 measured at 1200 steps (1e-3 by 3000 steps, when the bed
   has settled chaotically); the bound leaves room for the compiler and CPU;
+- the final dump (write_dump ... modify sort id, gathered to rank 0) lists the same grains in
+  the same order, each position within 1e-12 m of the one-rank value (1e-15 m measured);
 - threads inside the ranks: a bed of 10240 grains (5120 per rank: the pair pass is threaded,
   ghosts' entries included) on 2 ranks of 2 threads gives the same bits as 2 ranks of one
   thread, and agrees with one process within 1e-9 after 1500 steps (2e-12 measured);
-- a deck using a style that does not run on several ranks yet (a dump) stops with a
+- a grain that leaves the box (an error on its rank alone, the others waiting in a collective)
+  ends every rank with a non-zero status and the error naming the step and the grain, no hang;
+- a deck using a style that does not run on several ranks yet (dump local) stops with a
   non-zero status, its error printed once and naming its line.
 Usage: mpi_ranks.py SABLE TESTS_DIR. Exit 77 (skipped) without mpirun, or when this
 build of sable has no MPI (`sable --help` says which).
@@ -34,7 +38,8 @@ GRAINS = 720
 
 
 def env(threads=1):
-    e = {**os.environ, "OMP_NUM_THREADS": str(threads), "OMP_WAIT_POLICY": "passive"}
+    # more ranks than cores: a waiting rank must give its core to the one it waits for
+    e = {**os.environ, "OMP_NUM_THREADS": str(threads), "OMP_WAIT_POLICY": "passive", "OMPI_MCA_mpi_yield_when_idle": "1"}
     if os.geteuid() == 0:  # OpenMPI's mpirun refuses root without these (containers, CI)
         e.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     return e
@@ -57,6 +62,14 @@ def result(text):
     return {w[i]: float(w[i + 1]) for i in range(0, len(w), 2)}
 
 
+def dump_rows(path):
+    """The rows of a text dump's last snapshot: (id, [values...])."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    at = max(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
+    return [(int(l.split()[0]), [float(x) for x in l.split()[1:]]) for l in lines[at + 1:] if l.strip()]
+
+
 def atoms_per_step(text):
     """The thermo table's Atoms column (step, atoms, ...), one row per step."""
     rows = re.findall(r"^\s+(\d+)\s+(\d+)\s+\S+", text, re.M)
@@ -74,8 +87,9 @@ def main():
         return 77
     failures = []
     with tempfile.TemporaryDirectory() as cwd:
-        p = run([sable, "-in", deck, "-log", "none"], cwd)
+        p = run([sable, "-in", deck, "-log", "none", "-var", "dump", "one.dump"], cwd)
         ref = result(p.stdout)
+        ref_dump = dump_rows(os.path.join(cwd, "one.dump")) if p.returncode == 0 else []
         if p.returncode != 0 or ref is None:
             print(p.stdout[-3000:], p.stderr[-3000:])
             print("FAILED: the one-process reference run")
@@ -83,7 +97,8 @@ def main():
         print("one process: " + " ".join("%s %.17g" % kv for kv in ref.items()))
         for np, grid in GRIDS:
             px, py, pz = grid.split()
-            args = ["-in", deck, "-log", "none", "-var", "every", "1", "-var", "px", px, "-var", "py", py, "-var", "pz", pz]
+            args = ["-in", deck, "-log", "none", "-var", "every", "1", "-var", "px", px, "-var", "py", py, "-var", "pz", pz,
+                    "-var", "dump", "ranks.dump"]
             p = mpirun(np, sable, args, cwd)
             name = "np %d grid %s" % (np, grid)
             got = result(p.stdout)
@@ -98,6 +113,15 @@ def main():
                 failures.append("%s: %d thermo rows, grain count off at %s" % (name, len(counts), bad[:5]))
             worst = max(abs(got[k] - v) / abs(v) for k, v in ref.items())
             print("%s: %s; largest relative difference %.2g" % (name, " ".join("%s %.17g" % kv for kv in got.items()), worst))
+            rows = dump_rows(os.path.join(cwd, "ranks.dump"))
+            if [r[0] for r in rows] != [r[0] for r in ref_dump]:
+                failures.append("%s: the dump's grains differ from one rank's (%d rows against %d)" %
+                                (name, len(rows), len(ref_dump)))
+            else:
+                dx = max(abs(a - b) for (_, u), (_, w) in zip(rows, ref_dump) for a, b in zip(u[2:5], w[2:5]))
+                print("%s: dump of %d grains, positions within %.2g m of one rank's" % (name, len(rows), dx))
+                if dx > 1e-12:
+                    failures.append("%s: a dumped position is %.3g m from one rank's (> 1e-12 m)" % (name, dx))
             if grid == "1 1 1" and got != ref:
                 failures.append("mpirun -np 1 differs from the run without mpirun: %s against %s" % (got, ref))
             if worst > REL:
@@ -121,13 +145,20 @@ def main():
                 failures.append("10240 grains on 2 ranks: 2 threads differ from 1: %s against %s" % (by_threads[2], by_threads[1]))
             if worst > REL:
                 failures.append("10240 grains on 2 ranks: relative difference %.3g > %g" % (worst, REL))
-        dumps = os.path.join(tests, "decks", "output_dumps.in")
+        p = mpirun(2, sable, ["-in", deck, "-log", "none", "-var", "kick", "5", "-var", "px", "1", "-var", "py", "1",
+                              "-var", "pz", "2"], cwd)
+        out = p.stdout + p.stderr
+        lost = re.search(r"ERROR.*step (\d+): atom 720 left the box", out)
+        print("np 2, grain 720 shot out of the box: exit %d, %s" % (p.returncode, lost.group(0) if lost else "no error line"))
+        if p.returncode == 0 or not lost:
+            failures.append("np 2, a grain leaving the box: expected a located error and a non-zero exit:\n" + out[-2000:])
+        dumps = os.path.join(tests, "decks", "output_dumps.in")  # a line that does not run there yet
         p = mpirun(2, sable, ["-in", dumps, "-log", "none"], cwd)
         out = p.stdout + p.stderr
         said = out.count("ERROR")
-        print("np 2, a deck with dumps: exit %d, %d error line(s)" % (p.returncode, said))
+        print("np 2, a deck with a local compute: exit %d, %d error line(s)" % (p.returncode, said))
         if p.returncode == 0 or said != 1 or "output_dumps.in:" not in out or "runs on 2 MPI ranks" not in out:
-            failures.append("np 2 with dumps: expected one located refusal and a non-zero exit:\n" + out[-2000:])
+            failures.append("np 2 with a local compute: expected one located refusal and a non-zero exit:\n" + out[-2000:])
     for f in failures:
         print("FAILED:", f)
     return 1 if failures else 0

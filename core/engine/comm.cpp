@@ -139,6 +139,22 @@ void Comm::all_to_all(const std::vector<std::vector<double>>& out, std::vector<d
   MPI_Alltoallv(flat.data(), to.data(), sdispl.data(), MPI_DOUBLE, in.data(), from.data(), rdispl.data(), MPI_DOUBLE,
                 MPI_COMM_WORLD);
 }
+void Comm::gather(const std::vector<double>& mine, std::vector<double>& all) const {
+  if (!SABLE_MPI_ACTIVE) {
+    all = mine;
+    return;
+  }
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(rank_ == 0 ? size_ : 0), displ(rank_ == 0 ? size_ + 1 : 0, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (rank_ == 0) {
+    for (int r = 0; r < size_; ++r) displ[r + 1] = displ[r] + counts[r];
+    all.resize(static_cast<std::size_t>(displ[size_]));
+  } else {
+    all.clear();
+  }
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), displ.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
 void Comm::abort(int status) {
   if (mpi_up()) MPI_Abort(MPI_COMM_WORLD, status);
   std::exit(status);
@@ -155,6 +171,7 @@ void Comm::all_to_all(const std::vector<std::vector<double>>& out, std::vector<d
   in = out.empty() ? std::vector<double>{} : out[0];
   from.assign(1, static_cast<int>(in.size()));
 }
+void Comm::gather(const std::vector<double>& mine, std::vector<double>& all) const { all = mine; }
 void Comm::abort(int status) { std::exit(status); }
 #endif
 double Comm::sum(double v) const {

@@ -68,6 +68,8 @@ class Comm {
   // order, from[r] doubles from rank r. With `known`, from already holds the counts.
   void all_to_all(const std::vector<std::vector<double>>& out, std::vector<double>& in, std::vector<int>& from,
                   bool known = false) const;
+  // Rank 0 gets every rank's `mine`, in rank order (other ranks: `all` left empty).
+  void gather(const std::vector<double>& mine, std::vector<double>& all) const;
   // Ends every rank now (an error met by this rank alone, after the atoms were split).
   [[noreturn]] static void abort(int status);
 

@@ -51,16 +51,18 @@ void shrink_wrap(Simulation& sim) {
     w->have_box = true;
   }
   const Atoms& a = sim.atoms;
-  if (a.n == 0) return;
+  if (sim.comm.total(static_cast<long>(a.n)) == 0) return;  // several ranks: all grains' extent
   for (int k = 0; k < 3; ++k) {
     if (d.periodic[k] || (w->face[k][0] == FaceStyle::Fixed && w->face[k][1] == FaceStyle::Fixed)) continue;
     double lo = std::numeric_limits<double>::max(), hi = -lo;
     for (std::size_t i = 0; i < a.n; ++i) lo = std::min(lo, a.x[3 * i + k]), hi = std::max(hi, a.x[3 * i + k]);
+    lo = sim.comm.lowest(lo), hi = sim.comm.highest(hi);
     if (w->face[k][0] == FaceStyle::Shrink) d.lo[k] = lo - w->small[k];
     if (w->face[k][0] == FaceStyle::ShrinkMin) d.lo[k] = std::min(lo - w->small[k], w->lo[k]);
     if (w->face[k][1] == FaceStyle::Shrink) d.hi[k] = hi + w->small[k];
     if (w->face[k][1] == FaceStyle::ShrinkMin) d.hi[k] = std::max(hi + w->small[k], w->hi[k]);
   }
+  if (sim.comm.decomposed()) sim.comm.split(d);  // the subdomains follow the box
 }
 
 }  // namespace sable

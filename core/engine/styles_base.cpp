@@ -216,7 +216,7 @@ void Dump::write(long step) {
     path.replace(path.find('*'), 1, std::to_string(step));
     const std::string tmp = path + ".tmp";
     write_snapshot(step, tmp, false);
-    std::filesystem::rename(tmp, path);  // atomic: readers never see a partial file
+    if (sim.comm.rank() == 0) std::filesystem::rename(tmp, path);  // atomic: readers never see a partial file
   } else {
     write_snapshot(step, file, !first_);
   }

@@ -68,14 +68,17 @@ Value value(Simulation& sim, const Args& a, std::size_t i, const std::string& wh
 void cmd_set(Simulation& sim, const Args& a) {
   if (!sim.domain.box_exists) a.fail(0, "a box first (create_box before set)");
   Atoms& at = sim.atoms;
-  if (at.n == 0) a.fail_line("set command with no atoms existing (create or insert atoms first)");
+  if (sim.comm.total(static_cast<long>(at.n)) == 0)  // several ranks: on any rank
+    a.fail_line("set command with no atoms existing (create or insert atoms first)");
   const std::string& style = a.word(1, "atom, type, group or region");
   std::vector<char> sel(at.n, 0);
   if (style == "atom") {
     long lo, hi;
     bool single;
     star_bounds(a, 2, std::numeric_limits<int>::max(), lo, hi, single, "an atom ID or ID range");
-    if (single && at.index_of(lo) == Atoms::npos) a.fail(2, "an existing atom ID (there is no atom " + a[2] + ")");
+    const std::size_t one = single ? at.index_of(lo) : Atoms::npos;
+    if (single && sim.comm.total(static_cast<long>(one < at.n)) == 0)  // owned here or on another rank
+      a.fail(2, "an existing atom ID (there is no atom " + a[2] + ")");
     for (std::size_t i = 0; i < at.n; ++i) sel[i] = at.id[i] >= lo && at.id[i] <= hi;
   } else if (style == "type") {
     long lo, hi;
@@ -199,7 +202,7 @@ void cmd_set(Simulation& sim, const Args& a) {
              "a set keyword: type, type/fraction, x, y, z, vx, vy, vz, omegax, omegay, omegaz, diameter, "
              "density, mass, image, property/atom");
     }
-    sim.print("  " + std::to_string(count) + " settings made for " + key);
+    sim.print("  " + std::to_string(sim.comm.total(static_cast<long>(count))) + " settings made for " + key);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "core/engine/error.h"
@@ -64,6 +65,12 @@ class SimContext : public ExprContext {
     out = g->global(index, column);
     return true;
   }
+  static bool atom_field_name(const std::string& name) {
+    static const std::set<std::string> kNames = {
+        "x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "omegax", "omegay", "omegaz",
+        "tqx", "tqy", "tqz", "radius", "mass", "density", "type", "id"};
+    return kNames.count(name) > 0;
+  }
   static bool atom_field(const Atoms& a, const std::string& name, std::size_t i, double& out) {
     if (name.size() == 1 && name[0] >= 'x' && name[0] <= 'z') {
       out = a.x[3 * i + (name[0] - 'x')];
@@ -89,10 +96,20 @@ class SimContext : public ExprContext {
     return true;
   }
   bool atom_value_by_id(const std::string& name, long id, double& out) override {
-    const std::size_t i = sim.atoms.index_of(id);
+    std::size_t i = sim.atoms.index_of(id);
+    if (i != Atoms::npos && i >= sim.atoms.n) i = Atoms::npos;  // a ghost: its owner answers
+    const bool known = atom_field_name(name);  // the same answer on every rank
+    out = 0.0;
+    if (i != Atoms::npos && known) atom_field(sim.atoms, name, i, out);
+    if (sim.comm.distributed) {  // the rank that owns the grain gives its value to all
+      double got[2] = {i != Atoms::npos ? out : 0.0, i != Atoms::npos ? 1.0 : 0.0};
+      sim.comm.total(got, 2);
+      out = got[0];
+      i = got[1] > 0 ? 0 : Atoms::npos;
+    }
     if (i == Atoms::npos) where.fail_line("atom ID " + std::to_string(id) + " in '" + name + "[" +
                                           std::to_string(id) + "]' does not exist");
-    return atom_field(sim.atoms, name, i, out);
+    return known;
   }
   bool atom_value_local(const std::string& name, std::size_t i, double& out) override {
     return atom_field(sim.atoms, name, i, out);

@@ -99,11 +99,16 @@ class DumpCustom : public Dump {
     last_step_ = step;
     std::vector<std::size_t> sel = selected_atoms();
     filter_.apply(sim, sel);
-    const std::size_t n = sel.size(), nc = cols_.size();
+    const std::size_t nc = cols_.size();
     std::vector<std::vector<double>> vals(nc);
     for (std::size_t c = 0; c < nc; ++c) gather_atom_column(sim, cols_[c], sel, vals[c]);
+    std::vector<double> ids;  // several ranks: every grain's id, for the order by id
+    if (sim.comm.distributed && !to_rank_zero(sel, vals, ids)) return;
+    const std::size_t n = vals.empty() ? 0 : vals[0].size();
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), 0);
+    if (sort_by_id && !ids.empty())
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return ids[p] < ids[q]; });
     if (sort_col_) {
       const auto& key = vals[std::labs(sort_col_) - 1];
       std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
@@ -186,6 +191,29 @@ class DumpCustom : public Dump {
       p = e;
     }
     return w;
+  }
+
+  // Several ranks: every rank's rows (and ids) to rank 0, in rank order; false on the
+  // other ranks, which write nothing.
+  bool to_rank_zero(const std::vector<std::size_t>& sel, std::vector<std::vector<double>>& vals,
+                    std::vector<double>& ids) const {
+    const std::size_t nc = vals.size(), w = nc + 1;
+    std::vector<double> mine, all;
+    mine.reserve(sel.size() * w);
+    for (std::size_t r = 0; r < sel.size(); ++r) {
+      mine.push_back(static_cast<double>(sim.atoms.id[sel[r]]));
+      for (std::size_t c = 0; c < nc; ++c) mine.push_back(vals[c][r]);
+    }
+    sim.comm.gather(mine, all);
+    if (sim.comm.rank() != 0) return false;
+    const std::size_t rows = all.size() / w;
+    ids.resize(rows);
+    for (auto& v : vals) v.resize(rows);
+    for (std::size_t r = 0; r < rows; ++r) {
+      ids[r] = all[r * w];
+      for (std::size_t c = 0; c < nc; ++c) vals[c][r] = all[r * w + 1 + c];
+    }
+    return true;
   }
 
   std::vector<AtomColumn> cols_;
