@@ -122,8 +122,8 @@ void FixMeshSurface::read_state(const std::string& in) {
 
 double FixMeshSurface::compute_vector(int i) {
   if (i < 1 || i > 9) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..9");
-  if (i <= 3) return mesh_.force[i - 1];
-  if (i <= 6) return mesh_.torque[i - 4];
+  if (i <= 3) return sim.comm.total(mesh_.force[i - 1]);  // several ranks: every rank's contacts
+  if (i <= 6) return sim.comm.total(mesh_.torque[i - 4]);
   return mesh_.to_world(mesh_.ref_body)[i - 7];
 }
 

@@ -55,10 +55,10 @@ class FixWallGran : public Fix, public ContactSource {
   const double* wall_velocity(int k) const override { return &records_.vwall[3 * k]; }
   bool last_pass(const PassFn& fn) const override;
   void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override;
-  HistoryStore* history_by_grain() override {
+  std::vector<HistoryStore*> histories_by_grain() override {
     keep_places();
     near_builds_ = -1;  // the places reload from hist_ at the next pass
-    return &hist_;
+    return {&hist_};
   }
   void history_moved() override { hist_.sort(); }
   int plane_axis() const override { return shape_ == Shape::Plane ? axis_ : -1; }

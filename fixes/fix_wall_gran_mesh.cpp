@@ -658,7 +658,7 @@ void FixWallGranMesh::read_state(const std::string& in) {
 
 double FixWallGranMesh::compute_vector(int i) {
   if (i < 1 || i > 3) args.fail_line("f_" + id + "[" + std::to_string(i) + "]: index out of range 1..3");
-  return force_[i - 1];
+  return sim.comm.total(force_[i - 1]);
 }
 
 }  // namespace sable

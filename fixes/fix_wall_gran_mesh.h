@@ -70,6 +70,14 @@ class FixWallGranMesh : public Fix, public ContactSource {
   void ids_renumbered(const std::vector<long>& o, const std::vector<long>& n) override {
     for (HistoryStore& h : prev_) h.renumber(o, n);
   }
+  std::vector<HistoryStore*> histories_by_grain() override {
+    std::vector<HistoryStore*> out;
+    for (HistoryStore& h : prev_) out.push_back(&h);
+    return out;
+  }
+  void history_moved() override {
+    for (HistoryStore& h : prev_) h.sort();
+  }
   int mesh(int k) const { return rec_.mesh[k]; }
 
   // One grain-triangle contact of a step.

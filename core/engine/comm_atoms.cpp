@@ -48,7 +48,7 @@ Stores stores_of(Simulation& sim) {
   }
   for (ContactSource* src : contact_sources(sim)) {
     if (src->contact_kind() == ContactSource::Kind::Pairs) continue;
-    if (HistoryStore* h = src->history_by_grain()) {
+    for (HistoryStore* h : src->histories_by_grain()) {
       s.store.push_back(h);
       s.flip.emplace_back(static_cast<std::size_t>(h->size()), 0);
       s.wall.push_back(src);

@@ -41,11 +41,11 @@ class ContactSource {
   // new_ids[k], old_ids ascending, new_ids in the same order; ids not listed are
   // gone. History kept by grain id follows.
   virtual void ids_renumbered(const std::vector<long>& /*old_ids*/, const std::vector<long>& /*new_ids*/) {}
-  // Several ranks (Comm::exchange): a wall's history by grain id, brought up to date,
-  // to move with the grains; nullptr for a source that keeps none this way (the
-  // pair's rows travel from Neighbor's ContactStore). history_moved(): rows were cut
-  // or received.
-  virtual HistoryStore* history_by_grain() { return nullptr; }
+  // Several ranks (Comm::exchange): a wall's history by grain id (a mesh wall: one
+  // store per mesh), brought up to date, to move with the grains; none for a source
+  // that keeps none this way (the pair's rows travel from Neighbor's ContactStore).
+  // history_moved(): rows were cut or received.
+  virtual std::vector<HistoryStore*> histories_by_grain() { return {}; }
   virtual void history_moved() {}
 };
 

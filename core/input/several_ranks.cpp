@@ -15,6 +15,7 @@ namespace {
 const std::set<std::string> kFixes = {
     "property/global", "wall/gran", "gravity", "nve/sphere", "nve", "enforce2d", "viscous", "damping/cundall",
     "freeze", "setforce", "addforce", "halt", "ave/time", "move", "property/atom",
+    "mesh/surface", "mesh/surface/stress", "move/mesh",  // every rank holds every triangle
     "particletemplate/sphere", "particledistribution/discrete"};  // the last two: definitions (insertion stops)
 const std::set<std::string> kComputes = {"ke", "erotate/sphere", "reduce", "property/atom", "unbalanced/force"};
 // Commands that write or read every grain, or change grains, after the atoms are split.
@@ -39,9 +40,6 @@ void check_several_ranks(const Simulation& sim, const Args& a) {
   const std::string ranks = " on " + std::to_string(sim.comm.size()) + " MPI ranks";
   if (c == "fix" && a.size() > 3) {  // fix ID group style ...
     if (!kFixes.count(a[3])) a.fail(3, "a fix style that runs" + ranks + " (" + list(kFixes) + ")" + kOneRank);
-    const auto mesh = std::find(a.words().begin(), a.words().end(), "mesh");
-    if (a[3] == "wall/gran" && mesh != a.words().end())
-      a.fail(static_cast<std::size_t>(mesh - a.words().begin()), "a primitive wall" + ranks + " (mesh walls do not run there yet)" + kOneRank);
   }
   if (c == "compute" && a.size() > 3 && !kComputes.count(a[3]))
     a.fail(3, "a compute style that runs" + ranks + " (" + list(kComputes) + ")" + kOneRank);
