@@ -444,9 +444,19 @@ std::size_t FixInsert::place(const std::vector<FixParticledistributionDiscrete::
   }
   double rmax = 0;
   for (std::size_t i = 0; i < at.n; ++i) rmax = std::max(rmax, at.radius[i]);
-  OverlapGrid grid(sim.domain, slo_, shi_, dist_->max_radius + std::max(rmax, dist_->max_radius));
-  for (std::size_t i = 0; i < at.n; ++i)
-    if (grid.covers(&at.x[3 * i])) grid.add(&at.x[3 * i], at.radius[i]);
+  OverlapGrid grid(sim.domain, slo_, shi_, dist_->max_radius + std::max(sim.comm.highest(rmax), dist_->max_radius));
+  if (sim.comm.distributed) {
+    // Several ranks: every rank sees every grain near the region and places the same
+    // grains with the same draws (each then keeps those in its subdomain: insert()).
+    std::vector<double> mine, all;
+    for (std::size_t i = 0; i < at.n; ++i)
+      if (grid.covers(&at.x[3 * i])) mine.insert(mine.end(), {at.x[3 * i], at.x[3 * i + 1], at.x[3 * i + 2], at.radius[i]});
+    sim.comm.all_gather(mine, all);
+    for (std::size_t q = 0; q + 3 < all.size(); q += 4) grid.add(&all[q], all[q + 3]);
+  } else {
+    for (std::size_t i = 0; i < at.n; ++i)
+      if (grid.covers(&at.x[3 * i])) grid.add(&at.x[3 * i], at.radius[i]);
+  }
   // LIGGGHTS budget: M tries per grain, more when the region is already partly filled.
   const double budget = static_cast<double>(grains.size()) * maxattempt_;
   const long maxtry = static_cast<long>(filled < 1 ? budget / (1 - std::max(0.0, filled)) : budget);
@@ -503,6 +513,11 @@ void FixInsert::region_content(long& np, double& vol, double& mass) const {
       mass += at.rmass[i];
     }
   }
+  if (sim.comm.distributed) {  // every rank's grains (clumps do not run on several ranks)
+    np = sim.comm.total(np);
+    vol = sim.comm.total(vol);
+    mass = sim.comm.total(mass);
+  }
   for (std::size_t k = 0; k < rho.size(); ++k) {
     const auto& b = ms->body(static_cast<int>(k));
     double x[3] = {b.xcm[0], b.xcm[1], b.xcm[2]};
@@ -525,14 +540,18 @@ void FixInsert::insert() {
   Atoms& at = sim.atoms;
   const std::size_t first = at.n;
   double mass_now = 0;
-  for (std::size_t p = 0; p < placed; ++p) {
+  long next_id = static_cast<long>(sim.comm.highest(static_cast<double>(at.max_id))) + 1;  // all ranks' ids
+  for (std::size_t p = 0; p < placed; ++p, ++next_id) {
     const auto& G = grains[p];
     double v[3], w[3];
-    start_motion(v, w);
+    start_motion(v, w);  // every rank draws for every grain: the same streams
+    mass_now += G.g.mass;
+    if (sim.comm.distributed && sim.comm.owner_of(&pos[3 * p], sim.domain) != sim.comm.rank()) continue;
     if (G.g.clump) {
       insert_clump(G, &pos[3 * p], q_[p], v);
     } else {
-      const std::size_t i = at.add(at.max_id + 1, G.g.type, &pos[3 * p], G.g.radius, G.g.density);
+      const long aid = sim.comm.distributed ? next_id : at.max_id + 1;  // (one rank: after a clump's spheres too)
+      const std::size_t i = at.add(aid, G.g.type, &pos[3 * p], G.g.radius, G.g.density);
       at.rmass[i] = G.g.mass;  // disc mass in 2D
       at.mask[i] |= groupbit | G.groupbits;
       for (int k = 0; k < 3; ++k) {
@@ -540,7 +559,6 @@ void FixInsert::insert() {
         at.omega[3 * i + k] = w[k];
       }
     }
-    mass_now += G.g.mass;
   }
   inserted(first);
   ninserted_ += static_cast<long>(placed);

@@ -155,6 +155,18 @@ void Comm::gather(const std::vector<double>& mine, std::vector<double>& all) con
   }
   MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), displ.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }
+void Comm::all_gather(const std::vector<double>& mine, std::vector<double>& all) const {
+  if (!SABLE_MPI_ACTIVE) {
+    all = mine;
+    return;
+  }
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(size_), displ(size_ + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 0; r < size_; ++r) displ[r + 1] = displ[r] + counts[r];
+  all.resize(static_cast<std::size_t>(displ[size_]));
+  MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), displ.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+}
 void Comm::abort(int status) {
   if (mpi_up()) MPI_Abort(MPI_COMM_WORLD, status);
   std::exit(status);
@@ -172,6 +184,7 @@ void Comm::all_to_all(const std::vector<std::vector<double>>& out, std::vector<d
   from.assign(1, static_cast<int>(in.size()));
 }
 void Comm::gather(const std::vector<double>& mine, std::vector<double>& all) const { all = mine; }
+void Comm::all_gather(const std::vector<double>& mine, std::vector<double>& all) const { all = mine; }
 void Comm::abort(int status) { std::exit(status); }
 #endif
 double Comm::sum(double v) const {

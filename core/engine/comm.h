@@ -70,6 +70,8 @@ class Comm {
                   bool known = false) const;
   // Rank 0 gets every rank's `mine`, in rank order (other ranks: `all` left empty).
   void gather(const std::vector<double>& mine, std::vector<double>& all) const;
+  // Every rank gets every rank's `mine`, in rank order.
+  void all_gather(const std::vector<double>& mine, std::vector<double>& all) const;
   // Ends every rank now (an error met by this rank alone, after the atoms were split).
   [[noreturn]] static void abort(int status);
 

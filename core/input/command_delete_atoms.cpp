@@ -60,11 +60,20 @@ void cmd_delete_atoms(Simulation& sim, const Args& a) {
     std::vector<std::size_t> by_id(at.n);
     std::iota(by_id.begin(), by_id.end(), 0);
     std::sort(by_id.begin(), by_id.end(), [&](std::size_t p, std::size_t q) { return at.id[p] < at.id[q]; });
-    std::vector<long> old_ids(by_id.size()), new_ids(by_id.size());
-    for (std::size_t k = 0; k < by_id.size(); ++k) {
-      old_ids[k] = at.id[by_id[k]];
-      new_ids[k] = at.id[by_id[k]] = static_cast<long>(k) + 1;
+    // Several ranks: the surviving ids of all ranks, so that every rank renumbers its
+    // grains and the history it keeps of grains on other ranks alike.
+    std::vector<long> old_ids(by_id.size()), new_ids;
+    for (std::size_t k = 0; k < by_id.size(); ++k) old_ids[k] = at.id[by_id[k]];
+    if (sim.comm.distributed) {
+      std::vector<double> mine(old_ids.begin(), old_ids.end()), all;
+      sim.comm.all_gather(mine, all);
+      old_ids.assign(all.begin(), all.end());
+      std::sort(old_ids.begin(), old_ids.end());
     }
+    new_ids.resize(old_ids.size());
+    std::iota(new_ids.begin(), new_ids.end(), 1L);
+    for (std::size_t i : by_id)
+      at.id[i] = 1 + (std::lower_bound(old_ids.begin(), old_ids.end(), at.id[i]) - old_ids.begin());
     for (ContactSource* c : contact_sources(sim)) c->ids_renumbered(old_ids, new_ids);
     sim.neighbor.ids_renumbered(old_ids, new_ids);  // the list's grains, whose pair history the next rebuild carries
     sim.restart.contacts.renumber(old_ids, new_ids);  // read_restart's contacts not yet handed to the pair
@@ -73,7 +82,9 @@ void cmd_delete_atoms(Simulation& sim, const Args& a) {
   // LIGGGHTS gives new atoms max(existing ID) + 1, so a deleted top ID is reused.
   at.max_id = 0;
   for (std::size_t i = 0; i < at.n; ++i) at.max_id = std::max(at.max_id, at.id[i]);
-  sim.print("Deleted " + std::to_string(before - at.n) + " atoms, new total = " + std::to_string(at.n));
+  at.max_id = static_cast<long>(sim.comm.highest(static_cast<double>(at.max_id)));  // several ranks: all grains'
+  const long deleted = sim.comm.total(static_cast<long>(before - at.n)), total = sim.comm.total(static_cast<long>(at.n));
+  sim.print("Deleted " + std::to_string(deleted) + " atoms, new total = " + std::to_string(total));
 }
 
 }  // namespace

@@ -16,13 +16,13 @@ const std::set<std::string> kFixes = {
     "property/global", "wall/gran", "gravity", "nve/sphere", "nve", "enforce2d", "viscous", "damping/cundall",
     "freeze", "setforce", "addforce", "halt", "ave/time", "move", "property/atom",
     "mesh/surface", "mesh/surface/stress", "move/mesh",  // every rank holds every triangle
+    "insert/pack", "insert/rate/region",  // the same grains whatever the rank count
     "particletemplate/sphere", "particledistribution/discrete"};  // the last two: definitions (insertion stops)
 const std::set<std::string> kComputes = {"ke", "erotate/sphere", "reduce", "property/atom", "unbalanced/force"};
 // Commands that write or read every grain, or change grains, after the atoms are split.
 const std::set<std::string> kWholeSystem = {"write_restart", "restart", "write_data"};
 const std::set<std::string> kDumps = {"custom"};  // gathered to rank 0, which writes
-const std::set<std::string> kReplicatedOnly = {"velocity", "create_atoms", "delete_atoms", "read_data", "read_restart",
-                                               "create_box"};
+const std::set<std::string> kReplicatedOnly = {"velocity", "create_atoms", "read_data", "read_restart", "create_box"};
 
 std::string list(const std::set<std::string>& s) {
   std::string out;
