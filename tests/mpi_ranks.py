@@ -19,6 +19,9 @@ on one process without mpirun (the reference), under `mpirun -np 1`, and on grid
   history on its triangles) on grids 2x1x1, 1x1x2 and 3x1x1: the drum's force and torque, the
   kinetic energy and the centre of mass within 1e-9 of one rank after 5000 steps (2e-12
   measured);
+- insertion: tests/mpi/insert.in (insert/pack of 625 grains into a box holding a lattice of
+  75) on grids 2x1x1, 1x1x2, 3x1x1 and 2x2x1 dumps, after one step, byte for byte the grains of
+  one rank (ids, radii, positions, velocities drawn by the fix): the same grains whatever N;
 - threads inside the ranks: a bed of 10240 grains (5120 per rank: the pair pass is threaded,
   ghosts' entries included) on 2 ranks of 2 threads gives the same bits as 2 ranks of one
   thread, and agrees with one process within 1e-9 after 1500 steps (2e-12 measured);
@@ -130,6 +133,21 @@ def main():
                 failures.append("mpirun -np 1 differs from the run without mpirun: %s against %s" % (got, ref))
             if worst > REL:
                 failures.append("%s: relative difference %.3g > %g" % (name, worst, REL))
+        ins = ["-in", os.path.join(tests, "mpi", "insert.in"), "-log", "none"]
+        p = run([sable] + ins + ["-var", "dump", "ins1.dump"], cwd)
+        if p.returncode != 0:
+            failures.append("insertion on one process failed:\n" + p.stdout[-2000:] + p.stderr[-2000:])
+        else:
+            ref_ins = open(os.path.join(cwd, "ins1.dump")).read()
+            for np, grid in [(2, "2 1 1"), (2, "1 1 2"), (3, "3 1 1"), (4, "2 2 1")]:
+                px, py, pz = grid.split()
+                p = mpirun(np, sable, ins + ["-var", "dump", "insN.dump", "-var", "px", px, "-var", "py", py,
+                                             "-var", "pz", pz], cwd)
+                same = p.returncode == 0 and open(os.path.join(cwd, "insN.dump")).read() == ref_ins
+                print("insertion, grid %s: %s" % (grid, "the same grains, byte for byte" if same else "DIFFERENT"))
+                if not same:
+                    failures.append("insertion on grid %s differs from one rank (exit %d):\n%s" %
+                                    (grid, p.returncode, p.stdout[-1500:] + p.stderr[-1500:]))
         drum = ["-in", os.path.join(tests, "mpi", "drum.in"), "-log", "none", "-var", "stl",
                 os.path.join(tests, "decks", "mesh_drum.stl")]
         p = run([sable] + drum, cwd)
