@@ -22,6 +22,9 @@ on one process without mpirun (the reference), under `mpirun -np 1`, and on grid
 - insertion: tests/mpi/insert.in (insert/pack of 625 grains into a box holding a lattice of
   75) on grids 2x1x1, 1x1x2, 3x1x1 and 2x2x1 dumps, after one step, byte for byte the grains of
   one rank (ids, radii, positions, velocities drawn by the fix): the same grains whatever N;
+- a restart written on 2 ranks (tests/decks/restart_write.in, check_deck.py --ranks 2) is read
+  on 3 (restart_read.in, --ranks 3), whose run goes on to the uninterrupted one-rank run's
+  values (its claims, within 1e-9 relative);
 - threads inside the ranks: a bed of 10240 grains (5120 per rank: the pair pass is threaded,
   ghosts' entries included) on 2 ranks of 2 threads gives the same bits as 2 ranks of one
   thread, and agrees with one process within 1e-9 after 1500 steps (2e-12 measured);
@@ -148,6 +151,18 @@ def main():
                 if not same:
                     failures.append("insertion on grid %s differs from one rank (exit %d):\n%s" %
                                     (grid, p.returncode, p.stdout[-1500:] + p.stderr[-1500:]))
+        with tempfile.TemporaryDirectory() as rdir:
+            check = [sys.executable, os.path.join(tests, "check_deck.py"), "--sable", sable]
+            cenv = {**env(), "PYTHONPATH": os.path.dirname(tests)}
+            verdicts = []
+            for np, deck_name in ((2, "restart_write"), (3, "restart_read")):
+                p = subprocess.run(check + ["--ranks", str(np), os.path.join(tests, "decks", deck_name + ".in")], cwd=rdir,
+                                   env=cenv, capture_output=True, text=True, timeout=300)
+                ok = p.returncode == 0 and ("check_deck: %s passed" % deck_name) in p.stdout
+                verdicts.append(ok)
+                print("%s on %d ranks: %s" % (deck_name, np, "passed" if ok else "FAILED"))
+                if not ok:
+                    failures.append("%s on %d ranks:\n%s%s" % (deck_name, np, p.stdout[-2500:], p.stderr[-1000:]))
         drum = ["-in", os.path.join(tests, "mpi", "drum.in"), "-log", "none", "-var", "stl",
                 os.path.join(tests, "decks", "mesh_drum.stl")]
         p = run([sable] + drum, cwd)

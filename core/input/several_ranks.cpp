@@ -20,7 +20,7 @@ const std::set<std::string> kFixes = {
     "particletemplate/sphere", "particledistribution/discrete"};  // the last two: definitions (insertion stops)
 const std::set<std::string> kComputes = {"ke", "erotate/sphere", "reduce", "property/atom", "unbalanced/force"};
 // Commands that write or read every grain, or change grains, after the atoms are split.
-const std::set<std::string> kWholeSystem = {"write_restart", "restart", "write_data"};
+const std::set<std::string> kWholeSystem = {"write_data"};
 const std::set<std::string> kDumps = {"custom"};  // gathered to rank 0, which writes
 const std::set<std::string> kReplicatedOnly = {"velocity", "create_atoms", "read_data", "read_restart", "create_box"};
 
@@ -47,7 +47,7 @@ void check_several_ranks(const Simulation& sim, const Args& a) {
     a.fail(1, "pair_style gran" + ranks + std::string(kOneRank));
   if ((c == "dump" || c == "write_dump") && a.size() > 3 && !kDumps.count(a[c == "dump" ? 3 : 2]))
     a.fail(c == "dump" ? 3 : 2, "a dump style that runs" + ranks + " (" + list(kDumps) + ")" + kOneRank);
-  if (kWholeSystem.count(c)) a.fail(0, "a command that runs" + ranks + " (restart and data files do not yet)" + kOneRank);
+  if (kWholeSystem.count(c)) a.fail(0, "a command that runs" + ranks + " (data files do not yet)" + kOneRank);
   if (sim.comm.distributed && kReplicatedOnly.count(c))
     a.fail(0, "a command that runs" + ranks + " after the first run (before it, every rank holds every grain; " + c +
                   " after it does not run there yet)" + kOneRank);

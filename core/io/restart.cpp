@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <climits>
@@ -10,8 +11,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <sstream>
 
+#include "core/engine/contact_source.h"
 #include "core/engine/error.h"
 #include "core/engine/simulation.h"
 #include "core/input/style_registry.h"
@@ -64,8 +67,7 @@ void put_section(Packer& file, const std::string& name, const Packer& body) {
   file.put_string(body.bytes);
 }
 
-std::string atoms_section(const Simulation& sim) {
-  const Atoms& a = sim.atoms;
+std::string atoms_section(const Atoms& a) {
   Packer p;
   p.put<std::uint64_t>(a.n);
   p.put<std::int64_t>(a.max_id);
@@ -87,6 +89,58 @@ std::string atoms_section(const Simulation& sim) {
   return p.bytes;
 }
 
+// Several ranks: every rank's grains on rank 0 (in id order: the file does not depend
+// on the rank count), with every column; other ranks get nothing.
+void gather_atoms(const Simulation& sim, Atoms& out) {
+  const Atoms& a = sim.atoms;
+  std::vector<double> mine, all;
+  for (std::size_t i = 0; i < a.n; ++i) a.pack(i, mine);
+  sim.comm.gather(mine, all);
+  for (int c = 0; c < a.ncolumns(); ++c) out.add_column(a.column_name(c), a.column_stride(c));
+  out.ntypes = a.ntypes;
+  out.max_id = static_cast<long>(sim.comm.highest(static_cast<double>(a.max_id)));
+  if (sim.comm.rank() != 0) return;
+  const std::size_t rec = a.record_size(), n = all.size() / rec;
+  out.resize(n);
+  for (std::size_t i = 0; i < n; ++i) out.unpack(i, all.data() + i * rec);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return out.id[p] < out.id[q]; });
+  out.permute(order);
+}
+
+// Several ranks: every rank's rows of `h` on rank 0, after its own; a pair across two
+// ranks is kept once, as (lower id, higher id) (each rank holds it from its side).
+void gather_rows(const Simulation& sim, HistoryStore& h, const std::vector<char>& flip, bool pairs) {
+  std::vector<std::vector<double>> out(1);
+  HistoryStore copy = h;
+  copy.migrate([](long) { return 0; }, flip, out);  // every row as a record for "rank 0"
+  std::vector<double> all;
+  sim.comm.gather(out[0], all);
+  if (sim.comm.rank() != 0) return;
+  HistoryStore merged;
+  merged.configure(h.size());
+  merged.receive(all.data(), all.size() / merged.record_size());
+  if (pairs) {
+    std::map<std::pair<long, long>, std::size_t> best;  // per pair: its row, the (lower, higher) one if any
+    for (std::size_t r = 0; r < merged.count(); ++r) {
+      const auto k = merged.key(r);
+      const auto [at, fresh] = best.emplace(std::pair{std::min(k.tag, k.partner), std::max(k.tag, k.partner)}, r);
+      if (!fresh && k.tag < k.partner) at->second = r;
+    }
+    HistoryStore kept;
+    kept.configure(h.size());
+    for (std::size_t r = 0; r < merged.count(); ++r)
+      if (const auto k = merged.key(r); best[{std::min(k.tag, k.partner), std::max(k.tag, k.partner)}] == r) {
+        kept.resize(kept.count() + 1);
+        kept.set_key(kept.count() - 1, merged.key(r));
+        std::copy_n(merged.row(r), h.size(), kept.row(kept.count() - 1));
+      }
+    merged = std::move(kept);
+  }
+  h = std::move(merged);
+}
+
 // Pair model and the history of touching contacts, keyed by atom ids. After
 // read_restart and before the first run, the contacts are still pending: keep them.
 std::string pair_section(Simulation& sim, std::size_t& ncontacts) {
@@ -104,6 +158,11 @@ std::string pair_section(Simulation& sim, std::size_t& ncontacts) {
     if (ContactStore* store = sim.pair->history()) {
       slots = store->slots;
       c = store->touching(sim.neighbor.list, sim.neighbor.built_ids());
+      if (sim.comm.distributed) {
+        std::vector<char> flip;
+        for (const HistorySlot& s : slots) flip.push_back(s.flip);
+        gather_rows(sim, c, flip, true);
+      }
     }
   }
   p.put_string(model);
@@ -312,7 +371,10 @@ void write(Simulation& sim, const std::string& path) {
 
   Packer info;
   std::ostringstream text;
-  text << "sable restart: step " << sim.step << ", " << sim.atoms.n << " atoms, units " << sim.units
+  Atoms gathered;  // several ranks: every rank's grains, on rank 0
+  if (sim.comm.distributed) gather_atoms(sim, gathered);
+  const Atoms& atoms_all = sim.comm.distributed ? gathered : sim.atoms;
+  text << "sable restart: step " << sim.step << ", " << atoms_all.n << " atoms, units " << sim.units
        << ", atom_style granular, dimension " << d.dimension;
   info.put_string(text.str());
   put_section(file, "info", info);
@@ -347,7 +409,7 @@ void write(Simulation& sim, const std::string& path) {
   put_section(file, "groups", groups);
 
   Packer atoms;
-  atoms.bytes = atoms_section(sim);
+  atoms.bytes = atoms_section(atoms_all);
   put_section(file, "atoms", atoms);
 
   std::size_t ncontacts = 0, nstates = 0;
@@ -356,17 +418,32 @@ void write(Simulation& sim, const std::string& path) {
   put_section(file, "pair", pair);
 
   Packer fixes;
-  fixes.bytes = fixes_section(sim, nstates);
+  {
+    // Several ranks: each wall's history of every rank on rank 0 while its state is
+    // written, then its own rows again.
+    std::vector<std::pair<HistoryStore*, HistoryStore>> own;
+    if (sim.comm.distributed)
+      for (ContactSource* src : contact_sources(sim)) {
+        if (src->contact_kind() == ContactSource::Kind::Pairs) continue;
+        for (HistoryStore* h : src->histories_by_grain()) {
+          own.emplace_back(h, *h);
+          gather_rows(sim, *h, std::vector<char>(static_cast<std::size_t>(h->size()), 0), false);
+          h->sort();
+        }
+      }
+    fixes.bytes = fixes_section(sim, nstates);
+    for (auto& [h, rows] : own) *h = std::move(rows);
+  }
   put_section(file, "fixes", fixes);
 
   Packer end;
   end.put(fnv1a(file.bytes.data(), file.bytes.size()));
   put_section(file, "end", end);
-  write_atomically(path, file.bytes);
+  if (sim.comm.rank() == 0) write_atomically(path, file.bytes);
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "Restart file '%s' written: step %ld, %zu atoms, %zu contacts with history, %zu fix states",
-                path.c_str(), sim.step, sim.atoms.n, ncontacts, nstates);
+                path.c_str(), sim.step, atoms_all.n, ncontacts, nstates);
   sim.print(buf);
 }
 
