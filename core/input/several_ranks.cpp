@@ -22,7 +22,7 @@ const std::set<std::string> kComputes = {"ke", "erotate/sphere", "reduce", "prop
 // Commands that write or read every grain, or change grains, after the atoms are split.
 const std::set<std::string> kWholeSystem = {"write_data"};
 const std::set<std::string> kDumps = {"custom"};  // gathered to rank 0, which writes
-const std::set<std::string> kReplicatedOnly = {"velocity", "create_atoms", "read_data", "read_restart", "create_box"};
+const std::set<std::string> kReplicatedOnly = {"create_atoms", "read_data", "read_restart", "create_box"};
 
 std::string list(const std::set<std::string>& s) {
   std::string out;
@@ -48,6 +48,9 @@ void check_several_ranks(const Simulation& sim, const Args& a) {
   if ((c == "dump" || c == "write_dump") && a.size() > 3 && !kDumps.count(a[c == "dump" ? 3 : 2]))
     a.fail(c == "dump" ? 3 : 2, "a dump style that runs" + ranks + " (" + list(kDumps) + ")" + kOneRank);
   if (kWholeSystem.count(c)) a.fail(0, "a command that runs" + ranks + " (data files do not yet)" + kOneRank);
+  if (sim.comm.distributed && c == "velocity" && a.size() > 2 && a[2] == "zero")
+    a.fail(2, "set or ramp" + ranks + " after the first run (zero needs the group's momentum over all ranks, not done "
+              "yet)" + kOneRank);
   if (sim.comm.distributed && kReplicatedOnly.count(c))
     a.fail(0, "a command that runs" + ranks + " after the first run (before it, every rank holds every grain; " + c +
                   " after it does not run there yet)" + kOneRank);
