@@ -200,14 +200,21 @@ void Comm::decompose(const Domain& box) {
   if (grid[0] == 0)  // `processors` checked the counts against the ranks: only 2D can leave none
     fail(requested_at + ": no grid of " + std::to_string(size_) + " ranks with Pz = 1 fits these counts");
   coord = {rank_ % grid[0], rank_ / grid[0] % grid[1], rank_ / (grid[0] * grid[1])};
+  for (auto& c : cut) c.clear();
   split(box);
 }
 
 void Comm::split(const Domain& box) {
   for (int k = 0; k < 3; ++k) {
-    sublo[k] = face(box.lo[k], box.hi[k], coord[k], grid[k]);
-    subhi[k] = face(box.lo[k], box.hi[k], coord[k] + 1, grid[k]);
+    sublo[k] = face_at(box, k, coord[k]);
+    subhi[k] = face_at(box, k, coord[k] + 1);
   }
+}
+
+double Comm::face_at(const Domain& box, int k, int c) const {
+  const double lo = box.lo[k], hi = box.hi[k];
+  if (cut[k].empty() || c == 0 || c == grid[k]) return face(lo, hi, c, grid[k]);
+  return lo + (hi - lo) * cut[k][static_cast<std::size_t>(c - 1)];
 }
 
 std::string Comm::grid_line() const {

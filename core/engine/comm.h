@@ -95,6 +95,13 @@ class Comm {
   void forward(Atoms& atoms) const;
   // Boundary c of n slices of [lo, hi]: the ends exactly, so that subdomains tile the box.
   static double face(double lo, double hi, int c, int n);
+  // The grid's cut c along axis k in `box`: uniform, or where `balance` moved it
+  // (cut[k]: fractions of the box, one per inner cut; empty: uniform).
+  std::array<std::vector<double>, 3> cut;
+  double face_at(const Domain& box, int k, int c) const;
+  // `balance ... shift`: the inner cuts along the axes of `dims` ("xyz" letters) moved to
+  // where the grains split evenly, no slab thinner than `min_width`; every rank alike.
+  void balance_shift(Simulation& sim, const std::string& dims, double min_width);
 
   // The program's MPI lifetime (app/main.cpp); no-ops without MPI.
   static void init(int* argc, char*** argv);

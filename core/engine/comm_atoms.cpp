@@ -4,6 +4,7 @@
 // ghosts land, does not depend on timing.
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "core/engine/comm.h"
@@ -20,8 +21,8 @@ int Comm::owner_of(const double* x, const Domain& box) const {
     if (p == 1) continue;
     const double lo = box.lo[k], hi = box.hi[k];
     int ck = std::clamp(static_cast<int>(std::floor((x[k] - lo) / (hi - lo) * p)), 0, p - 1);
-    while (ck > 0 && x[k] < face(lo, hi, ck, p)) --ck;  // the faces as split() cuts them, to the bit
-    while (ck < p - 1 && x[k] >= face(lo, hi, ck + 1, p)) ++ck;
+    while (ck > 0 && x[k] < face_at(box, k, ck)) --ck;  // the faces as split() cuts them, to the bit
+    while (ck < p - 1 && x[k] >= face_at(box, k, ck + 1)) ++ck;
     c[k] = ck;
   }
   return rank_at(c);
@@ -129,6 +130,40 @@ void Comm::exchange(Simulation& sim) {
   }
   for (std::size_t s = 0; s < st.store.size(); ++s)
     if (st.wall[s]) st.wall[s]->history_moved();
+}
+
+// A histogram of the grains along each axis, summed over the ranks (or of every grain
+// before they are split), and each inner cut where its share of grains lies below it.
+void Comm::balance_shift(Simulation& sim, const std::string& dims, double min_width) {
+  const Atoms& a = sim.atoms;
+  const Domain& box = sim.domain;
+  constexpr int kBins = 4096;
+  for (char d : dims) {
+    const int k = d - 'x', p = grid[k];
+    if (p == 1) continue;
+    std::vector<double> hist(kBins, 0.0);
+    const double lo = box.lo[k], len = box.length(k);
+    for (std::size_t i = 0; i < a.n; ++i)
+      hist[static_cast<std::size_t>(std::clamp(static_cast<int>((a.x[3 * i + k] - lo) / len * kBins), 0, kBins - 1))] += 1;
+    total(hist.data(), kBins);
+    const double all = std::accumulate(hist.begin(), hist.end(), 0.0);
+    if (all == 0) continue;
+    std::vector<double> c(static_cast<std::size_t>(p - 1));
+    double below = 0;
+    int b = 0, last = -1;  // bins taken; the last one with grains
+    for (int q = 1; q < p; ++q) {  // midway between the grains below the q-th quantile and the next
+      while (b < kBins && below + hist[b] <= all * q / p) {
+        if (hist[b] > 0) last = b;
+        below += hist[b++];
+      }
+      c[q - 1] = 0.5 * (last + 1 + b) / kBins;
+    }
+    const double m = std::min(min_width / len, 1.0 / p);  // no slab thinner than the ghost cutoff
+    for (int q = 0; q < p - 1; ++q) c[q] = std::max(c[q], (q == 0 ? 0.0 : c[q - 1]) + m);
+    for (int q = p - 2; q >= 0; --q) c[q] = std::min(c[q], (q == p - 2 ? 1.0 : c[q + 1]) - m);
+    cut[k] = c;
+  }
+  split(box);
 }
 
 // An owned atom within `cutoff` of a face it shares with a neighbouring subdomain
