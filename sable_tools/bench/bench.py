@@ -620,14 +620,15 @@ def ranks_repeat(args, case, v, sable, liggghts, wd):
     return r
 
 
-def ranks(args, cases, sable, liggghts, tmp):
+def repeated(args, cases, sable, liggghts, tmp, one_repeat, table):
+    """--repeats repeats of one_repeat per case (--scaling, --ranks), then their table."""
     rows = []
     for case in cases:
         v = dict(case["quick"] if args.quick else case["vars"])
-        reps = [ranks_repeat(args, case, v, sable, liggghts, os.path.join(tmp, case["name"], "r%d" % k))
+        reps = [one_repeat(args, case, v, sable, liggghts, os.path.join(tmp, case["name"], "r%d" % k))
                 for k in range(args.repeats)]
         rows.append(dict(case=case["name"], vars=v, runs=reps))
-    return rows, ranks_table(rows)
+    return rows, table(rows)
 
 
 def ranks_table(rows):
@@ -698,16 +699,6 @@ def scaling_ratios(rep):
                 liggghts=l2 / l1 if l1 and l2 else None,
                 one_core=s1 / l1 if s1 and l1 else None,
                 two_cores=s2 / l2 if s2 and l2 else None)
-
-
-def scaling(args, cases, sable, liggghts, tmp):
-    rows = []
-    for case in cases:
-        v = dict(case["quick"] if args.quick else case["vars"])
-        reps = [scaling_repeat(args, case, v, sable, liggghts, os.path.join(tmp, case["name"], "r%d" % k))
-                for k in range(args.repeats)]
-        rows.append(dict(case=case["name"], vars=v, runs=reps))
-    return rows, scaling_table(rows)
 
 
 def scaling_table(rows):
@@ -850,14 +841,14 @@ def main():
             return
         if args.ranks:
             prefix = args.out or os.path.join(HERE, "ranks_quick" if args.quick else "ranks")
-            rows, table = ranks(args, cases, sable, liggghts, tmp)
+            rows, table = repeated(args, cases, sable, liggghts, tmp, ranks_repeat, ranks_table)
             info["loadavg_end"] = os.getloadavg()
             write_ranks(prefix, rows, table, info, sys.argv[1:])
             print("\n" + table + f"\n\nwritten: {prefix}.md, {prefix}.json")
             return
         if args.scaling:
             prefix = args.out or os.path.join(HERE, "scaling_quick" if args.quick else "scaling")
-            rows, table = scaling(args, cases, sable, liggghts, tmp)
+            rows, table = repeated(args, cases, sable, liggghts, tmp, scaling_repeat, scaling_table)
             info["loadavg_end"] = os.getloadavg()
             write_scaling(prefix, rows, table, info, sys.argv[1:])
             print("\n" + table + f"\n\nwritten: {prefix}.md, {prefix}.json")

@@ -93,14 +93,20 @@ TEST(Comm, FixedCountsAndTwoDimensions) {
 }
 
 // The subdomains tile the box: the outer faces are the box's, inner faces shared to the bit.
-TEST(Comm, SubdomainsCoverTheBoxExactly) {
-  const sable::Domain d = box({-0.3, 0.1, 1e-3}, {1.7, 0.4, 2.9});
-  const int n = 12;
+// Every rank's Comm of an n-rank run, each decomposed over d.
+std::vector<Comm> ranks_over(const sable::Domain& d, int n) {
   std::vector<Comm> ranks;
   for (int r = 0; r < n; ++r) {
     ranks.emplace_back(r, n);
     ranks.back().decompose(d);
   }
+  return ranks;
+}
+
+TEST(Comm, SubdomainsCoverTheBoxExactly) {
+  const sable::Domain d = box({-0.3, 0.1, 1e-3}, {1.7, 0.4, 2.9});
+  const int n = 12;
+  const std::vector<Comm> ranks = ranks_over(d, n);
   const Grid g = ranks[0].grid;
   ASSERT_EQ(g[0] * g[1] * g[2], n);
   double volume = 0;
@@ -182,12 +188,7 @@ TEST(Comm, TwoDimensionalBoxKeepsOneLayer) {
 // to the last rank.
 TEST(Comm, OwnerOfAPositionIsTheRankWhoseSubdomainHoldsIt) {
   const sable::Domain d = box({-0.3, 0.1, 1e-3}, {1.7, 0.4, 2.9});
-  const int n = 12;
-  std::vector<Comm> ranks;
-  for (int r = 0; r < n; ++r) {
-    ranks.emplace_back(r, n);
-    ranks.back().decompose(d);
-  }
+  const std::vector<Comm> ranks = ranks_over(d, 12);
   for (const Comm& c : ranks) {
     const double mid[3] = {0.5 * (c.sublo[0] + c.subhi[0]), 0.5 * (c.sublo[1] + c.subhi[1]),
                            0.5 * (c.sublo[2] + c.subhi[2])};
