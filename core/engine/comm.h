@@ -102,6 +102,13 @@ class Comm {
   // `balance ... shift`: the inner cuts along the axes of `dims` ("xyz" letters) moved to
   // where the grains split evenly, no slab thinner than `min_width`; every rank alike.
   void balance_shift(Simulation& sim, const std::string& dims, double min_width);
+  // The grains each rank owns, or would own at the current cuts (every rank alike), and
+  // the imbalance factor of such counts (the most over the mean).
+  std::vector<double> grains_per_rank(const Simulation& sim) const;
+  static double imbalance(const std::vector<double>& per_rank);
+  // `balance`/`fix balance`: the imbalance now, and, when above thresh, the cuts shifted;
+  // returns {before, after} (after = before when nothing moved).
+  std::array<double, 2> rebalance(Simulation& sim, double thresh, const std::string& dims);
 
   // The program's MPI lifetime (app/main.cpp); no-ops without MPI.
   static void init(int* argc, char*** argv);

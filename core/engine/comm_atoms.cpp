@@ -166,6 +166,29 @@ void Comm::balance_shift(Simulation& sim, const std::string& dims, double min_wi
   split(box);
 }
 
+std::vector<double> Comm::grains_per_rank(const Simulation& sim) const {
+  std::vector<double> c(static_cast<std::size_t>(size_), 0.0);
+  for (std::size_t i = 0; i < sim.atoms.n; ++i) c[static_cast<std::size_t>(owner_of(&sim.atoms.x[3 * i], sim.domain))] += 1;
+  total(c.data(), size_);
+  return c;
+}
+
+double Comm::imbalance(const std::vector<double>& c) {
+  const double sum = std::accumulate(c.begin(), c.end(), 0.0);
+  return sum > 0 ? *std::max_element(c.begin(), c.end()) / (sum / static_cast<double>(c.size())) : 1.0;
+}
+
+// No slab thinner than the ghost cutoff: twice the largest radius of all ranks plus the skin.
+std::array<double, 2> Comm::rebalance(Simulation& sim, double thresh, const std::string& dims) {
+  const double before = imbalance(grains_per_rank(sim));
+  if (size_ == 1 || before <= thresh) return {before, before};
+  double rmax = 0;
+  for (std::size_t i = 0; i < sim.atoms.n; ++i) rmax = std::max(rmax, sim.atoms.radius[i]);
+  const double skin = sim.neighbor.skin_set ? sim.neighbor.skin : 0.001;  // the run's default (Simulation::setup)
+  balance_shift(sim, dims, 2 * highest(rmax) + skin);
+  return {before, imbalance(grains_per_rank(sim))};
+}
+
 // An owned atom within `cutoff` of a face it shares with a neighbouring subdomain
 // (across the periodic wrap too) becomes a ghost there: offsets of -1, 0, +1 along
 // each axis the grid splits, so corners and edges go straight to their rank.

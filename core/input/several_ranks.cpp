@@ -17,6 +17,7 @@ const std::set<std::string> kFixes = {
     "freeze", "setforce", "addforce", "halt", "ave/time", "move", "property/atom",
     "mesh/surface", "mesh/surface/stress", "move/mesh",  // every rank holds every triangle
     "insert/pack", "insert/rate/region",  // the same grains whatever the rank count
+    "balance",
     "particletemplate/sphere", "particledistribution/discrete"};  // the last two: definitions (insertion stops)
 const std::set<std::string> kComputes = {"ke", "erotate/sphere", "reduce", "property/atom", "unbalanced/force"};
 // Commands that write or read every grain, or change grains, after the atoms are split.
