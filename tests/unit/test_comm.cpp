@@ -242,4 +242,33 @@ TEST(Comm, GhostsFollowTheOwnedAtomsAndCarryEveryColumn) {
   EXPECT_EQ(a.column(col).size(), 6u);
 }
 
+// balance ... shift (Comm::rebalance) on rank 0 of a 2-rank grid along z, before the grains
+// are split (every rank holds them all, as here): 90 grains spread over z in [0, 0.4] and 30
+// over [0.8, 1]. Even counts put the cut between the 60th and the 61st grain from below
+// (z = 0.2644 and 0.2689); a ghost cutoff of 0.6 (wider than half the box) leaves it at 0.5.
+TEST(Comm, BalanceShiftCutsWhereTheGrainsSplitEvenly) {
+  Deck d;
+  d->comm = Comm(0, 2);
+  d("processors 1 1 2\nregion box block 0 1 0 1 0 1 units box\ncreate_box 1 box");
+  for (int i = 0; i < 120; ++i) {
+    const double z = i < 90 ? (i + 0.5) / 90 * 0.4 : 0.8 + (i - 90 + 0.5) / 30 * 0.2;
+    const double x[3] = {0.5, 0.5, z};
+    d->atoms.add(i + 1, 1, x, 0.001, 2500);
+  }
+  EXPECT_EQ(d->comm.imbalance(d->comm.grains_per_rank(*d)), 1.5);  // 90 below the middle
+  d("neighbor 0.001 bin\nbalance 1.1 shift z 5 1.1");
+  const double cut = d->comm.face_at(d->domain, 2, 1);
+  EXPECT_GT(cut, (59 + 0.5) / 90 * 0.4);
+  EXPECT_LT(cut, (60 + 0.5) / 90 * 0.4);
+  EXPECT_EQ(d->comm.grains_per_rank(*d), (std::vector<double>{60, 60}));
+  EXPECT_EQ(d->comm.subhi[2], cut);
+  d("balance 1.1 shift z 5 1.1");  // balanced now: the cuts stay
+  EXPECT_EQ(d->comm.face_at(d->domain, 2, 1), cut);
+  d->atoms.radius.assign(120, 0.2995);  // ghost cutoff 2 x 0.2995 + 0.001 = 0.6
+  d->comm.cut[2].clear();
+  d->comm.split(d->domain);
+  d->comm.rebalance(*d, 1.0, "z");
+  EXPECT_EQ(d->comm.face_at(d->domain, 2, 1), 0.5);
+}
+
 }  // namespace test_comm
